@@ -1,0 +1,289 @@
+"""Rows of rolling elements between a fixed and a moving ring, for the quasi-static solver.
+
+Frame: z along the bearing axis, the fixed ring at rest, the moving ring displaced by
+q = (x, y, z, θx, θy) (m, rad; small rotations about its reference point, the origin).
+An element sits at azimuth ψ (from +x towards +y); e_r, e_t, e_z are the radial, tangential and
+axial unit vectors there.
+
+Ball rows (Harris & Kotzalas, *Rolling Bearing Analysis*, ch. 7 and 9, "rigid rings"): the
+groove curvature centres of the two rings lie on a line through the ball centre. Unloaded and
+touching, the moving ring's centre sits A = (f_m + f_f − 1)·D from the fixed ring's along
+d̂ = (s_r·cos α0)·e_r + (s_z·sin α0)·e_z, the direction in which the moving ring must move to
+compress the ball (s_r = +1 when the moving ring carries the inner raceway, s_z = ``axial_sign``).
+Displaced, the centre distance is |s| with s = A·d̂ + (u − (u·e_t)e_t), u = d + θ × p the
+displacement of the moving centre p; the approach is δ = |s| − A − gap, the ball load
+Q = K·δ^1.5 with K the series constant of the two Hertz contacts, and the loaded contact angle
+α = atan2(s_z·s·e_z, s_r·s·e_r). Ball centrifugal force and gyroscopic moment are neglected
+(slow bearings).
+
+Roller rows (ISO/TS 16281 slices): a roller of effective length L is cut into n_s slices; slice
+k at distance x_k from the roller centre has approach δ_k = u(p_k)·n − gap − drop(x_k) along the
+fixed contact normal n (radial row: n = s·e_r; thrust row: n = s·e_z) and carries
+q_k = (c_L/n_s)·δ_k^(10/9), c_L the roller's constant between both raceways.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Literal
+
+from ..contact.hertz import ball_on_groove, series_stiffness
+from ..contact.line import LINE_EXPONENT, iso16281_stiffness, palmgren_stiffness, series_line_stiffness
+from ..materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
+
+__all__ = ["BallRow", "RollerRow", "Bearing"]
+
+
+def _positive(owner: str, **values: float) -> None:
+    for name, v in values.items():
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0.0):
+            raise ValueError(f"{owner}: {name} must be a positive finite number, got {v!r}")
+
+
+def _finite(owner: str, **values: float) -> None:
+    for name, v in values.items():
+        if not (isinstance(v, (int, float)) and math.isfinite(v)):
+            raise ValueError(f"{owner}: {name} must be a finite number, got {v!r}")
+
+
+def _count(owner: str, name: str, n: int, minimum: int = 1) -> None:
+    if isinstance(n, bool) or not isinstance(n, int) or n < minimum:
+        raise ValueError(f"{owner}: {name} must be an integer >= {minimum}, got {n!r}")
+
+
+def _sign(owner: str, name: str, s: int) -> None:
+    if s not in (1, -1):
+        raise ValueError(f"{owner}: {name} must be +1 or -1, got {s!r}")
+
+
+@dataclass(frozen=True)
+class BallRow:
+    """A row of balls in grooves.
+
+    Parameters
+    ----------
+    name : str
+        Row label.
+    n_balls : int
+        Number of load-carrying balls Z.
+    ball_diameter_m : float
+        Ball diameter D, m.
+    pitch_diameter_m : float
+        Pitch diameter d_m, m.
+    contact_angle_rad : float
+        Nominal (unloaded) contact angle α0, rad, in [0, π/2].
+    conformity_moving, conformity_fixed : float
+        Groove radius / D of the moving and of the fixed ring, > 0.5.
+    moving_raceway : {"inner", "outer"}
+        Whether the moving ring's raceway is the inner (convex in the rolling direction,
+        contact nearer the axis) or the outer one.
+    axial_sign : int
+        +1 if an axial displacement of the moving ring towards +z loads the row, −1 if towards −z.
+        Irrelevant for α0 = 0.
+    gap_m : float
+        Free play along the contact line before the ball is loaded, m (negative = preload).
+    axial_position_m : float
+        z of the ball centres, m.
+    first_azimuth_rad : float
+        Azimuth of ball 0, rad; the others follow at 2π/Z spacing.
+    stiffness_N_per_m1p5 : float or None
+        Override of the ball's load–deflection constant (both contacts in series), N/m^1.5.
+    ball_material, race_material : ElasticMaterial
+    """
+
+    name: str
+    n_balls: int
+    ball_diameter_m: float
+    pitch_diameter_m: float
+    contact_angle_rad: float
+    conformity_moving: float
+    conformity_fixed: float
+    moving_raceway: Literal["inner", "outer"] = "inner"
+    axial_sign: int = 1
+    gap_m: float = 0.0
+    axial_position_m: float = 0.0
+    first_azimuth_rad: float = 0.0
+    stiffness_N_per_m1p5: float | None = None
+    ball_material: ElasticMaterial = field(default=BEARING_STEEL)
+    race_material: ElasticMaterial = field(default=BEARING_STEEL)
+
+    def __post_init__(self) -> None:
+        who = f"ball row {self.name!r}"
+        _count(who, "n_balls", self.n_balls)
+        _positive(who, ball_diameter_m=self.ball_diameter_m, pitch_diameter_m=self.pitch_diameter_m)
+        if self.pitch_diameter_m <= self.ball_diameter_m:
+            raise ValueError(f"{who}: pitch_diameter_m must exceed ball_diameter_m")
+        if not 0.0 <= self.contact_angle_rad <= math.pi / 2 + 1e-12:
+            raise ValueError(
+                f"{who}: contact_angle must lie in [0, 90] deg, got {math.degrees(self.contact_angle_rad):.6g}"
+            )
+        for name in ("conformity_moving", "conformity_fixed"):
+            f = getattr(self, name)
+            if not (isinstance(f, (int, float)) and f > 0.5):
+                raise ValueError(
+                    f"{who}: {name} must be > 0.5 (the ball must be smaller than its groove), got {f!r}"
+                )
+        if self.moving_raceway not in ("inner", "outer"):
+            raise ValueError(f"{who}: moving_raceway must be 'inner' or 'outer', got {self.moving_raceway!r}")
+        _sign(who, "axial_sign", self.axial_sign)
+        _finite(who, gap_m=self.gap_m, axial_position_m=self.axial_position_m,
+                first_azimuth_rad=self.first_azimuth_rad)
+        if self.stiffness_N_per_m1p5 is not None:
+            _positive(who, stiffness_N_per_m1p5=self.stiffness_N_per_m1p5)
+        if self.n_balls * self.ball_diameter_m > math.pi * self.pitch_diameter_m * (1 + 1e-9):
+            raise ValueError(
+                f"{who}: {self.n_balls} balls of {self.ball_diameter_m} m do not fit on the pitch "
+                f"circle of {self.pitch_diameter_m} m"
+            )
+
+    @property
+    def radial_sign(self) -> int:
+        """+1 if moving the moving ring outwards loads the row (it carries the inner raceway)."""
+        return 1 if self.moving_raceway == "inner" else -1
+
+    @property
+    def curvature_centre_distance_m(self) -> float:
+        """A = (f_m + f_f − 1)·D, m."""
+        return (self.conformity_moving + self.conformity_fixed - 1.0) * self.ball_diameter_m
+
+    @property
+    def n_elements(self) -> int:
+        return self.n_balls
+
+    def contact_stiffness(self) -> float:
+        """K of Q = K·δ^1.5 for one ball (moving and fixed contacts in series), N/m^1.5."""
+        if self.stiffness_N_per_m1p5 is not None:
+            return self.stiffness_N_per_m1p5
+        fixed = "outer" if self.moving_raceway == "inner" else "inner"
+        args = (self.ball_diameter_m,)
+        k_m = ball_on_groove(*args, self.conformity_moving, self.pitch_diameter_m, self.contact_angle_rad,
+                             self.moving_raceway, self.ball_material, self.race_material)
+        k_f = ball_on_groove(*args, self.conformity_fixed, self.pitch_diameter_m, self.contact_angle_rad,
+                             fixed, self.ball_material, self.race_material)
+        return series_stiffness(k_m.stiffness_N_per_m1p5, k_f.stiffness_N_per_m1p5)
+
+
+@dataclass(frozen=True)
+class RollerRow:
+    """A row of cylindrical rollers, each cut into slices.
+
+    Parameters
+    ----------
+    name : str
+        Row label.
+    n_rollers : int
+        Number of rollers Z.
+    roller_diameter_m : float
+        Roller diameter D_we, m.
+    roller_length_m : float
+        Effective contact length L_we, m.
+    pitch_diameter_m : float
+        Pitch diameter d_m, m.
+    orientation : {"radial", "thrust"}
+        Radial row (roller axis parallel to the bearing axis, normal radial) or thrust row
+        (roller axis radial, normal axial).
+    load_sign : int
+        +1 if a moving-ring displacement towards +e_r (radial row) or +z (thrust row) loads the
+        row, −1 for the opposite direction.
+    gap_m : float
+        Clearance per roller along the normal, m (negative = preload).
+    axial_position_m : float
+        z of the roller centres, m.
+    n_slices : int
+        Slices per roller (ISO/TS 16281 suggests ≥ 20 for tilted rollers).
+    crown_drop_m : float
+        Drop of a parabolic crown at the roller ends, m (0 = straight roller).
+    stiffness_law : {"iso16281", "palmgren"}
+        c_L from ISO/TS 16281 (default) or two Palmgren contacts in series.
+    stiffness_N_per_m10_9 : float or None
+        Override of the whole roller's constant c_L (both contacts), N/m^(10/9).
+    first_azimuth_rad : float
+        Azimuth of roller 0, rad.
+    roller_material, race_material : ElasticMaterial
+    """
+
+    name: str
+    n_rollers: int
+    roller_diameter_m: float
+    roller_length_m: float
+    pitch_diameter_m: float
+    orientation: Literal["radial", "thrust"] = "radial"
+    load_sign: int = 1
+    gap_m: float = 0.0
+    axial_position_m: float = 0.0
+    n_slices: int = 20
+    crown_drop_m: float = 0.0
+    stiffness_law: Literal["iso16281", "palmgren"] = "iso16281"
+    stiffness_N_per_m10_9: float | None = None
+    first_azimuth_rad: float = 0.0
+    roller_material: ElasticMaterial = field(default=BEARING_STEEL)
+    race_material: ElasticMaterial = field(default=BEARING_STEEL)
+
+    def __post_init__(self) -> None:
+        who = f"roller row {self.name!r}"
+        _count(who, "n_rollers", self.n_rollers)
+        _count(who, "n_slices", self.n_slices)
+        _positive(who, roller_diameter_m=self.roller_diameter_m, roller_length_m=self.roller_length_m,
+                  pitch_diameter_m=self.pitch_diameter_m)
+        if self.orientation not in ("radial", "thrust"):
+            raise ValueError(f"{who}: orientation must be 'radial' or 'thrust', got {self.orientation!r}")
+        _sign(who, "load_sign", self.load_sign)
+        _finite(who, gap_m=self.gap_m, axial_position_m=self.axial_position_m,
+                crown_drop_m=self.crown_drop_m, first_azimuth_rad=self.first_azimuth_rad)
+        if self.crown_drop_m < 0.0:
+            raise ValueError(f"{who}: crown_drop_m must be >= 0, got {self.crown_drop_m}")
+        if self.stiffness_law not in ("iso16281", "palmgren"):
+            raise ValueError(f"{who}: stiffness_law must be 'iso16281' or 'palmgren', got {self.stiffness_law!r}")
+        if self.stiffness_N_per_m10_9 is not None:
+            _positive(who, stiffness_N_per_m10_9=self.stiffness_N_per_m10_9)
+        if self.orientation == "thrust" and self.roller_length_m >= self.pitch_diameter_m:
+            raise ValueError(f"{who}: roller_length_m must be shorter than pitch_diameter_m")
+        if self.orientation == "radial" and self.pitch_diameter_m <= self.roller_diameter_m:
+            raise ValueError(f"{who}: pitch_diameter_m must exceed roller_diameter_m")
+        if self.n_rollers * self.roller_diameter_m > math.pi * self.pitch_diameter_m * (1 + 1e-9):
+            raise ValueError(
+                f"{who}: {self.n_rollers} rollers of {self.roller_diameter_m} m do not fit on the pitch circle "
+                f"of {self.pitch_diameter_m} m"
+            )
+
+    @property
+    def n_elements(self) -> int:
+        return self.n_rollers
+
+    def contact_stiffness(self) -> float:
+        """c_L of Q = c_L·δ^(10/9) for the whole roller between both raceways, N/m^(10/9)."""
+        if self.stiffness_N_per_m10_9 is not None:
+            return self.stiffness_N_per_m10_9
+        e_eff = effective_modulus_Pa(self.roller_material, self.race_material)
+        if self.stiffness_law == "iso16281":
+            return iso16281_stiffness(self.roller_length_m, e_eff)
+        k = palmgren_stiffness(self.roller_length_m, e_eff)
+        return series_line_stiffness(k, k)
+
+    @property
+    def exponent(self) -> float:
+        return LINE_EXPONENT
+
+
+@dataclass(frozen=True)
+class Bearing:
+    """Rows of rolling elements acting in parallel between one fixed and one moving ring."""
+
+    name: str
+    rows: tuple[BallRow | RollerRow, ...]
+
+    def __post_init__(self) -> None:
+        if not self.rows:
+            raise ValueError(f"bearing {self.name!r}: rows must not be empty")
+        names = [r.name for r in self.rows]
+        if len(set(names)) != len(names):
+            raise ValueError(f"bearing {self.name!r}: row names must be unique, got {names}")
+        for r in self.rows:
+            if not isinstance(r, (BallRow, RollerRow)):
+                raise ValueError(f"bearing {self.name!r}: rows must be BallRow or RollerRow, got {type(r)}")
+
+    @property
+    def reference_length_m(self) -> float:
+        """Largest pitch radius, m: scales moments and rotations in the solver."""
+        return max(r.pitch_diameter_m for r in self.rows) / 2.0

@@ -1,0 +1,395 @@
+"""Quasi-static load distribution of a bearing with rigid rings.
+
+Newton's method with the analytic Jacobian on the equilibrium of the moving ring,
+
+    Σ_i F_i(q) + F_ext = 0,   Σ_i (p_i × F_i(q))_{x,y} + M_ext = 0,
+
+for q = (x, y, z, θx, θy) (the spin θz has no stiffness and is not an unknown). F_i are the
+forces of the balls and roller slices on the moving ring (see :mod:`.rows`). Moments and
+rotations are scaled by the largest pitch radius so that the Newton system is well balanced;
+each step is damped by backtracking on the residual norm. Degrees of freedom in which the
+bearing has no stiffness and no load (the axial direction of a purely radial roller row, say)
+are held at zero; a load on such a degree of freedom is an error.
+
+Reference: Harris & Kotzalas, *Advanced Concepts of Bearing Technology*, 5th ed., ch. 1
+("rigid rings" load distribution), and ISO/TS 16281:2008 for the slice model.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .elements import BallGroup, SliceGroup, build_groups, displacement_matrix
+from .rows import BallRow, Bearing
+
+__all__ = ["RingLoad", "RowLoads", "LoadDistribution", "LoadDistributionError", "solve_load_distribution", "DOF_NAMES"]
+
+log = logging.getLogger(__name__)
+
+#: Names of the unknowns and of the matching load components.
+DOF_NAMES = ("x", "y", "z", "rot_x", "rot_y")
+LOAD_NAMES = ("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm")
+
+
+class LoadDistributionError(RuntimeError):
+    """No equilibrium: the rows cannot carry the load, or the solver did not converge."""
+
+
+@dataclass(frozen=True)
+class RingLoad:
+    """External load on the moving ring at its reference point (the bearing centre).
+
+    Forces in N, moments in N·m, in the bearing frame (z along the axis).
+    """
+
+    Fx_N: float = 0.0
+    Fy_N: float = 0.0
+    Fz_N: float = 0.0
+    Mx_Nm: float = 0.0
+    My_Nm: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name in LOAD_NAMES:
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v)):
+                raise ValueError(f"load: {name} must be a finite number, got {v!r}")
+
+    def as_array(self) -> np.ndarray:
+        return np.array([getattr(self, n) for n in LOAD_NAMES], dtype=float)
+
+
+@dataclass(frozen=True)
+class RowLoads:
+    """Loads of one row at equilibrium.
+
+    Attributes (Z = elements in the row)
+    ----------
+    name, kind : str
+        Row name and "ball" or "roller".
+    azimuth_rad : (Z,) element azimuth ψ, rad
+    load_N : (Z,) normal load of a ball, or total load of a roller, N
+    approach_m : (Z,) ball approach δ, or the largest slice approach of a roller, m
+    contact_angle_rad : (Z,) loaded contact angle (balls); nominal 0 / π/2 (radial / thrust rollers)
+    unloaded : (Z,) True where the element carries no load
+    slice_load_N : (Z, n_s) slice loads of rollers, or None for balls
+    """
+
+    name: str
+    kind: str
+    azimuth_rad: np.ndarray
+    load_N: np.ndarray
+    approach_m: np.ndarray
+    contact_angle_rad: np.ndarray
+    unloaded: np.ndarray
+    slice_load_N: np.ndarray | None = None
+
+    @property
+    def max_load_N(self) -> float:
+        return float(self.load_N.max())
+
+    @property
+    def n_unloaded(self) -> int:
+        return int(self.unloaded.sum())
+
+    def to_dict(self) -> dict:
+        d = {
+            "name": self.name,
+            "kind": self.kind,
+            "azimuth_deg": np.degrees(self.azimuth_rad).tolist(),
+            "load_N": self.load_N.tolist(),
+            "approach_m": self.approach_m.tolist(),
+            "contact_angle_deg": np.degrees(self.contact_angle_rad).tolist(),
+            "unloaded": self.unloaded.tolist(),
+            "max_load_N": self.max_load_N,
+            "n_unloaded": self.n_unloaded,
+        }
+        if self.slice_load_N is not None:
+            d["slice_load_N"] = self.slice_load_N.tolist()
+        return d
+
+
+@dataclass(frozen=True)
+class LoadDistribution:
+    """Equilibrium of the moving ring and the loads of every element.
+
+    Attributes
+    ----------
+    bearing_name : str
+    load : (5,) applied (Fx, Fy, Fz, Mx, My), N and N·m
+    displacement : (5,) moving-ring (x, y, z, θx, θy), m and rad
+    reaction : (5,) resultant of the element forces on the moving ring, N and N·m
+    rows : tuple of RowLoads
+    iterations : int
+    equilibrium_error : float
+        |load + reaction| / (|F| + |M|/R_ref) with moments scaled by the largest pitch radius.
+    held_dofs : tuple of str
+        Degrees of freedom held at zero (no stiffness and no load).
+    """
+
+    bearing_name: str
+    load: np.ndarray
+    displacement: np.ndarray
+    reaction: np.ndarray
+    rows: tuple[RowLoads, ...]
+    iterations: int
+    equilibrium_error: float
+    held_dofs: tuple[str, ...] = ()
+
+    def row(self, name: str) -> RowLoads:
+        for r in self.rows:
+            if r.name == name:
+                return r
+        raise KeyError(f"no row named {name!r}; rows: {[r.name for r in self.rows]}")
+
+    def to_dict(self) -> dict:
+        return {
+            "bearing": self.bearing_name,
+            "load": dict(zip(LOAD_NAMES, self.load.tolist())),
+            "displacement": dict(zip(("x_m", "y_m", "z_m", "rot_x_rad", "rot_y_rad"), self.displacement.tolist())),
+            "reaction": dict(zip(LOAD_NAMES, self.reaction.tolist())),
+            "iterations": self.iterations,
+            "equilibrium_error": self.equilibrium_error,
+            "held_dofs": list(self.held_dofs),
+            "rows": [r.to_dict() for r in self.rows],
+        }
+
+
+# --------------------------------------------------------------------------- element forces
+
+def ball_forces(g: BallGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = True):
+    """Ball loads and their forces on the moving ring.
+
+    Returns
+    -------
+    Q : (n,) normal loads, N;  delta : (n,) approaches, m;  s : (n, 3) centre-distance vectors, m;
+    F : (n, 3) forces on the moving ring, N;  C : (n, 3, 5) dF/dq or None.
+    """
+    u = B @ q
+    u = u - np.sum(u * g.t, axis=1)[:, None] * g.t
+    s = g.s0_m + u
+    L = np.linalg.norm(s, axis=1)
+    s_hat = s / L[:, None]
+    delta = L - g.free_length_m
+    dpos = np.maximum(delta, 0.0)
+    sq = np.sqrt(dpos)
+    Q = g.K * dpos * sq
+    F = -Q[:, None] * s_hat
+    if not jacobian:
+        return Q, delta, s, F, None
+    dQ = 1.5 * g.K * sq
+    ss = s_hat[:, :, None] * s_hat[:, None, :]
+    eye = np.eye(3)[None]
+    G = -(dQ[:, None, None] * ss + (Q / L)[:, None, None] * (eye - ss))
+    P = eye - g.t[:, :, None] * g.t[:, None, :]
+    return Q, delta, s, F, G @ P @ B
+
+
+def slice_forces(g: SliceGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = True):
+    """Slice loads and their forces on the moving ring (same returns as :func:`ball_forces`)."""
+    u = B @ q
+    delta = np.sum(u * g.normal, axis=1) - g.offset_m
+    dpos = np.maximum(delta, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        Q = g.K * dpos**g.exponent
+        F = -Q[:, None] * g.normal
+        if not jacobian:
+            return Q, delta, None, F, None
+        dQ = np.where(dpos > 0.0, g.exponent * g.K * dpos ** (g.exponent - 1.0), 0.0)
+    nn = g.normal[:, :, None] * g.normal[:, None, :]
+    return Q, delta, None, F, -dQ[:, None, None] * (nn @ B)
+
+
+def _generalised(p: np.ndarray, F: np.ndarray, C: np.ndarray | None):
+    """Resultant (Fx, Fy, Fz, Mx, My) of point forces and its Jacobian (5, 5)."""
+    r = np.empty(5)
+    r[:3] = F.sum(axis=0)
+    r[3] = np.sum(p[:, 1] * F[:, 2] - p[:, 2] * F[:, 1])
+    r[4] = np.sum(p[:, 2] * F[:, 0] - p[:, 0] * F[:, 2])
+    if C is None:
+        return r, None
+    J = np.empty((5, 5))
+    J[:3] = C.sum(axis=0)
+    px, py, pz = p[:, 0, None], p[:, 1, None], p[:, 2, None]
+    J[3] = np.sum(py * C[:, 2] - pz * C[:, 1], axis=0)
+    J[4] = np.sum(pz * C[:, 0] - px * C[:, 2], axis=0)
+    return r, J
+
+
+class _Problem:
+    """Bearing geometry flattened once; evaluates the residual and Jacobian of q."""
+
+    def __init__(self, bearing: Bearing):
+        self.bearing = bearing
+        self.balls, self.slices = build_groups(bearing)
+        self.B_balls = displacement_matrix(self.balls.p_m)
+        self.B_slices = displacement_matrix(self.slices.p_m)
+
+    def reaction(self, q: np.ndarray, jacobian: bool = True):
+        rb, Jb = _generalised(self.balls.p_m, *ball_forces(self.balls, self.B_balls, q, jacobian)[3:])
+        rs, Js = _generalised(self.slices.p_m, *slice_forces(self.slices, self.B_slices, q, jacobian)[3:])
+        return rb + rs, (None if not jacobian else Jb + Js)
+
+    def linear_stiffness(self, load_scale_N: float) -> np.ndarray:
+        """Secant stiffness (5, 5) with every element loaded to an equal share of the load.
+
+        Used only for the starting point and to find unsupported degrees of freedom: each
+        element acts as a two-sided linear spring along its contact direction (plus the
+        transverse geometric stiffness Q/A of a ball in its groove).
+        """
+        n_el = len(self.balls.K) + len(self.slices.K)
+        Q_ref = max(load_scale_N, 1.0) / max(n_el, 1)
+        K = np.zeros((5, 5))
+        g = self.balls
+        if len(g.K):
+            d = (Q_ref / g.K) ** (2.0 / 3.0)
+            k = Q_ref / d
+            n_hat = g.s0_m / np.linalg.norm(g.s0_m, axis=1)[:, None]
+            nn = n_hat[:, :, None] * n_hat[:, None, :]
+            P = np.eye(3)[None] - g.t[:, :, None] * g.t[:, None, :]
+            G = -(k[:, None, None] * nn + (Q_ref / g.free_length_m.clip(min=1e-12))[:, None, None] * (P - nn))
+            K -= _generalised(g.p_m, np.zeros_like(g.p_m), G @ self.B_balls)[1]
+        s = self.slices
+        if len(s.K):
+            d = (Q_ref / s.K) ** (1.0 / s.exponent)
+            k = Q_ref / d
+            nn = s.normal[:, :, None] * s.normal[:, None, :]
+            K -= _generalised(s.p_m, np.zeros_like(s.p_m), -k[:, None, None] * (nn @ self.B_slices))[1]
+        return K
+
+
+def _scaling(bearing: Bearing) -> np.ndarray:
+    L = bearing.reference_length_m
+    return np.array([1.0, 1.0, 1.0, L, L])
+
+
+def solve_load_distribution(
+    bearing: Bearing,
+    load: RingLoad,
+    *,
+    tolerance: float = 1e-10,
+    max_iterations: int = 100,
+    initial_displacement: np.ndarray | None = None,
+) -> LoadDistribution:
+    """Equilibrium of the moving ring under ``load`` and the load of every rolling element.
+
+    Parameters
+    ----------
+    bearing : Bearing
+        Rows between the fixed and the moving ring.
+    load : RingLoad
+        External load on the moving ring, N and N·m.
+    tolerance : float
+        Convergence when |residual| ≤ tolerance·(|F| + |M|/R_ref) (moments scaled by the
+        largest pitch radius R_ref).
+    max_iterations : int
+        Newton iterations before giving up.
+    initial_displacement : (5,) array, optional
+        Starting point (x, y, z, θx, θy), m and rad; default from a linear spring estimate.
+
+    Raises
+    ------
+    LoadDistributionError
+        If the load acts on a degree of freedom without stiffness or Newton does not converge
+        (the rows cannot carry the load, e.g. it lifts the moving ring off every element).
+    """
+    if not isinstance(bearing, Bearing):
+        raise TypeError(f"bearing must be a Bearing, got {type(bearing).__name__}")
+    if not isinstance(load, RingLoad):
+        raise TypeError(f"load must be a RingLoad, got {type(load).__name__}")
+    prob = _Problem(bearing)
+    S = _scaling(bearing)  # q_scaled = S·q, r_scaled = r / S
+    f_ext = load.as_array()
+    load_scale = float(np.linalg.norm(f_ext / S))
+    scale = max(load_scale, 1.0)
+
+    K_lin = prob.linear_stiffness(load_scale) / S[:, None] / S[None, :]
+    diag = np.diag(K_lin)
+    supported = diag > 1e-12 * diag.max()
+    for i in np.flatnonzero(~supported):
+        if abs(f_ext[i] / S[i]) > 1e-12 * scale:
+            raise LoadDistributionError(
+                f"load: {LOAD_NAMES[i]} = {f_ext[i]:.6g} acts on a degree of freedom ({DOF_NAMES[i]}) "
+                f"in which bearing {bearing.name!r} has no stiffness"
+            )
+    free = np.flatnonzero(supported)
+    held = tuple(DOF_NAMES[i] for i in np.flatnonzero(~supported))
+
+    if initial_displacement is None:
+        y = np.zeros(5)
+        y[free] = np.linalg.solve(K_lin[np.ix_(free, free)], f_ext[free] / S[free])
+    else:
+        y = np.asarray(initial_displacement, dtype=float).reshape(5) * S
+        y[~supported] = 0.0
+
+    def residual(y_scaled, jac=True):
+        r, J = prob.reaction(y_scaled / S, jac)
+        r_s = (r + f_ext) / S
+        J_s = None if J is None else J / S[:, None] / S[None, :]
+        return r_s, J_s
+
+    r, J = residual(y)
+    norm = np.linalg.norm(r[free])
+    it = 0
+    while norm > tolerance * scale:
+        if it >= max_iterations:
+            break
+        it += 1
+        Kf = -J[np.ix_(free, free)]
+        if not np.all(np.isfinite(Kf)) or np.linalg.cond(Kf) > 1e12:
+            Kf = Kf + 1e-3 * K_lin[np.ix_(free, free)]  # all elements lost contact: lean on the springs
+        step = np.zeros(5)
+        step[free] = np.linalg.solve(Kf, r[free])
+        lam, accepted = 1.0, False
+        while lam > 1e-8:
+            y_try = y + lam * step
+            r_try, J_try = residual(y_try)
+            n_try = np.linalg.norm(r_try[free])
+            if n_try < (1.0 - 1e-4 * lam) * norm:
+                accepted = True
+                break
+            lam *= 0.5
+        if not accepted:
+            break
+        y, r, J, norm = y_try, r_try, J_try, n_try
+        log.debug("iteration %d: |residual| = %.3e (step %.3g)", it, norm / scale, lam)
+
+    if not norm <= tolerance * scale:
+        worst = int(np.argmax(np.abs(r)))
+        raise LoadDistributionError(
+            f"no converged equilibrium for bearing {bearing.name!r} after {it} iterations: "
+            f"unbalanced {LOAD_NAMES[worst]} = {r[worst] * S[worst]:.6g} of the applied "
+            f"{f_ext[worst]:.6g}; the rows cannot carry this load (does it lift the moving ring "
+            "off every element, or exceed what the contact angles allow?)"
+        )
+    q = y / S
+    return _collect(prob, bearing, load, q, it, float(norm / scale), held)
+
+
+def _collect(prob: _Problem, bearing: Bearing, load: RingLoad, q: np.ndarray, iterations: int,
+             error: float, held: tuple[str, ...]) -> LoadDistribution:
+    bg, sg = prob.balls, prob.slices
+    Qb, db, s, Fb, _ = ball_forces(bg, prob.B_balls, q, jacobian=False)
+    Qs, ds, _, Fs, _ = slice_forces(sg, prob.B_slices, q, jacobian=False)
+    reaction = _generalised(bg.p_m, Fb, None)[0] + _generalised(sg.p_m, Fs, None)[0]
+    rows = []
+    for i, row in enumerate(bearing.rows):
+        psi = row.first_azimuth_rad + 2.0 * np.pi * np.arange(row.n_elements) / row.n_elements
+        if isinstance(row, BallRow):
+            m = bg.row == i
+            s_r = np.sum(s[m] * bg.e_r[m], axis=1) * bg.radial_sign[m]
+            s_z = s[m, 2] * bg.axial_sign[m]
+            rows.append(RowLoads(row.name, "ball", psi, Qb[m], db[m], np.arctan2(s_z, s_r), Qb[m] <= 0.0))
+        else:
+            m = sg.row == i
+            ns = row.n_slices
+            q_sl = Qs[m].reshape(row.n_rollers, ns)
+            d_sl = ds[m].reshape(row.n_rollers, ns)
+            angle = 0.0 if row.orientation == "radial" else np.pi / 2
+            total = q_sl.sum(axis=1)
+            rows.append(RowLoads(row.name, "roller", psi, total, d_sl.max(axis=1),
+                                 np.full(row.n_rollers, angle), total <= 0.0, q_sl))
+    return LoadDistribution(bearing.name, load.as_array(), q, reaction, tuple(rows), iterations, error, held)
