@@ -159,14 +159,16 @@ class LoadDistribution:
 
 
 # --------------------------------------------------------------------------- element forces
+# The generalised force of a point force F at p is Bᵀ(p)·F (virtual work with u = B(p)·q).
 
 def ball_forces(g: BallGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = True):
-    """Ball loads and their forces on the moving ring.
+    """Ball loads and their resultant on the moving ring.
 
     Returns
     -------
     Q : (n,) normal loads, N;  delta : (n,) approaches, m;  s : (n, 3) centre-distance vectors, m;
-    F : (n, 3) forces on the moving ring, N;  C : (n, 3, 5) dF/dq or None.
+    r : (5,) generalised force (Fx, Fy, Fz, Mx, My) of the balls on the moving ring, N and N·m;
+    J : (5, 5) dr/dq, or None.
     """
     u = B @ q
     u = u - np.sum(u * g.t, axis=1)[:, None] * g.t
@@ -177,46 +179,33 @@ def ball_forces(g: BallGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = Tru
     dpos = np.maximum(delta, 0.0)
     sq = np.sqrt(dpos)
     Q = g.K * dpos * sq
-    F = -Q[:, None] * s_hat
+    r = -np.einsum("nji,nj->i", B, Q[:, None] * s_hat)
     if not jacobian:
-        return Q, delta, s, F, None
+        return Q, delta, s, r, None
     dQ = 1.5 * g.K * sq
     ss = s_hat[:, :, None] * s_hat[:, None, :]
     eye = np.eye(3)[None]
     G = -(dQ[:, None, None] * ss + (Q / L)[:, None, None] * (eye - ss))
     P = eye - g.t[:, :, None] * g.t[:, None, :]
-    return Q, delta, s, F, G @ P @ B
+    J = np.einsum("nji,njk->ik", B, G @ P @ B)
+    return Q, delta, s, r, J
 
 
-def slice_forces(g: SliceGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = True):
-    """Slice loads and their forces on the moving ring (same returns as :func:`ball_forces`)."""
-    u = B @ q
-    delta = np.sum(u * g.normal, axis=1) - g.offset_m
+def slice_forces(g: SliceGroup, w: np.ndarray, q: np.ndarray, jacobian: bool = True):
+    """Slice loads and their resultant on the moving ring.
+
+    ``w`` (n, 5) is Bᵀ(p)·normal of every slice: δ = w·q − offset and r = −Σ Q·w.
+    Returns Q (n,), delta (n,), r (5,), J (5, 5) or None.
+    """
+    delta = w @ q - g.offset_m
     dpos = np.maximum(delta, 0.0)
+    Q = g.K * dpos**g.exponent
+    r = -(Q @ w)
+    if not jacobian:
+        return Q, delta, r, None
     with np.errstate(divide="ignore", invalid="ignore"):
-        Q = g.K * dpos**g.exponent
-        F = -Q[:, None] * g.normal
-        if not jacobian:
-            return Q, delta, None, F, None
         dQ = np.where(dpos > 0.0, g.exponent * g.K * dpos ** (g.exponent - 1.0), 0.0)
-    nn = g.normal[:, :, None] * g.normal[:, None, :]
-    return Q, delta, None, F, -dQ[:, None, None] * (nn @ B)
-
-
-def _generalised(p: np.ndarray, F: np.ndarray, C: np.ndarray | None):
-    """Resultant (Fx, Fy, Fz, Mx, My) of point forces and its Jacobian (5, 5)."""
-    r = np.empty(5)
-    r[:3] = F.sum(axis=0)
-    r[3] = np.sum(p[:, 1] * F[:, 2] - p[:, 2] * F[:, 1])
-    r[4] = np.sum(p[:, 2] * F[:, 0] - p[:, 0] * F[:, 2])
-    if C is None:
-        return r, None
-    J = np.empty((5, 5))
-    J[:3] = C.sum(axis=0)
-    px, py, pz = p[:, 0, None], p[:, 1, None], p[:, 2, None]
-    J[3] = np.sum(py * C[:, 2] - pz * C[:, 1], axis=0)
-    J[4] = np.sum(pz * C[:, 0] - px * C[:, 2], axis=0)
-    return r, J
+    return Q, delta, r, -(w.T * dQ) @ w
 
 
 class _Problem:
@@ -226,11 +215,11 @@ class _Problem:
         self.bearing = bearing
         self.balls, self.slices = build_groups(bearing)
         self.B_balls = displacement_matrix(self.balls.p_m)
-        self.B_slices = displacement_matrix(self.slices.p_m)
+        self.w_slices = np.einsum("nji,nj->ni", displacement_matrix(self.slices.p_m), self.slices.normal)
 
     def reaction(self, q: np.ndarray, jacobian: bool = True):
-        rb, Jb = _generalised(self.balls.p_m, *ball_forces(self.balls, self.B_balls, q, jacobian)[3:])
-        rs, Js = _generalised(self.slices.p_m, *slice_forces(self.slices, self.B_slices, q, jacobian)[3:])
+        _, _, _, rb, Jb = ball_forces(self.balls, self.B_balls, q, jacobian)
+        _, _, rs, Js = slice_forces(self.slices, self.w_slices, q, jacobian)
         return rb + rs, (None if not jacobian else Jb + Js)
 
     def linear_stiffness(self, load_scale_N: float) -> np.ndarray:
@@ -245,19 +234,16 @@ class _Problem:
         K = np.zeros((5, 5))
         g = self.balls
         if len(g.K):
-            d = (Q_ref / g.K) ** (2.0 / 3.0)
-            k = Q_ref / d
+            k = Q_ref / (Q_ref / g.K) ** (2.0 / 3.0)
             n_hat = g.s0_m / np.linalg.norm(g.s0_m, axis=1)[:, None]
             nn = n_hat[:, :, None] * n_hat[:, None, :]
             P = np.eye(3)[None] - g.t[:, :, None] * g.t[:, None, :]
-            G = -(k[:, None, None] * nn + (Q_ref / g.free_length_m.clip(min=1e-12))[:, None, None] * (P - nn))
-            K -= _generalised(g.p_m, np.zeros_like(g.p_m), G @ self.B_balls)[1]
+            G = k[:, None, None] * nn + (Q_ref / g.free_length_m.clip(min=1e-12))[:, None, None] * (P - nn)
+            K += np.einsum("nji,njk->ik", self.B_balls, G @ self.B_balls)
         s = self.slices
         if len(s.K):
-            d = (Q_ref / s.K) ** (1.0 / s.exponent)
-            k = Q_ref / d
-            nn = s.normal[:, :, None] * s.normal[:, None, :]
-            K -= _generalised(s.p_m, np.zeros_like(s.p_m), -k[:, None, None] * (nn @ self.B_slices))[1]
+            k = Q_ref / (Q_ref / s.K) ** (1.0 / s.exponent)
+            K += (self.w_slices.T * k) @ self.w_slices
         return K
 
 
@@ -372,9 +358,9 @@ def solve_load_distribution(
 def _collect(prob: _Problem, bearing: Bearing, load: RingLoad, q: np.ndarray, iterations: int,
              error: float, held: tuple[str, ...]) -> LoadDistribution:
     bg, sg = prob.balls, prob.slices
-    Qb, db, s, Fb, _ = ball_forces(bg, prob.B_balls, q, jacobian=False)
-    Qs, ds, _, Fs, _ = slice_forces(sg, prob.B_slices, q, jacobian=False)
-    reaction = _generalised(bg.p_m, Fb, None)[0] + _generalised(sg.p_m, Fs, None)[0]
+    Qb, db, s, rb, _ = ball_forces(bg, prob.B_balls, q, jacobian=False)
+    Qs, ds, rs, _ = slice_forces(sg, prob.w_slices, q, jacobian=False)
+    reaction = rb + rs
     rows = []
     for i, row in enumerate(bearing.rows):
         psi = row.first_azimuth_rad + 2.0 * np.pi * np.arange(row.n_elements) / row.n_elements

@@ -1,0 +1,5 @@
+"""The studies (DESIGN §7) and the ``flexbearing`` command line."""
+
+from .catalog import BUILTIN_BEARINGS, builtin_bearing
+
+__all__ = ["BUILTIN_BEARINGS", "builtin_bearing"]
