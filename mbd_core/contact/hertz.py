@@ -48,18 +48,27 @@ __all__ = [
 Method = Literal["exact", "hamrock-brewe"]
 
 
-def _curvature_difference(k: float) -> float:
-    """F(ρ) as a function of the ellipticity k = a/b (exact elliptic-integral relation)."""
-    m = 1.0 - 1.0 / k**2
+def _curvature_difference_of_m(m: float) -> float:
+    """F(ρ) as a function of m = e² = 1 − 1/k² (exact elliptic-integral relation).
+
+    With k² = 1/(1 − m) the relation F = ((k²+1)E − 2K)/((k²−1)E) becomes
+    F = ((2 − m)E − 2(1 − m)K)/(m·E).
+    """
     K, E = ellipk(m), ellipe(m)
-    return ((k**2 + 1.0) * E - 2.0 * K) / ((k**2 - 1.0) * E)
+    return ((2.0 - m) * E - 2.0 * (1.0 - m) * K) / (m * E)
+
+
+#: Below this F the numerator of F(m) cancels badly; use the series F = 3m/8 + 3m²/16 + O(m³)
+#: (from K = π/2·(1 + m/4 + 9m²/64 + …), E = π/2·(1 − m/4 − 3m²/64 − …)).
+_F_SERIES_BELOW = 1e-4
 
 
 def ellipticity_exact(curvature_difference: float) -> tuple[float, float, float]:
     """Ellipticity k = a/b and the complete elliptic integrals K(e), E(e) for a given F(ρ).
 
-    Solves the exact Hertz relation F(ρ) = ((k²+1)E − 2K)/((k²−1)E) for k by bracketing
-    (Harris & Kotzalas, eq. 6.26–6.28).
+    Solves the exact Hertz relation F(ρ) = ((k²+1)E − 2K)/((k²−1)E) (Harris & Kotzalas,
+    eq. 6.26–6.28) for m = e² = 1 − 1/k² by bracketing; for nearly circular contacts
+    (F < 1e-4) from the series F = 3m/8 + 3m²/16, whose remainder is O(m³) < 1e-11·m there.
 
     Returns
     -------
@@ -70,16 +79,16 @@ def ellipticity_exact(curvature_difference: float) -> tuple[float, float, float]
     F = float(curvature_difference)
     if not 0.0 <= F < 1.0:
         raise ValueError(f"curvature difference F(rho) must lie in [0, 1), got {F}")
-    if F < 1e-10:
+    if F == 0.0:
         return 1.0, math.pi / 2.0, math.pi / 2.0
-    # F(k) rises monotonically from 0 (k = 1) towards 1 (k → ∞)
-    hi = 2.0
-    while _curvature_difference(hi) < F:
-        hi *= 2.0
-        if hi > 1e8:
+    if F < _F_SERIES_BELOW:
+        m = (-0.375 + math.sqrt(0.375**2 + 0.75 * F)) / 0.375  # root of 3m²/16 + 3m/8 − F
+    else:
+        hi = float(np.nextafter(1.0, 0.0))
+        if _curvature_difference_of_m(hi) <= F:
             raise ValueError(f"curvature difference {F} too close to 1 (line contact)")
-    k = brentq(lambda kk: _curvature_difference(kk) - F, 1.0 + 1e-12, hi, xtol=1e-14, rtol=1e-15)
-    m = 1.0 - 1.0 / k**2
+        m = brentq(lambda mm: _curvature_difference_of_m(mm) - F, 2.0e-4, hi, xtol=1e-18, rtol=1e-15)
+    k = 1.0 / math.sqrt(1.0 - m)
     return k, float(ellipk(m)), float(ellipe(m))
 
 

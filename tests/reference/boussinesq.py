@@ -14,17 +14,28 @@ Sign convention: compression negative. x is along the semi-axis ``a`` and y alon
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 __all__ = ["axis_stresses", "shear_yz"]
 
 
+@lru_cache(maxsize=16)
+def _gauss(n: int):
+    """Gauss–Legendre nodes and weights on [-1, 1] (read-only, cached: leggauss is slow)."""
+    x, w = np.polynomial.legendre.leggauss(n)
+    x.flags.writeable = False
+    w.flags.writeable = False
+    return x, w
+
+
 def _load_points(a: float, b: float, n_r: int, n_theta: int):
     """Load-point coordinates (ξ, η) and the weights w with Σ w·f = ∫∫ p/p0 · f dA."""
-    t, wt = np.polynomial.legendre.leggauss(n_r)
+    t, wt = _gauss(n_r)
     t = 0.25 * np.pi * (t + 1.0)  # map [-1, 1] -> [0, π/2]
     wt = 0.25 * np.pi * wt
-    th, wth = np.polynomial.legendre.leggauss(n_theta)
+    th, wth = _gauss(n_theta)
     th = np.pi * (th + 1.0)  # map [-1, 1] -> [0, 2π]
     wth = np.pi * wth
     r = np.sin(t)
