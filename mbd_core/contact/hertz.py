@@ -107,8 +107,8 @@ def ellipticity_hamrock_brewe(radius_ratio: float) -> tuple[float, float, float]
 class HertzPointContact:
     """Elliptical Hertz contact of two bodies; load-independent constants plus load functions.
 
-    All load functions accept a float or an array of loads ``Q_N`` (N, ≥ 0) or approaches
-    ``approach_m`` (m).
+    All load functions accept a float or an array of loads ``Q_N`` (N) or approaches
+    ``approach_m`` (m); a load or approach ≤ 0 means no contact and gives zeros.
 
     Attributes
     ----------
@@ -141,7 +141,7 @@ class HertzPointContact:
 
     def semi_axes_m(self, Q_N):
         """Semi-major a and semi-minor b axes of the contact ellipse, m."""
-        Q = np.asarray(Q_N, dtype=float)
+        Q = np.maximum(np.asarray(Q_N, dtype=float), 0.0)
         k, E, R, Ep = self.ellipticity, self.elliptic_E, self.effective_radius_m, self.E_eff_Pa
         a = np.cbrt(6.0 * k**2 * E * Q * R / (math.pi * Ep))
         b = np.cbrt(6.0 * E * Q * R / (math.pi * k * Ep))
@@ -149,7 +149,7 @@ class HertzPointContact:
 
     def max_pressure_Pa(self, Q_N):
         """Maximum Hertz pressure p0 = 3Q/(2πab), Pa."""
-        Q = np.asarray(Q_N, dtype=float)
+        Q = np.maximum(np.asarray(Q_N, dtype=float), 0.0)
         a, b = self.semi_axes_m(Q)
         with np.errstate(invalid="ignore", divide="ignore"):
             p0 = np.where(Q > 0.0, 1.5 * Q / (math.pi * a * b), 0.0)
@@ -164,7 +164,7 @@ class HertzPointContact:
 
     def approach_m(self, Q_N):
         """Mutual approach δ of the two bodies under load Q, m."""
-        Q = np.asarray(Q_N, dtype=float)
+        Q = np.maximum(np.asarray(Q_N, dtype=float), 0.0)
         return self._approach_coefficient * np.cbrt(Q * Q)
 
     @property

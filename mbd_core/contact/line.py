@@ -34,8 +34,8 @@ __all__ = [
 #: Exponent n of the line-contact law Q = K·δ^n (Palmgren, ISO/TS 16281).
 LINE_EXPONENT = 10.0 / 9.0
 
-#: E' of the steel the empirical constants were fitted for (E = 207 GPa, ν = 0.3), Pa.
-_STEEL_E_EFF_PA = 207e9 / (1.0 - 0.3**2)
+#: E' of the steel taken for the empirical constants (E = 207 GPa, ν = 0.29 as BEARING_STEEL), Pa.
+_STEEL_E_EFF_PA = 207e9 / (1.0 - 0.29**2)
 
 
 def _check_positive(**values: float) -> None:
