@@ -1,22 +1,24 @@
-"""ISO 281 load ratings and life, DG03 case-depth factor (mbd_core.bearing.rating)."""
+"""ISO 281 load ratings and life (mbd_core.bearing.rating), DG03 case-depth factor (.case_depth)."""
 
 import math
 
 import numpy as np
 import pytest
 
-from mbd_core.bearing.rating import (
-    BM_DEFAULTS,
-    basic_rating_life_Mrev,
+from mbd_core.bearing.case_depth import (
     case_depth_corrected_life_Mrev,
     case_depth_life_factor,
     core_shear_fatigue_strength_Pa,
+    required_case_depth_m,
+)
+from mbd_core.bearing.rating import (
+    BM_DEFAULTS,
+    basic_rating_life_Mrev,
     equivalent_load_N,
     life_exponent,
     radial_ball_rating_N,
     radial_roller_rating_N,
     rating_life_hours,
-    required_case_depth_m,
     thrust_ball_rating_N,
     thrust_roller_rating_N,
 )

@@ -1,12 +1,12 @@
-"""Bearing-level relations: rolling kinematics, defect frequencies, ISO 281 rating and life."""
+"""Bearing-level relations: rolling kinematics, defect frequencies, ISO 281 rating and life,
+case-depth life factor."""
 
 from .kinematics import RollingKinematics, rad_s_to_rpm, rolling_kinematics, rpm_to_rad_s
+from .case_depth import case_depth_life_factor, required_case_depth_m
 from .rating import (
     basic_rating_life_Mrev,
-    case_depth_life_factor,
     radial_ball_rating_N,
     radial_roller_rating_N,
-    required_case_depth_m,
     thrust_ball_rating_N,
     thrust_roller_rating_N,
 )
