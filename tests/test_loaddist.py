@@ -222,3 +222,18 @@ def test_ball_row_validation_names_field(kwargs, field):
 def test_load_validation_names_field():
     with pytest.raises(ValueError, match="Mx_Nm"):
         RingLoad(Mx_Nm=float("nan"))
+
+
+def test_tipping_moment_has_no_equilibrium():
+    """A single-row angular-contact ring cannot carry a tilting moment above W·R (the resultant of the
+    ball loads must stay inside the pitch circle: statics). Below it, equilibrium with lift-off on the
+    light side; above it, the balls would have to run over the groove edge: a clear error."""
+    case = slewing_ring("full")
+    W = -case.default_load.Fz_N
+    R = 0.5 * case.bearing.rows[0].pitch_diameter_m
+    res = solve_load_distribution(case.bearing, RingLoad(Fz_N=-W, Mx_Nm=0.9 * W * R))
+    r = res.rows[0]
+    assert 0 < r.n_unloaded < 116
+    assert np.all((r.contact_angle_rad[~r.unloaded] >= 0.0) & (r.contact_angle_rad[~r.unloaded] <= np.pi / 2))
+    with pytest.raises(LoadDistributionError, match="cannot carry"):
+        solve_load_distribution(case.bearing, RingLoad(Fz_N=-W, Mx_Nm=1.2 * W * R))

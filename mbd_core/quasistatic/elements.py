@@ -31,6 +31,7 @@ class BallGroup:
     free_length_m : (n,) A + gap, m (approach δ = |s| − free_length)
     K : (n,) load–deflection constant, N/m^1.5
     radial_sign, axial_sign : (n,) ±1, for the loaded contact angle
+    angle_min_rad, angle_max_rad : (n,) loaded contact angles the groove can carry, rad
     e_r : (n, 3) radial unit vector
     row : (n,) int row index; element : (n,) int index of the ball within its row
     """
@@ -42,6 +43,8 @@ class BallGroup:
     K: np.ndarray
     radial_sign: np.ndarray
     axial_sign: np.ndarray
+    angle_min_rad: np.ndarray
+    angle_max_rad: np.ndarray
     e_r: np.ndarray
     row: np.ndarray
     element: np.ndarray
@@ -101,6 +104,8 @@ def _ball_arrays(i_row: int, row: BallRow) -> dict[str, np.ndarray]:
         K=np.full(n, row.contact_stiffness()),
         radial_sign=np.full(n, float(sr)),
         axial_sign=np.full(n, float(sz)),
+        angle_min_rad=np.full(n, row.groove_angle_range_rad[0]),
+        angle_max_rad=np.full(n, row.groove_angle_range_rad[1]),
         e_r=e_r,
         row=np.full(n, i_row),
         element=np.arange(n),

@@ -13,7 +13,10 @@ compress the ball (s_r = +1 when the moving ring carries the inner raceway, s_z 
 Displaced, the centre distance is |s| with s = A·d̂ + (u − (u·e_t)e_t), u = d + θ × p the
 displacement of the moving centre p; the approach is δ = |s| − A − gap, the ball load
 Q = K·δ^1.5 with K the series constant of the two Hertz contacts, and the loaded contact angle
-α = atan2(s_z·s·e_z, s_r·s·e_r). Ball centrifugal force and gyroscopic moment are neglected
+α = atan2(s_z·s·e_z, s_r·s·e_r). The groove carries only contact angles on its loaded side
+(see ``BallRow.groove_angle_range_rad``): beyond, the ball has run over the groove edge and is
+unloaded, so a single-row angular-contact ring tips under a moment it cannot carry instead of
+the ball finding the opposite flank of a full torus. Ball centrifugal force and gyroscopic moment are neglected
 (slow bearings).
 
 Roller rows (ISO/TS 16281 slices): a roller of effective length L is cut into n_s slices; slice
@@ -141,6 +144,16 @@ class BallRow:
     def radial_sign(self) -> int:
         """+1 if moving the moving ring outwards loads the row (it carries the inner raceway)."""
         return 1 if self.moving_raceway == "inner" else -1
+
+    @property
+    def groove_angle_range_rad(self) -> tuple[float, float]:
+        """Loaded contact angles the grooves can carry, rad.
+
+        A deep groove (α0 = 0) carries contact angles in (−90°, 90°), axial load either way;
+        an angular-contact groove (α0 > 0) only in [0°, 90°] on its loaded side. A ball whose
+        contact would leave this range has run over the groove edge and carries no load.
+        """
+        return (-math.pi / 2, math.pi / 2) if self.contact_angle_rad == 0.0 else (0.0, math.pi / 2)
 
     @property
     def curvature_centre_distance_m(self) -> float:

@@ -176,7 +176,9 @@ def ball_forces(g: BallGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = Tru
     L = np.linalg.norm(s, axis=1)
     s_hat = s / L[:, None]
     delta = L - g.free_length_m
-    dpos = np.maximum(delta, 0.0)
+    alpha = np.arctan2(g.axial_sign * s[:, 2], g.radial_sign * np.sum(s * g.e_r, axis=1))
+    on_groove = (alpha >= g.angle_min_rad) & (alpha <= g.angle_max_rad)
+    dpos = np.where(on_groove, np.maximum(delta, 0.0), 0.0)
     sq = np.sqrt(dpos)
     Q = g.K * dpos * sq
     r = -np.einsum("nji,nj->i", B, Q[:, None] * s_hat)
