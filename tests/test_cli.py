@@ -63,7 +63,7 @@ def test_loaddist_default_writes_consistent_results(tmp_path, capsys):
 
 def test_loaddist_given_load_three_row(capsys):
     """Given loads replace the default; the reaction balances them (1e-6 relative, issue acceptance)."""
-    d = run_json(capsys, "loaddist", "three-row-roller", "--Fz-N", "1e6", "--Fy-N=-5e5", "--Mx-Nm", "1e6")
+    d = run_json(capsys, "loaddist", "three-row-roller", "--Fz-N", "1e6", "--Fy-N", "-5e5", "--Mx-Nm", "1e6")
     load = np.array(list(d["load"].values()))
     reaction = np.array(list(d["reaction"].values()))
     np.testing.assert_allclose(load[:3] + reaction[:3], 0.0, atol=1e-6 * np.linalg.norm(load[:3]))
