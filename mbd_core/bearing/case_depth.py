@@ -16,7 +16,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..contact.subsurface import max_shear_profile_Pa, subsurface_shear
-from .rating import _check_positive
+from ..validation import check_positive
 
 __all__ = [
     "shear_yield_from_uts_Pa",
@@ -35,13 +35,13 @@ SHEAR_FATIGUE_OVER_SHEAR_YIELD = 0.6
 
 def shear_yield_from_uts_Pa(ultimate_tensile_strength_Pa: float) -> float:
     """Core shear yield strength estimated as 0.425·UTS, Pa (Sague & Rumbarger 1977, via DG03)."""
-    _check_positive(ultimate_tensile_strength_Pa=ultimate_tensile_strength_Pa)
+    check_positive(ultimate_tensile_strength_Pa=ultimate_tensile_strength_Pa)
     return 0.425 * ultimate_tensile_strength_Pa
 
 
 def shear_yield_from_tensile_yield_Pa(yield_strength_Pa: float) -> float:
     """Core shear yield strength estimated as 0.5·σ_y, Pa (Tresca criterion)."""
-    _check_positive(yield_strength_Pa=yield_strength_Pa)
+    check_positive(yield_strength_Pa=yield_strength_Pa)
     return 0.5 * yield_strength_Pa
 
 
@@ -77,7 +77,7 @@ def core_shear_fatigue_strength_Pa(
             f"got {sorted(given) or 'none'}"
         )
     if core_shear_yield_Pa is not None:
-        _check_positive(core_shear_yield_Pa=core_shear_yield_Pa)
+        check_positive(core_shear_yield_Pa=core_shear_yield_Pa)
         tau_y = core_shear_yield_Pa
     elif core_uts_Pa is not None:
         tau_y = shear_yield_from_uts_Pa(core_uts_Pa)
@@ -87,7 +87,7 @@ def core_shear_fatigue_strength_Pa(
 
 
 def _check_hertz(p0_Pa: float, semi_major_m: float, semi_minor_m: float, nu: float) -> None:
-    _check_positive(p0_Pa=p0_Pa, semi_major_m=semi_major_m, semi_minor_m=semi_minor_m)
+    check_positive(p0_Pa=p0_Pa, semi_major_m=semi_major_m, semi_minor_m=semi_minor_m)
     if semi_minor_m > semi_major_m * (1.0 + 1e-12):
         raise ValueError(
             f"semi_minor_m ({semi_minor_m}) must not exceed semi_major_m ({semi_major_m})"
@@ -128,7 +128,7 @@ def case_depth_life_factor(
     float or array like ``case_depth_m``
     """
     _check_hertz(p0_Pa, semi_major_m, semi_minor_m, nu)
-    _check_positive(core_shear_fatigue_Pa=core_shear_fatigue_Pa)
+    check_positive(core_shear_fatigue_Pa=core_shear_fatigue_Pa)
     p0_Pa, semi_major_m, semi_minor_m = float(p0_Pa), float(semi_major_m), float(semi_minor_m)
     core_shear_fatigue_Pa, nu = float(core_shear_fatigue_Pa), float(nu)
     h = np.asarray(case_depth_m, dtype=float)
@@ -168,7 +168,7 @@ def required_case_depth_m(
         Core shear fatigue strength τ_f, Pa.
     """
     _check_hertz(p0_Pa, semi_major_m, semi_minor_m, nu)
-    _check_positive(core_shear_fatigue_Pa=core_shear_fatigue_Pa)
+    check_positive(core_shear_fatigue_Pa=core_shear_fatigue_Pa)
     p0_Pa, semi_major_m, semi_minor_m = float(p0_Pa), float(semi_major_m), float(semi_minor_m)
     core_shear_fatigue_Pa, nu = float(core_shear_fatigue_Pa), float(nu)
     peak = subsurface_shear(p0_Pa, semi_major_m, semi_minor_m, nu)
@@ -197,5 +197,5 @@ def case_depth_corrected_life_Mrev(basic_life_Mrev: float, case_depth_factor: fl
     """Life corrected for the case depth, L = A_cd·L10, millions of revolutions (DG03)."""
     if not (math.isfinite(basic_life_Mrev) and basic_life_Mrev >= 0.0):
         raise ValueError(f"basic_life_Mrev must be a finite number >= 0, got {basic_life_Mrev!r}")
-    _check_positive(case_depth_factor=case_depth_factor)
+    check_positive(case_depth_factor=case_depth_factor)
     return case_depth_factor * basic_life_Mrev

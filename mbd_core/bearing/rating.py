@@ -44,6 +44,8 @@ import numbers
 from types import MappingProxyType
 from typing import Literal
 
+from ..validation import check_positive
+
 
 __all__ = [
     "BM_DEFAULTS",
@@ -71,16 +73,6 @@ ElementType = Literal["ball", "roller"]
 
 
 # --------------------------------------------------------------------------- validation
-def _check_positive(**values: float) -> None:
-    for name, v in values.items():
-        try:
-            x = float(v)
-        except (TypeError, ValueError):
-            raise ValueError(f"{name} must be a positive finite number, got {v!r}") from None
-        if not (math.isfinite(x) and x > 0.0):
-            raise ValueError(f"{name} must be a positive finite number, got {v!r}")
-
-
 def _check_count(**values: int) -> None:
     for name, v in values.items():
         if isinstance(v, bool) or not isinstance(v, numbers.Integral) or v < 1:
@@ -143,7 +135,7 @@ def radial_ball_rating_N(
     bm : float
         Rating factor b_m (ISO 281:2007 Table 1), default 1.3.
     """
-    _check_positive(ball_diameter_m=ball_diameter_m, f_c=f_c, bm=bm)
+    check_positive(ball_diameter_m=ball_diameter_m, f_c=f_c, bm=bm)
     _check_count(n_balls=n_balls, n_rows=n_rows)
     _check_radial_angle(contact_angle_rad)
     dw_mm = 1e3 * ball_diameter_m
@@ -178,7 +170,7 @@ def thrust_ball_rating_N(
     bm : float
         Rating factor b_m (ISO 281:2007 Table 1), default 1.3.
     """
-    _check_positive(ball_diameter_m=ball_diameter_m, f_c=f_c, bm=bm)
+    check_positive(ball_diameter_m=ball_diameter_m, f_c=f_c, bm=bm)
     _check_count(n_balls=n_balls)
     pure = _is_pure_thrust(contact_angle_rad)
     angle_term = 1.0 if pure else math.cos(contact_angle_rad) ** 0.7 * math.tan(contact_angle_rad)
@@ -216,7 +208,7 @@ def radial_roller_rating_N(
     bm : float
         Rating factor b_m (ISO 281:2007 Table 1), default 1.1.
     """
-    _check_positive(
+    check_positive(
         roller_diameter_m=roller_diameter_m,
         roller_effective_length_m=roller_effective_length_m,
         f_c=f_c,
@@ -259,7 +251,7 @@ def thrust_roller_rating_N(
     bm : float
         Rating factor b_m (ISO 281:2007 Table 1), default 1.0.
     """
-    _check_positive(
+    check_positive(
         roller_diameter_m=roller_diameter_m,
         roller_effective_length_m=roller_effective_length_m,
         f_c=f_c,
@@ -301,7 +293,7 @@ def basic_rating_life_Mrev(
     element : {"ball", "roller"}
         Rolling-element type, selects p = 3 or 10/3.
     """
-    _check_positive(dynamic_load_rating_N=dynamic_load_rating_N, equivalent_load_N=equivalent_load_N)
+    check_positive(dynamic_load_rating_N=dynamic_load_rating_N, equivalent_load_N=equivalent_load_N)
     return (dynamic_load_rating_N / equivalent_load_N) ** life_exponent(element)
 
 
@@ -317,7 +309,7 @@ def rating_life_hours(life_Mrev: float, speed_rpm: float) -> float:
     """
     if not (math.isfinite(life_Mrev) and life_Mrev >= 0.0):
         raise ValueError(f"life_Mrev must be a finite number >= 0, got {life_Mrev!r}")
-    _check_positive(speed_rpm=speed_rpm)
+    check_positive(speed_rpm=speed_rpm)
     return 1e6 * life_Mrev / (60.0 * speed_rpm)
 
 

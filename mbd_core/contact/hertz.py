@@ -34,6 +34,7 @@ from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
 from ..materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
+from ..validation import check_positive
 
 __all__ = [
     "HertzPointContact",
@@ -225,12 +226,6 @@ def point_contact(
     )
 
 
-def _check_positive(**values: float) -> None:
-    for name, v in values.items():
-        if not (math.isfinite(v) and v > 0.0):
-            raise ValueError(f"{name} must be a positive finite number, got {v}")
-
-
 def ball_on_groove(
     ball_diameter_m: float,
     conformity: float,
@@ -260,7 +255,7 @@ def ball_on_groove(
     raceway : {"inner", "outer"}
         Which raceway: convex (inner) or concave (outer) in the rolling direction.
     """
-    _check_positive(ball_diameter_m=ball_diameter_m, pitch_diameter_m=pitch_diameter_m)
+    check_positive(ball_diameter_m=ball_diameter_m, pitch_diameter_m=pitch_diameter_m)
     if not conformity > 0.5:
         raise ValueError(
             f"conformity must be > 0.5 (groove radius larger than the ball radius), got {conformity}"
@@ -291,7 +286,7 @@ def sphere_on_sphere(
     material_2: ElasticMaterial = BEARING_STEEL,
 ) -> HertzPointContact:
     """Two convex spheres (load ball against spacer ball): a circular contact, k = 1."""
-    _check_positive(diameter_1_m=diameter_1_m, diameter_2_m=diameter_2_m)
+    check_positive(diameter_1_m=diameter_1_m, diameter_2_m=diameter_2_m)
     r1, r2 = 2.0 / diameter_1_m, 2.0 / diameter_2_m
     return point_contact(r1, r1, r2, r2, material_1, material_2, "exact")
 
@@ -304,5 +299,5 @@ def series_stiffness(*stiffnesses_N_per_m1p5: float) -> float:
     if not stiffnesses_N_per_m1p5:
         raise ValueError("series_stiffness needs at least one stiffness")
     for i, K in enumerate(stiffnesses_N_per_m1p5):
-        _check_positive(**{f"stiffness[{i}]": K})
+        check_positive(**{f"stiffness[{i}]": K})
     return sum(K ** (-2.0 / 3.0) for K in stiffnesses_N_per_m1p5) ** -1.5

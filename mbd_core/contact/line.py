@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
+from ..validation import check_positive
 
 __all__ = [
     "LINE_EXPONENT",
@@ -36,12 +37,6 @@ LINE_EXPONENT = 10.0 / 9.0
 
 #: E' of the steel taken for the empirical constants (E = 207 GPa, ν = 0.29 as BEARING_STEEL), Pa.
 _STEEL_E_EFF_PA = 207e9 / (1.0 - 0.29**2)
-
-
-def _check_positive(**values: float) -> None:
-    for name, v in values.items():
-        if not (math.isfinite(v) and v > 0.0):
-            raise ValueError(f"{name} must be a positive finite number, got {v}")
 
 
 @dataclass(frozen=True)
@@ -87,7 +82,7 @@ def line_contact(
 
     ``concave=True`` for an outer raceway that wraps around the roller.
     """
-    _check_positive(roller_diameter_m=roller_diameter_m, length_m=length_m)
+    check_positive(roller_diameter_m=roller_diameter_m, length_m=length_m)
     if not raceway_diameter_m > 0.0:
         raise ValueError(f"raceway_diameter must be > 0 (use inf for a plane), got {raceway_diameter_m}")
     curv = 2.0 / roller_diameter_m + (-1.0 if concave else 1.0) * 2.0 / raceway_diameter_m
@@ -110,7 +105,7 @@ def palmgren_stiffness(length_m: float, E_eff_Pa: float | None = None) -> float:
     For materials other than steel the constant is scaled by E'/E'_steel (Q ∝ E' at a given
     approach in the Hertz line-contact solution).
     """
-    _check_positive(length_m=length_m)
+    check_positive(length_m=length_m)
     return (3.84e-5) ** (-LINE_EXPONENT) * 1e6 * length_m ** (8.0 / 9.0) * _material_scale(E_eff_Pa)
 
 
@@ -120,7 +115,7 @@ def iso16281_stiffness(length_m: float, E_eff_Pa: float | None = None) -> float:
     c_L = 35 948·L_we[mm]^(8/9) N/mm^(10/9) = 35 948·10⁶·L_we[m]^(8/9) in SI; δ is the total
     approach of both contacts. Scaled by E'/E'_steel for other materials.
     """
-    _check_positive(length_m=length_m)
+    check_positive(length_m=length_m)
     return 35948.0 * 1e6 * length_m ** (8.0 / 9.0) * _material_scale(E_eff_Pa)
 
 
@@ -128,7 +123,7 @@ def slice_stiffness(contact_stiffness: float, n_slices: int) -> float:
     """Stiffness of one of n equal slices, c_L/n_s (ISO/TS 16281), same unit as the input."""
     if int(n_slices) != n_slices or n_slices < 1:
         raise ValueError(f"n_slices must be a positive integer, got {n_slices}")
-    _check_positive(contact_stiffness=contact_stiffness)
+    check_positive(contact_stiffness=contact_stiffness)
     return contact_stiffness / n_slices
 
 
@@ -137,5 +132,5 @@ def series_line_stiffness(*stiffnesses: float) -> float:
     if not stiffnesses:
         raise ValueError("series_line_stiffness needs at least one stiffness")
     for i, K in enumerate(stiffnesses):
-        _check_positive(**{f"stiffness[{i}]": K})
+        check_positive(**{f"stiffness[{i}]": K})
     return sum(K ** (-1.0 / LINE_EXPONENT) for K in stiffnesses) ** (-LINE_EXPONENT)

@@ -34,14 +34,9 @@ from typing import Literal
 from ..contact.hertz import ball_on_groove, series_stiffness
 from ..contact.line import LINE_EXPONENT, iso16281_stiffness, palmgren_stiffness, series_line_stiffness
 from ..materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
+from ..validation import check_positive
 
 __all__ = ["BallRow", "RollerRow", "Bearing"]
-
-
-def _positive(owner: str, **values: float) -> None:
-    for name, v in values.items():
-        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0.0):
-            raise ValueError(f"{owner}: {name} must be a positive finite number, got {v!r}")
 
 
 def _finite(owner: str, **values: float) -> None:
@@ -114,7 +109,7 @@ class BallRow:
     def __post_init__(self) -> None:
         who = f"ball row {self.name!r}"
         _count(who, "n_balls", self.n_balls)
-        _positive(who, ball_diameter_m=self.ball_diameter_m, pitch_diameter_m=self.pitch_diameter_m)
+        check_positive(who, ball_diameter_m=self.ball_diameter_m, pitch_diameter_m=self.pitch_diameter_m)
         if self.pitch_diameter_m <= self.ball_diameter_m:
             raise ValueError(f"{who}: pitch_diameter_m must exceed ball_diameter_m")
         if not 0.0 <= self.contact_angle_rad <= math.pi / 2 + 1e-12:
@@ -133,7 +128,7 @@ class BallRow:
         _finite(who, gap_m=self.gap_m, axial_position_m=self.axial_position_m,
                 first_azimuth_rad=self.first_azimuth_rad)
         if self.stiffness_N_per_m1p5 is not None:
-            _positive(who, stiffness_N_per_m1p5=self.stiffness_N_per_m1p5)
+            check_positive(who, stiffness_N_per_m1p5=self.stiffness_N_per_m1p5)
         if self.n_balls * self.ball_diameter_m > math.pi * self.pitch_diameter_m * (1 + 1e-9):
             raise ValueError(
                 f"{who}: {self.n_balls} balls of {self.ball_diameter_m} m do not fit on the pitch "
@@ -237,7 +232,7 @@ class RollerRow:
         who = f"roller row {self.name!r}"
         _count(who, "n_rollers", self.n_rollers)
         _count(who, "n_slices", self.n_slices)
-        _positive(who, roller_diameter_m=self.roller_diameter_m, roller_length_m=self.roller_length_m,
+        check_positive(who, roller_diameter_m=self.roller_diameter_m, roller_length_m=self.roller_length_m,
                   pitch_diameter_m=self.pitch_diameter_m)
         if self.orientation not in ("radial", "thrust"):
             raise ValueError(f"{who}: orientation must be 'radial' or 'thrust', got {self.orientation!r}")
@@ -249,7 +244,7 @@ class RollerRow:
         if self.stiffness_law not in ("iso16281", "palmgren"):
             raise ValueError(f"{who}: stiffness_law must be 'iso16281' or 'palmgren', got {self.stiffness_law!r}")
         if self.stiffness_N_per_m10_9 is not None:
-            _positive(who, stiffness_N_per_m10_9=self.stiffness_N_per_m10_9)
+            check_positive(who, stiffness_N_per_m10_9=self.stiffness_N_per_m10_9)
         if self.orientation == "thrust" and self.roller_length_m >= self.pitch_diameter_m:
             raise ValueError(f"{who}: roller_length_m must be shorter than pitch_diameter_m")
         if self.orientation == "radial" and self.pitch_diameter_m <= self.roller_diameter_m:
