@@ -48,6 +48,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..validation import check_positive
+
 __all__ = [
     "RollingKinematics",
     "rolling_kinematics",
@@ -75,9 +77,7 @@ def rad_s_to_rpm(speed_rad_s):
 
 
 def _check_geometry(element_diameter_m: float, pitch_diameter_m: float, contact_angle_rad: float) -> None:
-    for name, v in (("element_diameter_m", element_diameter_m), ("pitch_diameter_m", pitch_diameter_m)):
-        if not (math.isfinite(v) and v > 0.0):
-            raise ValueError(f"{name} must be a positive finite number, got {v}")
+    check_positive(element_diameter_m=element_diameter_m, pitch_diameter_m=pitch_diameter_m)
     if not element_diameter_m < pitch_diameter_m:
         raise ValueError(
             f"element_diameter_m ({element_diameter_m} m) must be smaller than "
