@@ -1,0 +1,359 @@
+"""Meshing: revolve a cross-section with gmsh and bring the mesh into scikit-fem.
+
+Two element families, both quadratic and with curved (isoparametric) geometry so that the ring's
+circles and groove arcs are represented exactly to second order:
+
+``"tet10"``
+    The section is revolved as a solid with gmsh's OpenCASCADE kernel (optionally cut by cage
+    pockets) and filled with 10-node tetrahedra. Works for any profile.
+``"hex27"``
+    The section is meshed with quadrilaterals (structured when it is a four-sided polygon) and swept
+    about the axis in layers (gmsh built-in kernel, ``revolve`` with ``numElements``), giving
+    27-node hexahedra. Converges much faster per degree of freedom (DESIGN §3).
+
+gmsh writes a ``.msh`` file that meshio reads; the volume cells become a scikit-fem ``MeshTet2`` /
+``MeshHex2``. Boundary facets are then named after the profile segment that generated them (and
+``sector_start``/``sector_end``/``pocket``), see :mod:`fem_rings.nodesets`.
+
+Node numbering: "nodes" are the columns of ``mesh.doflocs`` — the scalar degrees of freedom of the
+quadratic element — and vector DOFs are interleaved, ``3 * node + component``.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import tempfile
+import threading
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import meshio
+import numpy as np
+import skfem
+from skfem.io.meshio import from_meshio
+
+from mbd_core.validation import check_positive
+
+from .profile import Arc, Line, Profile
+
+if TYPE_CHECKING:
+    from .sections import CagePockets
+
+__all__ = ["MeshSpec", "RingMesh", "mesh_ring", "ELEMENT_TYPES"]
+
+log = logging.getLogger(__name__)
+
+#: meshio cell type of each element family.
+ELEMENT_TYPES = {"tet10": "tetra10", "hex27": "hexahedron27"}
+
+_GMSH_LOCK = threading.Lock()
+
+
+@dataclass(frozen=True)
+class MeshSpec:
+    """How to mesh a profile.
+
+    Parameters
+    ----------
+    size_m : float
+        Target element edge length, m (one parameter controls the whole mesh).
+    element : {"tet10", "hex27"}
+        Element family (module docstring).
+    sector_deg : float
+        Revolve angle, degrees, 0 < sector_deg ≤ 360.
+    refine : dict of str -> float
+        Size factor (0, 1] near the surfaces of the named profile segments, e.g.
+        ``{"groove": 0.4}`` (tet10 only; for hex27 the factor applies to the section's edges of
+        that name).
+    n_theta : int or None
+        Element layers round the sector (hex27); default from ``size_m`` at the outer radius.
+    """
+
+    size_m: float
+    element: str = "tet10"
+    sector_deg: float = 360.0
+    refine: dict = field(default_factory=dict)
+    n_theta: int | None = None
+
+    def __post_init__(self) -> None:
+        check_positive("mesh spec", size_m=self.size_m)
+        if self.element not in ELEMENT_TYPES:
+            raise ValueError(f"mesh spec: element must be one of {sorted(ELEMENT_TYPES)}, got {self.element!r}")
+        if not 0.0 < self.sector_deg <= 360.0:
+            raise ValueError(f"mesh spec: sector_deg must lie in (0, 360], got {self.sector_deg}")
+        for k, v in self.refine.items():
+            if not 0.0 < float(v) <= 1.0:
+                raise ValueError(f"mesh spec: refine[{k!r}] must lie in (0, 1], got {v}")
+        if self.n_theta is not None and int(self.n_theta) < 3:
+            raise ValueError(f"mesh spec: n_theta must be ≥ 3, got {self.n_theta}")
+
+    @property
+    def full_circle(self) -> bool:
+        return self.sector_deg >= 360.0
+
+    @property
+    def sector_rad(self) -> float:
+        return math.radians(self.sector_deg)
+
+
+@dataclass(frozen=True, eq=False)
+class RingMesh:
+    """A quadratic solid mesh of a ring with named boundary sets.
+
+    Attributes
+    ----------
+    mesh : skfem.MeshTet2 | skfem.MeshHex2
+        Curved quadratic mesh, m.
+    profile : Profile
+        The revolved section.
+    spec : MeshSpec
+        How it was meshed.
+    facet_sets : dict of str -> (k,) int
+        Boundary facets (scikit-fem facet indices) named after profile segments, plus
+        ``sector_start``/``sector_end`` for sectors and ``pocket`` for cage pocket faces.
+    node_sets : dict of str -> (k,) int
+        Nodes (columns of ``mesh.doflocs``) of each facet set.
+    """
+
+    mesh: skfem.Mesh
+    profile: Profile
+    spec: MeshSpec
+    facet_sets: dict
+    node_sets: dict
+
+    @property
+    def nodes_m(self) -> np.ndarray:
+        """(n_nodes, 3) float64, m."""
+        return self.mesh.doflocs.T
+
+    @property
+    def n_nodes(self) -> int:
+        return self.mesh.doflocs.shape[1]
+
+    @property
+    def n_dofs(self) -> int:
+        return 3 * self.n_nodes
+
+    @property
+    def size_m(self) -> float:
+        """Largest extent of the model, m (reference length for geometric tolerances)."""
+        x = self.mesh.doflocs
+        return float(np.max(x.max(axis=1) - x.min(axis=1)))
+
+    def summary(self) -> str:
+        return (f"{self.profile.name}: {self.spec.element}, {self.mesh.t.shape[1]} elements, "
+                f"{self.n_nodes} nodes, {self.n_dofs} DOF")
+
+
+def mesh_ring(profile: Profile, spec: MeshSpec, pockets: CagePockets | None = None) -> RingMesh:
+    """Mesh the solid of revolution of ``profile`` (optionally with cage pockets cut out).
+
+    Returns a :class:`RingMesh` whose boundary facets are named after the profile's segments.
+    """
+    from .nodesets import classify_boundary
+
+    if pockets is not None and spec.element != "tet10":
+        raise ValueError("mesh spec: cage pockets need element='tet10' (a boolean cut cannot be swept)")
+    unknown = set(spec.refine) - set(profile.names)
+    if unknown:
+        raise ValueError(f"mesh spec: refine names {sorted(unknown)} are not segments of profile "
+                         f"{profile.name!r} (has {list(profile.names)})")
+    with _GMSH_LOCK, tempfile.TemporaryDirectory() as tmp:
+        msh = Path(tmp) / "ring.msh"
+        _gmsh_mesh(profile, spec, pockets, msh)
+        mesh = _read_volume_mesh(msh, ELEMENT_TYPES[spec.element])
+    facet_sets = classify_boundary(mesh, profile, spec, pockets)
+    node_sets = {k: facet_nodes(mesh, f) for k, f in facet_sets.items()}
+    ring = RingMesh(mesh, profile, spec, facet_sets, node_sets)
+    log.info("meshed %s", ring.summary())
+    return ring
+
+
+def facet_nodes(mesh: skfem.Mesh, facets: np.ndarray) -> np.ndarray:
+    """All nodes (vertex, edge and face nodes) of the given facets, sorted."""
+    if len(facets) == 0:
+        return np.zeros(0, dtype=np.int64)
+    return np.unique(mesh.dofs.get_facet_dofs(np.asarray(facets)).flatten())
+
+
+# -- gmsh ---------------------------------------------------------------------------------------
+
+def _gmsh_mesh(profile: Profile, spec: MeshSpec, pockets, path: Path) -> None:
+    import gmsh
+
+    gmsh.initialize(interruptible=False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add("ring")
+        if spec.element == "tet10":
+            _build_tet(gmsh, profile, spec, pockets)
+        else:
+            _build_hex(gmsh, profile, spec)
+        gmsh.option.setNumber("Mesh.ElementOrder", 2)
+        gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
+        gmsh.option.setNumber("Mesh.HighOrderOptimize", 0)
+        gmsh.model.mesh.generate(3)
+        gmsh.model.mesh.removeDuplicateNodes()
+        gmsh.write(str(path))
+    except Exception as exc:  # gmsh raises bare Exceptions with its log message
+        raise RuntimeError(f"gmsh failed to mesh profile {profile.name!r}: {exc}") from exc
+    finally:
+        gmsh.finalize()
+
+
+def _split_arcs(profile: Profile):
+    """Segments with arcs over 90° split in two (gmsh builds arcs shorter than a half circle)."""
+    out = []
+    for s in profile.segments:
+        if isinstance(s, Arc) and s.sweep_rad > 0.5 * math.pi + 1e-12:
+            mid = s.midpoint
+            out += [Arc(s.start, mid, s.center, s.ccw, s.name), Arc(mid, s.end, s.center, s.ccw, s.name)]
+        else:
+            out.append(s)
+    return out
+
+
+def _add_section(kernel, profile: Profile):
+    """Add the section in the x–z plane (y = 0); return (surface tag, [(curve tag, segment)])."""
+    segs = _split_arcs(profile)
+    pts = [kernel.addPoint(s.start[0], 0.0, s.start[1]) for s in segs]
+    curves = []
+    for i, s in enumerate(segs):
+        a, b = pts[i], pts[(i + 1) % len(segs)]
+        if isinstance(s, Line):
+            c = kernel.addLine(a, b)
+        else:
+            cen = kernel.addPoint(s.center[0], 0.0, s.center[1])
+            c = kernel.addCircleArc(a, cen, b)
+        curves.append((c, s))
+    loop = kernel.addCurveLoop([c for c, _ in curves])
+    return kernel.addPlaneSurface([loop]), curves
+
+
+def _build_tet(gmsh, profile: Profile, spec: MeshSpec, pockets) -> None:
+    occ = gmsh.model.occ
+    surf, curves = _add_section(occ, profile)
+    angle = spec.sector_rad
+    if spec.full_circle:
+        out = occ.revolve([(2, surf)], 0, 0, 0, 0, 0, 1, 2.0 * math.pi)
+    else:
+        out = occ.revolve([(2, surf)], 0, 0, 0, 0, 0, 1, angle)
+    vol = [d for d in out if d[0] == 3]
+    if pockets is not None:
+        tools = _pocket_tools(occ, pockets, profile)
+        vol, _ = occ.cut(vol, tools)
+    occ.synchronize()
+    gmsh.option.setNumber("Mesh.MeshSizeMax", spec.size_m)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", spec.size_m * min([1.0, *spec.refine.values()]) * 0.5)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 12)
+    if spec.refine:
+        _refine_fields(gmsh, profile, spec)
+
+
+def _refine_fields(gmsh, profile: Profile, spec: MeshSpec) -> None:
+    """Smaller elements within one element length of the named raceway surfaces."""
+    from .nodesets import point_segment_distance
+
+    fields = []
+    for name, factor in spec.refine.items():
+        tags = []
+        for dim, tag in gmsh.model.getEntities(2):
+            u0, u1 = gmsh.model.getParametrizationBounds(dim, tag)
+            x, y, z = gmsh.model.getValue(dim, tag, [(u0[0] + u1[0]) / 2, (u0[1] + u1[1]) / 2])
+            rz = np.array([[math.hypot(x, y), z]])
+            segs = [s for s in profile.segments if s.name == name]
+            if min(point_segment_distance(rz, s)[0] for s in segs) < 1e-6 * profile.size_m:
+                tags.append(tag)
+        if not tags:
+            continue
+        d = gmsh.model.mesh.field.add("Distance")
+        gmsh.model.mesh.field.setNumbers(d, "SurfacesList", tags)
+        th = gmsh.model.mesh.field.add("Threshold")
+        gmsh.model.mesh.field.setNumber(th, "InField", d)
+        gmsh.model.mesh.field.setNumber(th, "SizeMin", spec.size_m * float(factor))
+        gmsh.model.mesh.field.setNumber(th, "SizeMax", spec.size_m)
+        gmsh.model.mesh.field.setNumber(th, "DistMin", spec.size_m * float(factor))
+        gmsh.model.mesh.field.setNumber(th, "DistMax", 2.0 * spec.size_m)
+        fields.append(th)
+    if fields:
+        mn = gmsh.model.mesh.field.add("Min")
+        gmsh.model.mesh.field.setNumbers(mn, "FieldsList", fields)
+        gmsh.model.mesh.field.setAsBackgroundMesh(mn)
+
+
+def _pocket_tools(occ, pockets: CagePockets, profile: Profile):
+    """OCC solids to subtract for each pocket (cylinders or boxes on the pitch circle)."""
+    r0, r1, z0, z1 = profile.bounds_m
+    reach = 2.0 * max(r1 - r0, z1 - z0) + 1e-3
+    tools = []
+    for k in range(pockets.n_pockets):
+        th = math.radians(pockets.angle_offset_deg) + 2.0 * math.pi * k / pockets.n_pockets
+        c = np.array([pockets.pitch_radius_m * math.cos(th), pockets.pitch_radius_m * math.sin(th), pockets.z_m])
+        radial = np.array([math.cos(th), math.sin(th), 0.0])
+        tangent = np.array([-math.sin(th), math.cos(th), 0.0])
+        axis = radial if pockets.axis == "radial" else np.array([0.0, 0.0, 1.0])
+        if pockets.shape == "cylinder":
+            base = c - axis * reach / 2
+            tools.append((3, occ.addCylinder(*base, *(axis * reach), pockets.radius_m)))
+        else:
+            # box: width along the circumference, height across (axial for radial pockets)
+            across = np.array([0.0, 0.0, 1.0]) if pockets.axis == "radial" else radial
+            box = occ.addBox(-pockets.width_m / 2, -pockets.height_m / 2, -reach / 2,
+                             pockets.width_m, pockets.height_m, reach)
+            # local x → tangent, y → across, z → axis
+            R = np.column_stack((tangent, across, axis))
+            affine = np.zeros(12)
+            affine[[0, 1, 2, 4, 5, 6, 8, 9, 10]] = R.ravel()
+            affine[[3, 7, 11]] = c
+            occ.affineTransform([(3, box)], list(affine))
+            tools.append((3, box))
+    return tools
+
+
+def _build_hex(gmsh, profile: Profile, spec: MeshSpec) -> None:
+    geo = gmsh.model.geo
+    surf, curves = _add_section(geo, profile)
+    structured = len(curves) == 4 and all(isinstance(s, Line) for _, s in curves)
+    for c, s in curves:
+        h = spec.size_m * float(spec.refine.get(s.name, 1.0))
+        geo.mesh.setTransfiniteCurve(c, max(2, int(math.ceil(s.length_m / h - 1e-9))) + 1)
+    if structured:
+        n0 = max(2, int(math.ceil(curves[0][1].length_m / spec.size_m - 1e-9))) + 1
+        n1 = max(2, int(math.ceil(curves[1][1].length_m / spec.size_m - 1e-9))) + 1
+        for k, (c, _) in enumerate(curves):
+            geo.mesh.setTransfiniteCurve(c, n0 if k % 2 == 0 else n1)
+        geo.mesh.setTransfiniteSurface(surf)
+    geo.mesh.setRecombine(2, surf)
+    r_out = profile.bounds_m[1]
+    n_theta = spec.n_theta or max(8, int(math.ceil(r_out * spec.sector_rad / spec.size_m)))
+    pieces = max(1, int(math.ceil(spec.sector_deg / 90.0 - 1e-9)))
+    per_piece = [n_theta // pieces + (1 if k < n_theta % pieces else 0) for k in range(pieces)]
+    cur, vols = [(2, surf)], []
+    for k in range(pieces):
+        out = geo.revolve(cur, 0, 0, 0, 0, 0, 1, spec.sector_rad / pieces,
+                          numElements=[per_piece[k]], recombine=True)
+        cur = [out[0]]
+        vols.append(out[1][1])
+    geo.synchronize()
+    gmsh.option.setNumber("Mesh.RecombinationAlgorithm", 1)
+
+
+def _read_volume_mesh(path: Path, cell_type: str) -> skfem.Mesh:
+    """meshio → scikit-fem, keeping only the volume cells and the nodes they use."""
+    m = meshio.read(path)
+    cells = m.cells_dict.get(cell_type)
+    other = sorted(k for k in m.cells_dict if k in {"tetra", "tetra10", "hexahedron", "hexahedron27",
+                                                      "wedge", "wedge18", "pyramid", "pyramid14"}
+                   and k != cell_type)
+    if cells is None or other:
+        raise RuntimeError(
+            f"gmsh produced {sorted(m.cells_dict)} instead of only {cell_type}: the section could not "
+            "be meshed with quadrilaterals; use element='tet10'" if cell_type == "hexahedron27" else
+            f"gmsh produced {sorted(m.cells_dict)}, expected {cell_type}"
+        )
+    used = np.unique(cells)
+    renum = np.full(len(m.points), -1, dtype=np.int64)
+    renum[used] = np.arange(len(used))
+    return from_meshio(meshio.Mesh(m.points[used], [(cell_type, renum[cells])]))
