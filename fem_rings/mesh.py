@@ -39,7 +39,7 @@ from mbd_core.validation import check_positive
 from .profile import Arc, Line, Profile
 
 if TYPE_CHECKING:
-    from .sections import CagePockets
+    from .cages import CagePockets
 
 __all__ = ["MeshSpec", "RingMesh", "mesh_ring", "ELEMENT_TYPES"]
 

@@ -25,7 +25,7 @@ from .mesh import MeshSpec, RingMesh, facet_nodes, mesh_ring
 from .profile import Profile
 
 if TYPE_CHECKING:
-    from .sections import CagePockets
+    from .cages import CagePockets
 
 __all__ = ["FEModel", "build_model", "vector_dofs"]
 

@@ -1,0 +1,298 @@
+"""Static and modal solves of a ring model, and the loads they take.
+
+Supports are Dirichlet conditions on node sets (eliminated: only the free DOFs enter the
+factorisation). Loads are consistent nodal force vectors built from surface tractions
+(:func:`surface_load`), forces at points (:func:`point_load`, through the interpolation transpose)
+or force per unit length along a curve (:func:`line_load`).
+
+Modal analysis solves K φ = ω² M φ for the lowest modes with ``eigsh`` in shift-invert mode; the
+operator (K − σM)⁻¹ is one sparse Cholesky factorisation (CHOLMOD when installed,
+:mod:`fem_rings.linalg`). A free model uses σ < 0 so that K − σM is positive definite despite the
+six rigid-body modes, which are then identified by their content of rigid motion and reported.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import skfem
+from scipy.sparse.linalg import eigsh
+
+from .linalg import factorize_spd, shift_invert_operator
+from .model import FEModel, vector_dofs
+from .probe import vector_probe_matrix
+
+__all__ = [
+    "Support",
+    "StaticResult",
+    "Modes",
+    "fixed_dofs",
+    "static_solve",
+    "modal_analysis",
+    "rigid_body_fields",
+    "surface_load",
+    "point_load",
+    "line_load",
+    "support_reaction_N",
+]
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class Support:
+    """Zero displacement of the given components at a node set.
+
+    Parameters
+    ----------
+    nodes : (k,) int
+        Node indices (e.g. ``model.node_set("bolt_face")``).
+    components : tuple of int
+        Displacement components held: 0 = x, 1 = y, 2 = z.
+    name : str
+        Label used in messages.
+    """
+
+    nodes: np.ndarray
+    components: tuple = (0, 1, 2)
+    name: str = "support"
+
+    def __post_init__(self) -> None:
+        if len(self.nodes) == 0:
+            raise ValueError(f"support {self.name!r}: node set is empty")
+        if not set(self.components) <= {0, 1, 2} or not self.components:
+            raise ValueError(f"support {self.name!r}: components must be a non-empty subset of (0, 1, 2)")
+
+
+def fixed_dofs(supports) -> np.ndarray:
+    """Sorted unique vector DOFs held by the supports."""
+    if not supports:
+        return np.zeros(0, dtype=np.int64)
+    return np.unique(np.concatenate([vector_dofs(s.nodes, s.components) for s in supports]))
+
+
+def _free(n: int, fixed: np.ndarray) -> np.ndarray:
+    mask = np.ones(n, dtype=bool)
+    mask[fixed] = False
+    return np.flatnonzero(mask)
+
+
+@dataclass(frozen=True)
+class StaticResult:
+    """Displacement (n_nodes, 3) m and support reactions (3N,) N of a static solve."""
+
+    displacement_m: np.ndarray
+    reaction_N: np.ndarray
+    backend: str
+
+    @property
+    def u(self) -> np.ndarray:
+        """Interleaved displacement vector (3N,), m."""
+        return self.displacement_m.ravel()
+
+
+def static_solve(model: FEModel, force_N: np.ndarray, supports, backend: str = "auto") -> StaticResult:
+    """Solve K u = f with the supports' DOFs held at zero.
+
+    Parameters
+    ----------
+    force_N : (3N,) float64, N
+        Consistent nodal forces (interleaved).
+    supports : sequence of Support
+        Must suppress all rigid-body motion, else the factorisation reports a singular matrix.
+    """
+    f = np.asarray(force_N, dtype=float)
+    if f.shape != (model.n_dofs,):
+        raise ValueError(f"force_N must have shape ({model.n_dofs},), got {f.shape}")
+    if not np.isfinite(f).all():
+        raise ValueError("force_N contains non-finite values")
+    fixed = fixed_dofs(supports)
+    if len(fixed) == 0:
+        raise ValueError("static_solve needs supports: a free body has no static solution under a general load")
+    free = _free(model.n_dofs, fixed)
+    Kff = model.K[free][:, free].tocsc()
+    factor = factorize_spd(Kff, backend=backend)
+    u = np.zeros(model.n_dofs)
+    u[free] = factor.solve(f[free])
+    reaction = model.K @ u - f
+    reaction[free] = 0.0
+    return StaticResult(u.reshape(-1, 3), reaction, factor.backend)
+
+
+def rigid_body_fields(nodes_m: np.ndarray) -> np.ndarray:
+    """(3N, 6) translations x, y, z and small rotations about x, y, z (about the origin)."""
+    x = np.asarray(nodes_m)
+    n = len(x)
+    R = np.zeros((n, 3, 6))
+    for i in range(3):
+        R[:, i, i] = 1.0
+    # rotation about axis k: u = e_k × x
+    for k in range(3):
+        e = np.zeros(3)
+        e[k] = 1.0
+        R[:, :, 3 + k] = np.cross(e, x)
+    return R.reshape(3 * n, 6)
+
+
+@dataclass(frozen=True)
+class Modes:
+    """Natural modes of a (free or supported) model.
+
+    Attributes
+    ----------
+    frequencies_Hz : (k,) float64
+        Ascending; rigid-body modes (numerically ~0) included.
+    shapes : (3N, k) float64
+        Mass-normalised mode shapes (φᵀ M φ = 1), zero at held DOFs.
+    rigid : (k,) bool
+        Modes identified as rigid-body motion (≥ 99 % of their mass-weighted norm in the span of
+        the six rigid fields).
+    backend : str
+        Factorisation used.
+    """
+
+    frequencies_Hz: np.ndarray
+    shapes: np.ndarray
+    rigid: np.ndarray
+    backend: str
+
+    @property
+    def n_rigid(self) -> int:
+        return int(self.rigid.sum())
+
+    @property
+    def elastic_frequencies_Hz(self) -> np.ndarray:
+        return self.frequencies_Hz[~self.rigid]
+
+
+def modal_analysis(
+    model: FEModel,
+    n_modes: int,
+    supports=(),
+    shift_Hz: float | None = None,
+    backend: str = "auto",
+) -> Modes:
+    """Lowest natural modes, free–free (no supports) or constrained.
+
+    Parameters
+    ----------
+    n_modes : int
+        Number of modes wanted, rigid-body modes included.
+    supports : sequence of Support
+        Held DOFs; empty for a free–free model.
+    shift_Hz : float, optional
+        Shift σ = −(2π shift_Hz)² (negative: K − σM stays positive definite for a free model).
+        Default 1 Hz.
+    """
+    if int(n_modes) < 1:
+        raise ValueError(f"n_modes must be ≥ 1, got {n_modes}")
+    fixed = fixed_dofs(supports)
+    free = _free(model.n_dofs, fixed)
+    if n_modes >= len(free):
+        raise ValueError(f"n_modes ({n_modes}) must be below the number of free DOFs ({len(free)})")
+    K = model.K[free][:, free].tocsc()
+    M = model.M[free][:, free].tocsc()
+    sigma = -(2.0 * math.pi * (1.0 if shift_Hz is None else shift_Hz)) ** 2
+    op, factor = shift_invert_operator(K, M, sigma, backend=backend)
+    lam, vec = eigsh(K, k=int(n_modes), M=M, sigma=sigma, OPinv=op, which="LM")
+    order = np.argsort(lam)
+    lam, vec = lam[order], vec[:, order]
+    vec /= np.sqrt(np.einsum("ik,ik->k", vec, M @ vec))
+    shapes = np.zeros((model.n_dofs, len(lam)))
+    shapes[free] = vec
+    freq = np.sqrt(np.clip(lam, 0.0, None)) / (2.0 * math.pi)
+    rigid = _rigid_content(model, shapes) > 0.99
+    if len(fixed) and rigid.any():
+        log.warning("model %s: %d rigid-body mode(s) despite supports: the supports leave a mechanism",
+                    model.ring.profile.name, int(rigid.sum()))
+    log.info("modes of %s: %d rigid, first elastic %.4g Hz", model.ring.profile.name, int(rigid.sum()),
+             freq[~rigid][0] if (~rigid).any() else float("nan"))
+    return Modes(freq, shapes, rigid, factor.backend)
+
+
+def _rigid_content(model: FEModel, shapes: np.ndarray) -> np.ndarray:
+    """Fraction of each mass-normalised mode's M-norm² lying in the span of rigid motions."""
+    R = rigid_body_fields(model.nodes_m)
+    MR = model.M @ R
+    G = R.T @ MR                       # 6×6 Gram matrix in the M inner product
+    c = MR.T @ shapes                  # (6, k)
+    return np.einsum("ik,ik->k", c, np.linalg.solve(G, c))
+
+
+# -- loads ------------------------------------------------------------------------------------
+
+def surface_load(model: FEModel, facets: np.ndarray, traction_Pa, intorder: int | None = None) -> np.ndarray:
+    """Consistent nodal forces (3N,) N of a traction on boundary facets.
+
+    Parameters
+    ----------
+    facets : (k,) int
+        Facet indices (e.g. ``model.ring.facet_sets["top"]``).
+    traction_Pa : (3,) array or callable
+        Constant traction vector, Pa, or ``f(x) -> (3, ...)`` of the physical coordinates
+        ``x`` (3, n_facets, n_qp).
+    """
+    facets = np.asarray(facets)
+    if len(facets) == 0:
+        raise ValueError("surface_load: the facet set is empty")
+    fb = skfem.FacetBasis(model.mesh, skfem.ElementVector(model.mesh.elem()), facets=facets,
+                          intorder=intorder or model.intorder[0])
+
+    if callable(traction_Pa):
+        def form(v, w):
+            t = traction_Pa(w.x)
+            return t[0] * v[0] + t[1] * v[1] + t[2] * v[2]
+    else:
+        t = np.asarray(traction_Pa, dtype=float)
+        if t.shape != (3,):
+            raise ValueError(f"traction_Pa must be a 3-vector, got shape {t.shape}")
+
+        def form(v, w):
+            return t[0] * v[0] + t[1] * v[1] + t[2] * v[2]
+    return skfem.LinearForm(form).assemble(fb)
+
+
+def point_load(model: FEModel, points_m: np.ndarray, forces_N: np.ndarray) -> np.ndarray:
+    """Consistent nodal forces (3N,) N of concentrated forces at points (Pᵀ f).
+
+    Parameters
+    ----------
+    points_m : (n, 3) float64, m
+    forces_N : (n, 3) float64, N
+    """
+    pts = np.atleast_2d(points_m)
+    f = np.atleast_2d(np.asarray(forces_N, dtype=float))
+    if f.shape != pts.shape:
+        raise ValueError(f"forces_N must have the shape of points_m {pts.shape}, got {f.shape}")
+    P = vector_probe_matrix(model.basis(2), pts)
+    return P.T @ f.ravel()
+
+
+def line_load(model: FEModel, curve_m: np.ndarray, force_per_length_N_m, closed: bool = True,
+              n_sub: int = 8) -> np.ndarray:
+    """Consistent nodal forces of a force per unit length along a polyline on or in the body.
+
+    The polyline through ``curve_m`` (n, 3) is integrated with ``n_sub`` Gauss points per piece;
+    ``force_per_length_N_m`` is a (3,) vector or (n, 3) values at the polyline points (linear in
+    between). For a circle pass enough points that the chords follow it (the resultant uses the
+    chord lengths).
+    """
+    c = np.asarray(curve_m, dtype=float)
+    q = np.broadcast_to(np.asarray(force_per_length_N_m, dtype=float), c.shape)
+    a, b = (c, np.roll(c, -1, axis=0)) if closed else (c[:-1], c[1:])
+    qa, qb = (q, np.roll(q, -1, axis=0)) if closed else (q[:-1], q[1:])
+    s, w = np.polynomial.legendre.leggauss(n_sub)
+    s, w = 0.5 * (s + 1.0), 0.5 * w
+    L = np.linalg.norm(b - a, axis=1)
+    pts = (a[:, None, :] + s[None, :, None] * (b - a)[:, None, :]).reshape(-1, 3)
+    f = ((qa[:, None, :] + s[None, :, None] * (qb - qa)[:, None, :]) * (L[:, None] * w[None, :])[:, :, None])
+    return point_load(model, pts, f.reshape(-1, 3))
+
+
+def support_reaction_N(result: StaticResult, supports) -> np.ndarray:
+    """Total reaction force (3,) N over the supports."""
+    return result.reaction_N.reshape(-1, 3)[np.unique(np.concatenate([s.nodes for s in supports]))].sum(axis=0)
+
