@@ -37,6 +37,7 @@ __all__ = [
     "point_load",
     "line_load",
     "support_reaction_N",
+    "classify_ring_mode",
 ]
 
 log = logging.getLogger(__name__)
@@ -220,6 +221,22 @@ def _rigid_content(model: FEModel, shapes: np.ndarray) -> np.ndarray:
     G = R.T @ MR                       # 6×6 Gram matrix in the M inner product
     c = MR.T @ shapes                  # (6, k)
     return np.einsum("ik,ik->k", c, np.linalg.solve(G, c))
+
+
+def classify_ring_mode(nodes_m: np.ndarray, shape: np.ndarray, max_wave: int = 8) -> tuple[str, int]:
+    """Family and circumferential wave number of a ring mode about the z axis.
+
+    Returns ``("out", n)`` when axial motion dominates (out-of-plane bending/torsion), else
+    ``("in", n)``; n is the dominant harmonic cos(nθ), sin(nθ) of the axial (out) or radial (in)
+    displacement over the nodes.
+    """
+    u = np.asarray(shape).reshape(-1, 3)
+    th = np.arctan2(nodes_m[:, 1], nodes_m[:, 0])
+    ur = u[:, 0] * np.cos(th) + u[:, 1] * np.sin(th)
+    axial = np.sum(u[:, 2] ** 2) > 0.5 * np.sum(u**2)
+    w = u[:, 2] if axial else ur
+    amp = [np.hypot(np.mean(w * np.cos(n * th)), np.mean(w * np.sin(n * th))) for n in range(max_wave + 1)]
+    return ("out" if axial else "in"), int(np.argmax(amp))
 
 
 # -- loads ------------------------------------------------------------------------------------
