@@ -316,9 +316,12 @@ def _build_hex(gmsh, profile: Profile, spec: MeshSpec) -> None:
     geo = gmsh.model.geo
     surf, curves = _add_section(geo, profile)
     structured = len(curves) == 4 and all(isinstance(s, Line) for _, s in curves)
-    for c, s in curves:
-        h = spec.size_m * float(spec.refine.get(s.name, 1.0))
-        geo.mesh.setTransfiniteCurve(c, max(2, int(math.ceil(s.length_m / h - 1e-9))) + 1)
+    n_el = [max(2, int(math.ceil(s.length_m / (spec.size_m * float(spec.refine.get(s.name, 1.0))) - 1e-9)))
+            for _, s in curves]
+    if sum(n_el) % 2:  # an all-quadrilateral mesh needs an even number of boundary edges
+        n_el[int(np.argmax([s.length_m / n for (_, s), n in zip(curves, n_el)]))] += 1
+    for (c, _), n in zip(curves, n_el):
+        geo.mesh.setTransfiniteCurve(c, n + 1)
     if structured:
         n0 = max(2, int(math.ceil(curves[0][1].length_m / spec.size_m - 1e-9))) + 1
         n1 = max(2, int(math.ceil(curves[1][1].length_m / spec.size_m - 1e-9))) + 1
@@ -337,7 +340,8 @@ def _build_hex(gmsh, profile: Profile, spec: MeshSpec) -> None:
         cur = [out[0]]
         vols.append(out[1][1])
     geo.synchronize()
-    gmsh.option.setNumber("Mesh.RecombinationAlgorithm", 1)
+    gmsh.option.setNumber("Mesh.Algorithm", 8)               # frontal-Delaunay for quadrilaterals
+    gmsh.option.setNumber("Mesh.RecombinationAlgorithm", 1)  # blossom: all quads for an even boundary
 
 
 def _read_volume_mesh(path: Path, cell_type: str) -> skfem.Mesh:
