@@ -288,8 +288,7 @@ def _pocket_tools(occ, pockets: CagePockets, profile: Profile):
     r0, r1, z0, z1 = profile.bounds_m
     reach = 2.0 * max(r1 - r0, z1 - z0) + 1e-3
     tools = []
-    for k in range(pockets.n_pockets):
-        th = math.radians(pockets.angle_offset_deg) + 2.0 * math.pi * k / pockets.n_pockets
+    for th in pockets.angles_rad:
         c = np.array([pockets.pitch_radius_m * math.cos(th), pockets.pitch_radius_m * math.sin(th), pockets.z_m])
         radial = np.array([math.cos(th), math.sin(th), 0.0])
         tangent = np.array([-math.sin(th), math.cos(th), 0.0])
