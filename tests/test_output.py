@@ -27,15 +27,14 @@ import skfem
 from skfem.io.meshio import from_meshio
 
 from fem_rings.output import (
-    auto_warp_factor,
     displacement_magnitude,
-    render_png,
     to_meshio,
     voigt_to_vtk_tensor,
     vtk_cells,
     write_vtu,
     write_vtu_series,
 )
+from fem_rings.render import auto_warp_factor, render_png
 
 pv = pytest.importorskip("pyvista")
 from vtkmodules.vtkCommonDataModel import (  # noqa: E402  (VTK comes with pyvista)
