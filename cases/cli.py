@@ -23,6 +23,7 @@ from mbd_core.materials import ElasticMaterial, effective_modulus_Pa
 from mbd_core.quasistatic import LoadDistributionError, RingLoad, solve_load_distribution
 
 from .catalog import BUILTIN_BEARINGS, builtin_bearing
+from .parts import RING_PARTS, ring_part
 from .report import format_table, load_distribution_table, write_load_distribution
 
 __all__ = ["main"]
@@ -182,6 +183,25 @@ def cmd_loaddist(args) -> dict:
     return res.to_dict()
 
 
+def cmd_modes(args) -> dict:
+    from .fem_report import modes_table, part_modes, write_modes
+
+    part = ring_part(args.part)
+    if args.size_mm is not None:
+        _require_positive(size_mm=args.size_mm)
+    if args.modes < 7:
+        raise UserError(f"--modes must be at least 7 (six rigid-body modes + one elastic), got {args.modes}")
+    model, modes, summary = part_modes(part, args.modes, None if args.size_mm is None else args.size_mm * 1e-3,
+                                       args.element, use_cache=not args.no_cache)
+    if args.out:
+        write_modes(model, modes, summary, args.out)
+    if not args.json:
+        print(modes_table(summary))
+        if args.out:
+            print(f"\nresults: {args.out}/summary.json, modes.vtu (ParaView), mode_*.png")
+    return summary
+
+
 def _add_material(p: argparse.ArgumentParser) -> None:
     p.add_argument("--E-GPa", dest="E_GPa", type=float, default=207.0, help="Young's modulus of both bodies (GPa)")
     p.add_argument("--nu", type=float, default=0.29, help="Poisson's ratio of both bodies")
@@ -236,6 +256,16 @@ def build_parser() -> argparse.ArgumentParser:
     ld.add_argument("--out", default=None, help="write summary.json, element_loads.csv and a plot here")
     ld.add_argument("--json", action="store_true", help="print SI results as JSON")
     ld.set_defaults(func=cmd_loaddist)
+
+    md = sub.add_parser("modes", help="free–free natural modes of a ring or cage (solid finite elements)")
+    md.add_argument("part", choices=sorted(RING_PARTS), help="built-in ring or cage")
+    md.add_argument("--modes", type=int, default=16, help="modes to compute, rigid-body modes included")
+    md.add_argument("--size-mm", type=float, default=None, help="element size (mm); default per part")
+    md.add_argument("--element", choices=("hex27", "tet10"), default=None, help="default per part")
+    md.add_argument("--no-cache", action="store_true", help="do not read or write the model cache")
+    md.add_argument("--out", default=None, help="write summary.json, modes.vtu and PNGs here")
+    md.add_argument("--json", action="store_true", help="print SI results as JSON")
+    md.set_defaults(func=cmd_modes)
     return parser
 
 

@@ -7,13 +7,14 @@ import json
 import os
 import shutil
 import tempfile
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
 from mbd_core.quasistatic import LoadDistribution
 
-__all__ = ["format_table", "load_distribution_table", "write_load_distribution"]
+__all__ = ["atomic_folder", "format_table", "load_distribution_table", "write_load_distribution"]
 
 
 def format_table(rows: list[tuple], headers: tuple[str, ...]) -> str:
@@ -80,16 +81,29 @@ def _plot(res: LoadDistribution, path: Path) -> None:
     plt.close(fig)
 
 
-def write_load_distribution(res: LoadDistribution, out_dir: str | os.PathLike, extra: dict | None = None) -> Path:
-    """Write summary.json, element_loads.csv and element_loads.png to ``out_dir``.
+@contextmanager
+def atomic_folder(out_dir: str | os.PathLike):
+    """Yield a temporary folder beside ``out_dir`` that replaces ``out_dir`` on success.
 
-    Files are written to a temporary folder beside ``out_dir`` and moved into place at the
-    end, so an interrupted run never leaves a folder that looks complete.
+    An interrupted or failing run never leaves a folder that looks complete: on error the
+    temporary folder is removed and an existing ``out_dir`` stays as it was.
     """
     out = Path(out_dir)
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
     try:
+        yield tmp
+        if out.exists():
+            shutil.rmtree(out)
+        tmp.rename(out)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+
+
+def write_load_distribution(res: LoadDistribution, out_dir: str | os.PathLike, extra: dict | None = None) -> Path:
+    """Write summary.json, element_loads.csv and element_loads.png to ``out_dir`` (atomically)."""
+    with atomic_folder(out_dir) as tmp:
         with open(tmp / "element_loads.csv", "w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(["row", "element", "azimuth_deg", "load_N", "approach_m", "contact_angle_deg", "unloaded"])
@@ -103,10 +117,4 @@ def write_load_distribution(res: LoadDistribution, out_dir: str | os.PathLike, e
         if extra:
             summary.update(extra)
         (tmp / "summary.json").write_text(json.dumps(summary, indent=1))
-        if out.exists():
-            shutil.rmtree(out)
-        tmp.rename(out)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    return out
+    return Path(out_dir)

@@ -216,6 +216,9 @@ def render_png(path: str | os.PathLike, mesh, scalars: np.ndarray, *,
 def _render_surface(surface, bar_title: str, text: str, cmap: str,
                     window_size: tuple[int, int]) -> np.ndarray:
     """Off-screen render; returns the RGB image (height, width, 3) of uint8."""
+    if not os.environ.get("DISPLAY"):
+        # no X server: go straight to EGL instead of trying X first (VTK prints a warning)
+        os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
     import pyvista as pv
 
     width_px, height_px = window_size

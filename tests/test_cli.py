@@ -93,3 +93,27 @@ def test_user_errors_name_the_field_without_traceback(argv, field, capsys):
     assert field in err
     assert "Traceback" not in err
     assert err.startswith("flexbearing: error:")
+
+
+def test_modes_of_a_slewing_race_folder_and_figures(tmp_path, capsys):
+    # Mass: the FE mass matrix against the exact mass of the revolved section (0.1 %, acceptance
+    # of the free–free model); six rigid-body modes; elastic modes in degenerate pairs of a
+    # complete ring (n = 2 out-of-plane first for this flat section).
+    out = tmp_path / "modes"
+    d = run_json(capsys, "modes", "slewing-bottom-race-1m", "--size-mm", "60", "--modes", "10", "--no-cache",
+                 "--out", str(out))
+    assert d["mass_kg"] == pytest.approx(d["mass_of_section_kg"], rel=1e-3)
+    assert d["n_rigid_modes"] == 6
+    f = [m["frequency_Hz"] for m in d["modes"]]
+    assert max(f[:6]) < 1e-3 * f[6]
+    assert f[7] == pytest.approx(f[6], rel=1e-3)
+    assert (d["modes"][6]["family"], d["modes"][6]["waves"]) == ("out", 2)
+    assert sorted(p.name for p in out.iterdir()) == ["mode_07.png", "mode_08.png", "modes.vtu", "summary.json"]
+    assert json.loads((out / "summary.json").read_text())["dofs"] == d["dofs"]
+
+
+def test_modes_rejects_unknown_part_and_too_few_modes(capsys):
+    assert main(["modes", "slewing-bottom-race-1m", "--modes", "3"]) == 2
+    assert "--modes" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main(["modes", "no-such-ring"])

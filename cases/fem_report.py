@@ -1,0 +1,75 @@
+"""Free–free (or supported) modes of a built-in ring part: table, result folder, pictures."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+
+from fem_rings import MeshSpec, build_model, modal_analysis
+from fem_rings.model import FEModel
+from fem_rings.output import displacement_magnitude, write_vtu
+from fem_rings.render import render_png
+from fem_rings.solve import Modes, classify_ring_mode
+
+from .parts import RingPart
+from .report import atomic_folder, format_table
+
+__all__ = ["part_modes", "modes_table", "write_modes"]
+
+
+def part_modes(part: RingPart, n_modes: int, size_m: float | None = None, element: str | None = None,
+               use_cache: bool = True) -> tuple[FEModel, Modes, dict]:
+    """Mesh, assemble and solve the lowest free–free modes of a part; returns (model, modes, summary)."""
+    profile, pockets = part.make()
+    spec = MeshSpec(size_m or part.default_size_m, element or part.default_element)
+    model = build_model(profile, spec, part.material, pockets, use_cache=use_cache)
+    modes = modal_analysis(model, n_modes)
+    ex = np.zeros(model.n_dofs)
+    ex[0::3] = 1.0
+    rows = []
+    for k, (f, rigid) in enumerate(zip(modes.frequencies_Hz, modes.rigid)):
+        family, n = ("rigid", 0) if rigid else classify_ring_mode(model.nodes_m, modes.shapes[:, k])
+        rows.append({"mode": k + 1, "frequency_Hz": float(f), "family": family, "waves": n})
+    summary = {
+        "part": part.name,
+        "description": part.description,
+        "material": {"name": part.material.name, "E_Pa": part.material.E_Pa, "nu": part.material.nu,
+                     "density_kg_m3": part.material.density_kg_m3},
+        "element": spec.element,
+        "element_size_m": spec.size_m,
+        "dofs": model.n_dofs,
+        "mass_kg": float(ex @ model.M @ ex),
+        "mass_of_section_kg": None if pockets else profile.revolved_properties(part.material.density_kg_m3)["mass_kg"],
+        "n_rigid_modes": modes.n_rigid,
+        "factorisation": modes.backend,
+        "timings_s": model.timings_s,
+        "modes": rows,
+    }
+    return model, modes, summary
+
+
+def modes_table(summary: dict) -> str:
+    head = (f"{summary['description']}: {summary['element']}, {summary['dofs']} DOF, "
+            f"mass {summary['mass_kg']:.1f} kg, {summary['n_rigid_modes']} rigid-body modes")
+    rows = [(r["mode"], f"{r['frequency_Hz']:.3f}", r["family"], r["waves"] if r["family"] != "rigid" else "")
+            for r in summary["modes"]]
+    return head + "\n" + format_table(rows, ("mode", "f Hz", "family", "waves n"))
+
+
+def write_modes(model: FEModel, modes: Modes, summary: dict, out_dir: str | os.PathLike, n_pictures: int = 2) -> Path:
+    """summary.json, modes.vtu (all mode shapes as point data) and PNGs of the first elastic modes."""
+    with atomic_folder(out_dir) as tmp:
+        shapes = {f"mode_{k + 1:02d}_{f:.2f}Hz": modes.shapes[:, k].reshape(-1, 3)
+                  for k, f in enumerate(modes.frequencies_Hz)}
+        write_vtu(tmp / "modes.vtu", model.mesh, shapes)
+        elastic = np.flatnonzero(~modes.rigid)[:n_pictures]
+        for k in elastic:
+            u = modes.shapes[:, k].reshape(-1, 3)
+            render_png(tmp / f"mode_{k + 1:02d}.png", model.mesh, displacement_magnitude(u),
+                       label="φ", unit="m/√kg", displacement_m=u,
+                       title=f"{summary['part']}: mode {k + 1}, {modes.frequencies_Hz[k]:.2f} Hz")
+        (tmp / "summary.json").write_text(json.dumps(summary, indent=1))
+    return Path(out_dir)
