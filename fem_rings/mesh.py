@@ -165,6 +165,10 @@ def mesh_ring(profile: Profile, spec: MeshSpec, pockets: CagePockets | None = No
         _gmsh_mesh(profile, spec, pockets, msh)
         mesh = _read_volume_mesh(msh, ELEMENT_TYPES[spec.element])
     facet_sets = classify_boundary(mesh, profile, spec, pockets)
+    missing = [n for n in profile.names if n not in facet_sets]
+    if missing:
+        raise ValueError(f"profile {profile.name!r}: segments {missing} got no boundary facets "
+                         "(cut away by pockets, or shorter than the element size and merged)")
     node_sets = {k: facet_nodes(mesh, f) for k, f in facet_sets.items()}
     ring = RingMesh(mesh, profile, spec, facet_sets, node_sets)
     log.info("meshed %s", ring.summary())

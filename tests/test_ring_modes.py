@@ -98,3 +98,26 @@ def test_axially_deep_ring_convergence_rate_and_offset():
     for k in (("in", 2), ("in", 3), ("out", 2)):
         assert -0.05 < offsets[k] < 0.0, k
     assert -0.065 < offsets[("out", 3)] < -0.05
+
+
+def test_quarter_ring_with_symmetry_planes_reproduces_the_full_ring_n2_modes():
+    # Constrained modal analysis: a 90° sector with u_θ = 0 on both cut planes carries exactly the
+    # full ring's modes that are symmetric about both planes, among them in- and out-of-plane n = 2
+    # (u_r, u_z ∝ cos 2θ, u_θ ∝ sin 2θ). Reference: the free full ring of the same section and
+    # element size above. Axial translation stays free: one rigid-body mode, flagged as such.
+    from fem_rings.solve import Support
+
+    radial, axial = 0.05, 0.05
+    full, _ = ring_frequencies(radial, axial, 0.05)
+    model = build_model(rectangle("quarter", R - radial / 2, R + radial / 2, -axial / 2, axial / 2),
+                        MeshSpec(0.05, "hex27", sector_deg=90.0, n_theta=12), STEEL, use_cache=False)
+    supports = [Support(model.node_set("sector_start"), (1,), "plane y = 0"),
+                Support(model.node_set("sector_end"), (0,), "plane x = 0")]
+    modes = modal_analysis(model, 4, supports=supports)
+    assert modes.n_rigid == 1 and modes.rigid[0]
+    elastic = modes.elastic_frequencies_Hz
+    for key in (("out", 2), ("in", 2)):
+        assert np.min(np.abs(elastic / full[key] - 1)) < 1e-4, (key, elastic, full[key])
+    # held DOFs stay exactly zero in the mode shapes
+    u = modes.shapes.reshape(-1, 3, modes.shapes.shape[1])
+    assert np.all(u[model.node_set("sector_start"), 1] == 0.0)
