@@ -205,8 +205,11 @@ def render_png(path: str | os.PathLike, mesh, scalars: np.ndarray, *,
     points, factor = _deformed_points(points0, displacement_m, warp_factor)
     bar_title = f"{label} [{unit}]"
     surface = _pyvista_surface(mesh, points, values, bar_title)
+    # colour range of the nodal values: the tessellated faces interpolate the quadratic field
+    # and may overshoot it (e.g. a slightly negative von Mises stress)
+    clim = (float(values.min()), float(values.max()))
     image = _render_surface(surface, bar_title, _title_text(title, factor), cmap,
-                            (width_px, height_px))
+                            (width_px, height_px), clim)
     with _atomic_target(path, ".png") as tmp:
         _write_png(tmp, image)
     logger.info("wrote %s (%d × %d px)", path, width_px, height_px)
@@ -214,7 +217,7 @@ def render_png(path: str | os.PathLike, mesh, scalars: np.ndarray, *,
 
 
 def _render_surface(surface, bar_title: str, text: str, cmap: str,
-                    window_size: tuple[int, int]) -> np.ndarray:
+                    window_size: tuple[int, int], clim: tuple[float, float]) -> np.ndarray:
     """Off-screen render; returns the RGB image (height, width, 3) of uint8."""
     if not os.environ.get("DISPLAY"):
         # no X server: go straight to EGL instead of trying X first (VTK prints a warning)
@@ -222,8 +225,6 @@ def _render_surface(surface, bar_title: str, text: str, cmap: str,
     import pyvista as pv
 
     width_px, height_px = window_size
-    values = surface.point_data[bar_title]
-    clim = (float(values.min()), float(values.max()))
     font = max(8, round(height_px / 40))  # pixels, for colour-bar labels
     plotter = pv.Plotter(off_screen=True, window_size=(width_px, height_px))
     try:

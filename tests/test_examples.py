@@ -1,0 +1,31 @@
+"""The examples run as scripts and are checked here (each example computes at module level)."""
+
+import importlib.util
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+def _run(name, monkeypatch, tmp_path):
+    monkeypatch.setenv("FLEXBEARING_EXAMPLE_OUT", str(tmp_path / name))
+    monkeypatch.setenv("FLEXBEARING_CACHE", str(tmp_path / "cache"))
+    spec = importlib.util.spec_from_file_location(name, EXAMPLES / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_slewing_race_static(monkeypatch, tmp_path):
+    ex = _run("slewing_race_static", monkeypatch, tmp_path)
+    # each ball's Hertz patch carries Q = W/(Z sin α) along the local groove normals (unit vectors,
+    # weights summing to one), W = 68.9 t × 9.81 m/s²
+    Q = 68.9e3 * 9.81 / (16 * math.sin(math.radians(60.0)))
+    assert np.linalg.norm(ex.forces_N, axis=1).sum() == pytest.approx(16 * Q, rel=1e-12)
+    # static equilibrium: the bolt reactions balance the ball loads
+    assert ex.reaction_N == pytest.approx(-ex.applied_N, abs=1e-9 * np.abs(ex.applied_N).max())
+    assert (tmp_path / "slewing_race_static" / "race.vtu").stat().st_size > 0
+    assert (tmp_path / "slewing_race_static" / "von_mises.png").stat().st_size > 0
