@@ -68,7 +68,8 @@ class MeshSpec:
         ``{"groove": 0.4}`` (tet10 only; for hex27 the factor applies to the section's edges of
         that name).
     n_theta : int or None
-        Element layers round the sector (hex27); default from ``size_m`` at the outer radius.
+        Element layers round the sector (hex27); default from ``size_m`` at the outer radius;
+        rounded up to a multiple of the number of ≤ 90° revolve pieces.
     """
 
     size_m: float
@@ -238,12 +239,8 @@ def _add_section(kernel, profile: Profile):
 
 def _build_tet(gmsh, profile: Profile, spec: MeshSpec, pockets) -> None:
     occ = gmsh.model.occ
-    surf, curves = _add_section(occ, profile)
-    angle = spec.sector_rad
-    if spec.full_circle:
-        out = occ.revolve([(2, surf)], 0, 0, 0, 0, 0, 1, 2.0 * math.pi)
-    else:
-        out = occ.revolve([(2, surf)], 0, 0, 0, 0, 0, 1, angle)
+    surf, _ = _add_section(occ, profile)
+    out = occ.revolve([(2, surf)], 0, 0, 0, 0, 0, 1, spec.sector_rad)
     vol = [d for d in out if d[0] == 3]
     if pockets is not None:
         tools = _pocket_tools(occ, pockets, profile)
@@ -251,7 +248,7 @@ def _build_tet(gmsh, profile: Profile, spec: MeshSpec, pockets) -> None:
     occ.synchronize()
     gmsh.option.setNumber("Mesh.MeshSizeMax", spec.size_m)
     gmsh.option.setNumber("Mesh.MeshSizeMin", spec.size_m * min([1.0, *spec.refine.values()]) * 0.5)
-    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 12)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 12)  # elements per 2π of curvature
     if spec.refine:
         _refine_fields(gmsh, profile, spec)
 
@@ -334,14 +331,15 @@ def _build_hex(gmsh, profile: Profile, spec: MeshSpec) -> None:
     geo.mesh.setRecombine(2, surf)
     r_out = profile.bounds_m[1]
     n_theta = spec.n_theta or max(8, int(math.ceil(r_out * spec.sector_rad / spec.size_m)))
+    # the built-in kernel revolves less than 180° at a time: equal pieces of ≤ 90°, equal layers
     pieces = max(1, int(math.ceil(spec.sector_deg / 90.0 - 1e-9)))
-    per_piece = [n_theta // pieces + (1 if k < n_theta % pieces else 0) for k in range(pieces)]
-    cur, vols = [(2, surf)], []
-    for k in range(pieces):
-        out = geo.revolve(cur, 0, 0, 0, 0, 0, 1, spec.sector_rad / pieces,
-                          numElements=[per_piece[k]], recombine=True)
+    per_piece = int(math.ceil(n_theta / pieces))
+    if per_piece * pieces != n_theta:
+        log.info("n_theta %d rounded up to %d (a multiple of the %d revolve pieces)", n_theta, per_piece * pieces, pieces)
+    cur = [(2, surf)]
+    for _ in range(pieces):
+        out = geo.revolve(cur, 0, 0, 0, 0, 0, 1, spec.sector_rad / pieces, numElements=[per_piece], recombine=True)
         cur = [out[0]]
-        vols.append(out[1][1])
     geo.synchronize()
     gmsh.option.setNumber("Mesh.Algorithm", 8)               # frontal-Delaunay for quadrilaterals
     gmsh.option.setNumber("Mesh.RecombinationAlgorithm", 1)  # blossom: all quads for an even boundary
