@@ -16,7 +16,7 @@ import scipy.sparse as sp
 import skfem
 from scipy.spatial import cKDTree
 
-__all__ = ["locate", "probe_matrix", "vector_probe_matrix"]
+__all__ = ["locate", "probe_matrix", "vector_probe_matrix", "gradient_probe_matrices"]
 
 
 def _outside(mesh: skfem.Mesh, X: np.ndarray) -> np.ndarray:
@@ -79,7 +79,7 @@ def locate(basis: skfem.CellBasis, points_m: np.ndarray, n_candidates: int = 12,
         out = _outside(mesh, X) + np.where(err < 1e-9 * max(1.0, np.abs(x).max()), 0.0, np.inf)
         better = out < best_out
         best_cell[better], best_X[:, better], best_out[better] = cells[better], X[:, better], out[better]
-        if (best_out <= tol).all():
+        if (best_out <= 1e-12).all():   # every point inside an element: no better candidate exists
             break
     bad = np.flatnonzero(best_out > tol)
     if len(bad):
@@ -103,3 +103,15 @@ def probe_matrix(basis: skfem.CellBasis, points_m: np.ndarray) -> sp.csr_matrix:
 def vector_probe_matrix(basis: skfem.CellBasis, points_m: np.ndarray) -> sp.csr_matrix:
     """Interleaved vector interpolation (3 n_points, 3 N): u(x_k)_i = row 3k+i."""
     return sp.kron(probe_matrix(basis, points_m), sp.identity(3, format="csr"), format="csr")
+
+
+def gradient_probe_matrices(basis: skfem.CellBasis, points_m: np.ndarray) -> list[sp.csr_matrix]:
+    """Matrices G_i (n_points, N) with ∂f/∂x_i at the points = G_i @ nodal values of a scalar f."""
+    cells, X = locate(basis, points_m)
+    pts = X[:, :, None]
+    grads = np.array([np.asarray(basis.elem.gbasis(basis.mapping, pts, a, tind=cells)[0].grad)[:, :, 0]
+                      for a in range(basis.Nbfun)])  # (nloc, 3, n)
+    n = X.shape[1]
+    rows = np.tile(np.arange(n), basis.Nbfun)
+    cols = basis.element_dofs[:, cells].ravel()
+    return [sp.coo_matrix((grads[:, i, :].ravel(), (rows, cols)), shape=(n, basis.N)).tocsr() for i in range(3)]
