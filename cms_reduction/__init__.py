@@ -1,11 +1,19 @@
 """Craig–Bampton reduction of FE ring models into modal bodies for the floating frame of reference.
 
 Second stage of the data flow (DESIGN §1, §4): ``FEModel`` (fem_rings) → ``reduce_model`` →
-``ReducedBody`` (mass-normalised modes, frequencies, damping, mesh arrays; later stages add
-inertia invariants, raceway samples and stress modes).
+``ReducedBody`` (mass-normalised modes, frequencies, damping, mesh arrays, and as extras the
+inertia invariants, raceway samples and optional stress modes). ``reduced_body`` does all of it
+from a section and caches the result by input hash.
 """
 
 from .body import ReducedBody
 from .craig_bampton import Augmentation, Interface, reduce_model
+from .invariants import Invariants, compute_invariants
+from .persist import load_body, save_body
+from .pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, reduced_body
 
-__all__ = ["ReducedBody", "Interface", "Augmentation", "reduce_model"]
+__all__ = [
+    "ReducedBody", "Interface", "Augmentation", "reduce_model",
+    "Invariants", "compute_invariants", "save_body", "load_body",
+    "InterfaceSpec", "RacewaySpec", "ReductionSpec", "reduced_body",
+]

@@ -63,14 +63,23 @@ class ReducedBody:
     extras: dict = field(default_factory=dict)
 
     def __post_init__(self) -> None:
+        if np.ndim(self.nodes_m) != 2 or np.shape(self.nodes_m)[1] != 3:
+            raise ValueError(f"body {self.name!r}: nodes_m must have shape (N, 3), got {np.shape(self.nodes_m)}")
+        if np.ndim(self.shapes) != 2:
+            raise ValueError(f"body {self.name!r}: shapes must have shape (3N, m), got {np.shape(self.shapes)}")
+        if self.mesh_kind not in ("tet10", "hex27"):
+            raise ValueError(f"body {self.name!r}: mesh_kind must be 'tet10' or 'hex27', got {self.mesh_kind!r}")
         n, m = self.shapes.shape
         if n != 3 * len(self.nodes_m):
             raise ValueError(f"body {self.name!r}: shapes have {n} rows, expected 3 × {len(self.nodes_m)} nodes")
         for attr in ("frequencies_Hz", "damping_ratio"):
             if np.shape(getattr(self, attr)) != (m,):
                 raise ValueError(f"body {self.name!r}: {attr} must have shape ({m},), got {np.shape(getattr(self, attr))}")
-        if np.any(np.asarray(self.damping_ratio) < 0.0):
-            raise ValueError(f"body {self.name!r}: damping_ratio must be ≥ 0")
+        if not np.all(np.asarray(self.damping_ratio) >= 0.0):
+            raise ValueError(f"body {self.name!r}: damping_ratio must be finite and ≥ 0")
+        f = np.asarray(self.frequencies_Hz)
+        if not (np.all(np.isfinite(f)) and np.all(f >= 0.0)):
+            raise ValueError(f"body {self.name!r}: frequencies_Hz must be finite and ≥ 0")
 
     @property
     def n_modes(self) -> int:

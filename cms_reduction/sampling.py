@@ -21,11 +21,14 @@ import numpy as np
 
 from fem_rings.assembly import scalar_basis
 from fem_rings.nodesets import RacewayCurve
+from fem_rings.nodesets import raceway_curve as raceway_curve_at
 from fem_rings.probe import gradient_probe_matrices, probe_matrix
 
 from .body import ReducedBody
 
-__all__ = ["RacewaySample", "sample_raceway", "interp_index", "raceway_displacement", "raceway_modal_force"]
+__all__ = ["RacewaySample", "sample_raceway", "interp_index", "raceway_displacement", "raceway_modal_force",
+           "sample_to_arrays", "samples_from_arrays", "sample_across", "pocket_contact_points",
+           "sample_points"]
 
 
 @dataclass(frozen=True)
@@ -56,11 +59,13 @@ class RacewaySample:
     periodic: bool
 
 
-def sample_raceway(body: ReducedBody, curve: RacewayCurve, full_circle: bool) -> RacewaySample:
-    """Sample the body's modes at the points of ``curve`` (from :func:`fem_rings.nodesets.raceway_curve`)."""
+def sample_points(body: ReducedBody, name: str, points_m: np.ndarray, theta_rad: np.ndarray,
+                  periodic: bool = False) -> RacewaySample:
+    """Mode displacement and small rotation of the body at arbitrary points on or in it."""
+    pts = np.atleast_2d(np.asarray(points_m, dtype=float))
     basis = scalar_basis(body.mesh(), 2)
-    P = probe_matrix(basis, curve.points_m)
-    G = gradient_probe_matrices(basis, curve.points_m)
+    P = probe_matrix(basis, pts)
+    G = gradient_probe_matrices(basis, pts)
     m = body.n_modes
     Phi = body.shapes.reshape(-1, 3, m)                     # (N, 3, m)
     disp = np.stack([P @ Phi[:, c, :] for c in range(3)], axis=1)          # (n, 3, m)
@@ -68,8 +73,12 @@ def sample_raceway(body: ReducedBody, curve: RacewayCurve, full_circle: bool) ->
     # grad[p, c, i, k] = ∂u_c/∂x_i ; ω = ½ (∂u_z/∂y − ∂u_y/∂z, ∂u_x/∂z − ∂u_z/∂x, ∂u_y/∂x − ∂u_x/∂y)
     rot = 0.5 * np.stack([grad[:, 2, 1] - grad[:, 1, 2], grad[:, 0, 2] - grad[:, 2, 0],
                           grad[:, 1, 0] - grad[:, 0, 1]], axis=1)
-    return RacewaySample(curve.name, np.asarray(curve.theta_rad, float), np.asarray(curve.points_m, float),
-                         disp, rot, bool(full_circle))
+    return RacewaySample(name, np.asarray(theta_rad, float), pts, disp, rot, bool(periodic))
+
+
+def sample_raceway(body: ReducedBody, curve: RacewayCurve, full_circle: bool) -> RacewaySample:
+    """Sample the body's modes at the points of ``curve`` (from :func:`fem_rings.nodesets.raceway_curve`)."""
+    return sample_points(body, curve.name, curve.points_m, curve.theta_rad, full_circle)
 
 
 def interp_index(theta_grid: np.ndarray, theta: float, periodic: bool) -> tuple[int, int, float, float]:
@@ -102,3 +111,59 @@ def raceway_modal_force(table: np.ndarray, i0: int, i1: int, w0: float, w1: floa
     The transpose of :func:`raceway_displacement`: force · displacement(η) = modal_force · η.
     """
     return w0 * (table[i0].T @ force) + w1 * (table[i1].T @ force)
+
+
+def sample_to_arrays(sample: RacewaySample) -> dict:
+    """Flat arrays for :attr:`ReducedBody.extras` (keys ``sample:<name>:…``)."""
+    k = f"sample:{sample.name}:"
+    return {k + "theta_rad": sample.theta_rad, k + "points_m": sample.points_m,
+            k + "displacement": sample.displacement, k + "rotation": sample.rotation,
+            k + "periodic": np.array(sample.periodic)}
+
+
+def samples_from_arrays(extras: dict) -> dict:
+    """The raceway samples stored in a body's extras, by raceway name."""
+    names = sorted({key.split(":")[1] for key in extras if key.startswith("sample:")})
+    out = {}
+    for n in names:
+        k = f"sample:{n}:"
+        out[n] = RacewaySample(n, extras[k + "theta_rad"], extras[k + "points_m"], extras[k + "displacement"],
+                               extras[k + "rotation"], bool(extras[k + "periodic"]))
+    return out
+
+
+def sample_across(body: ReducedBody, ring, segment: str, n_theta: int, n_across: int) -> list[RacewaySample]:
+    """A (θ, s) grid on a straight raceway (a roller track): one circle of samples at each of
+    ``n_across`` positions s across the segment (Gauss–Legendre points, where roller slices sit).
+
+    Sample names are ``"<segment>@s<k>"`` with k ascending along the segment.
+    """
+    segs = [s for s in ring.profile.segments if s.name == segment]
+    if len(segs) != 1:
+        raise ValueError(f"segment {segment!r}: a (θ, s) grid needs exactly one segment of that name, "
+                         f"found {len(segs)}")
+    x, _ = np.polynomial.legendre.leggauss(int(n_across))
+    out = []
+    for k, s in enumerate(0.5 * (x + 1.0)):
+        curve = raceway_curve_at(ring, segment, n_theta, segs[0].points(np.array([s]))[0])
+        out.append(sample_points(body, f"{segment}@s{k}", curve.points_m, curve.theta_rad, ring.spec.full_circle))
+    return out
+
+
+def pocket_contact_points(pockets) -> tuple[np.ndarray, np.ndarray]:
+    """Mid-points of the two circumferential walls of every cage pocket.
+
+    Returns
+    -------
+    points_m : (n_pockets · 2, 3) float64
+        Leading wall (+θ side) then trailing wall of each pocket, at the pocket's pitch radius and z.
+    theta_rad : (n_pockets · 2,) float64
+        The pocket-centre angle of each point.
+    """
+    th = pockets.angles_rad
+    half = 0.5 * pockets.circumferential_width_m
+    centre = np.column_stack((pockets.pitch_radius_m * np.cos(th), pockets.pitch_radius_m * np.sin(th),
+                              np.full(len(th), pockets.z_m)))
+    tangent = np.column_stack((-np.sin(th), np.cos(th), np.zeros(len(th))))
+    pts = np.stack([centre + half * tangent, centre - half * tangent], axis=1).reshape(-1, 3)
+    return pts, np.repeat(th, 2)

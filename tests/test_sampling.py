@@ -76,3 +76,40 @@ def test_linear_interpolation_error_between_samples(setup):
                                             np.eye(body.n_modes)[0]) for t in mid.theta_rad[1::2]])
     err = np.abs(interp - exact).max() / np.abs(exact).max()
     assert err == pytest.approx((2 * 2 * np.pi / 72) ** 2 / 8, rel=0.3)
+
+
+def _rigid_body_of(model):
+    R = rigid_body_fields(model.nodes_m)
+    return ReducedBody("rigid", model.nodes_m, R, np.ones(6), np.zeros(6), True, model.ring.spec.element,
+                       model.mesh.doflocs, model.mesh.t)
+
+
+def test_theta_s_grid_on_a_flat_raceway(setup):
+    # Three circles of samples across the 0.1 m wide top face at the Gauss–Legendre points
+    # r = 1 ∓ 0.05·√(3/5) and r = 1; a rigid motion is reproduced exactly on every circle.
+    from cms_reduction.sampling import sample_across
+
+    model, _, _ = setup
+    grid = sample_across(_rigid_body_of(model), model.ring, "top", 24, 3)
+    radii = sorted(float(np.hypot(*g.points_m[0, :2])) for g in grid)
+    assert radii == pytest.approx([1 - 0.05 * np.sqrt(0.6), 1.0, 1 + 0.05 * np.sqrt(0.6)], abs=1e-12)
+    for g in grid:
+        expected = np.stack([np.cross(e, g.points_m) for e in np.eye(3)], axis=2)
+        assert np.abs(g.displacement[:, :, 3:] - expected).max() < 1e-12
+        assert np.abs(g.displacement[:, :, :3] - np.eye(3)[None]).max() < 1e-12
+
+
+def test_cage_pocket_wall_points_are_sampled():
+    # Points on the circumferential walls of 12 box pockets of a cage: located on the cut mesh,
+    # rigid motion reproduced exactly.
+    from cms_reduction.sampling import pocket_contact_points, sample_points
+    from fem_rings.cages import CagePockets
+
+    pockets = CagePockets(12, "box", "radial", 0.5, 0.0, width_m=0.05, height_m=0.03)
+    model = build_model(rectangle("cage", 0.48, 0.52, -0.03, 0.03), MeshSpec(0.015, "tet10"), STEEL, pockets,
+                        use_cache=False)
+    pts, th = pocket_contact_points(pockets)
+    assert pts.shape == (24, 3)
+    s = sample_points(_rigid_body_of(model), "pockets", pts, th)
+    expected = np.stack([np.cross(e, pts) for e in np.eye(3)], axis=2)
+    assert np.abs(s.displacement[:, :, 3:] - expected).max() < 1e-12

@@ -1,0 +1,114 @@
+"""From a ring description to a cached reduced body: the one call a case makes.
+
+``reduced_body(profile, mesh_spec, material, spec)`` builds the FE model (cached by fem_rings),
+condenses the interfaces, reduces with optional raceway augmentation, samples the raceways,
+computes the inertia invariants and, when asked, the stress modes — and stores the result keyed
+by a hash of every input, so a second run loads it in a fraction of a second.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, replace
+
+from fem_rings.cache import input_hash
+from fem_rings.mesh import MeshSpec
+from fem_rings.model import build_model
+from fem_rings.nodesets import patch_nodes, raceway_curve
+from fem_rings.profile import Profile
+from mbd_core.materials import ElasticMaterial
+
+from .body import ReducedBody
+from .craig_bampton import Augmentation, Interface, reduce_model
+from .invariants import compute_invariants
+from .persist import cached_body
+from .sampling import sample_raceway, sample_to_arrays
+from .stress_modes import add_stress_modes
+
+__all__ = ["InterfaceSpec", "RacewaySpec", "ReductionSpec", "reduced_body"]
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class InterfaceSpec:
+    """Patches of a named surface condensed to master nodes (one per angle).
+
+    Parameters
+    ----------
+    facet_set : str
+        Profile segment the patches lie on (e.g. ``"bolt_face"``).
+    angles_deg : tuple of float
+        Patch centres round the ring, degrees.
+    half_width_m : float
+        Patch half-length along the circumference, m.
+    grounded : bool
+        Held (bolted to a rigid housing) or kept as boundary DOFs.
+    """
+
+    facet_set: str
+    angles_deg: tuple
+    half_width_m: float
+    grounded: bool = True
+
+
+@dataclass(frozen=True)
+class RacewaySpec:
+    """A raceway sampled for moving contacts and (optionally) used for load-mode augmentation.
+
+    ``at_rz_m`` is the contact point in the section (e.g. the nominal ball contact on a groove);
+    ``directions``/``n_max`` set the augmentation harmonics (``n_max < 0``: no augmentation).
+    """
+
+    segment: str
+    n_theta: int = 360
+    at_rz_m: tuple | None = None
+    directions: tuple = ("normal",)
+    n_max: int = 8
+
+
+@dataclass(frozen=True)
+class ReductionSpec:
+    """What to keep of a ring: normal modes, interfaces, raceways, damping, stress modes."""
+
+    n_modes: int = 20
+    interfaces: tuple = ()
+    raceways: tuple = ()
+    damping_ratio: float = 0.0
+    stress_modes: bool = False
+
+    def __post_init__(self) -> None:
+        if int(self.n_modes) < 1:
+            raise ValueError(f"reduction spec: n_modes must be ≥ 1, got {self.n_modes}")
+        if not 0.0 <= float(self.damping_ratio) < 1.0:
+            raise ValueError(f"reduction spec: damping_ratio must lie in [0, 1), got {self.damping_ratio}")
+
+
+def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMaterial, spec: ReductionSpec,
+                 pockets=None, *, name: str | None = None, use_cache: bool = True) -> ReducedBody:
+    """Build (or load from the cache) the reduced body of a ring."""
+    key = input_hash("reduced-body", profile, mesh_spec, material, spec, pockets, name)
+
+    def build() -> ReducedBody:
+        model = build_model(profile, mesh_spec, material, pockets, use_cache=use_cache)
+        interfaces = [Interface(f"{i.facet_set}@{a:g}°", patch_nodes(model.ring, i.facet_set, a, i.half_width_m),
+                                grounded=i.grounded)
+                      for i in spec.interfaces for a in i.angles_deg]
+        curves = [raceway_curve(model.ring, r.segment, r.n_theta, r.at_rz_m) for r in spec.raceways]
+        aug = [Augmentation(c, r.directions, r.n_max) for c, r in zip(curves, spec.raceways) if r.n_max >= 0]
+        body = reduce_model(model, spec.n_modes, interfaces, aug, damping_ratio=spec.damping_ratio,
+                            name=name or profile.name)
+        extras = dict(compute_invariants(model.M, body.nodes_m, body.shapes).to_arrays())
+        for c in curves:
+            extras.update(sample_to_arrays(sample_raceway(body, c, mesh_spec.full_circle)))
+        body = replace(body, extras=extras, metadata={**body.metadata, "input_hash": key,
+                                                       "material": material.name,
+                                                       "element": mesh_spec.element,
+                                                       "element_size_m": mesh_spec.size_m})
+        if spec.stress_modes:
+            body = add_stress_modes(body, model)
+        return body
+
+    if not use_cache:
+        return build()
+    return cached_body(key, build)
