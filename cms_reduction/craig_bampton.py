@@ -34,7 +34,7 @@ from scipy.sparse.linalg import LinearOperator, eigsh
 from fem_rings.linalg import factorize_spd, shift_invert_operator
 from fem_rings.model import FEModel
 from fem_rings.nodesets import RacewayCurve
-from fem_rings.solve import line_load, rigid_body_fields, solver_threads
+from fem_rings.solve import line_load_operator, rigid_body_fields, solver_threads
 
 from .body import ReducedBody
 
@@ -103,13 +103,13 @@ class Augmentation:
         axial = np.tile([0.0, 0.0, 1.0], (len(th), 1))
         dirs = {"radial": radial, "axial": axial,
                 "normal": -(c.normal_rz[0] * radial + c.normal_rz[1] * axial)}
+        load = line_load_operator(model, c.points_m, closed=full_circle)
         out = []
         for name in self.directions:
             d = dirs[name]
             for n in range(int(self.n_max) + 1):
                 for trig in ((np.cos,) if n == 0 else (np.cos, np.sin)):
-                    q = trig(n * th)[:, None] * d
-                    out.append(line_load(model, c.points_m, q, closed=full_circle))
+                    out.append(load(trig(n * th)[:, None] * d))
         return np.column_stack(out)
 
 

@@ -72,15 +72,22 @@ def locate(basis: skfem.CellBasis, points_m: np.ndarray, n_candidates: int = 12,
     best_cell = cand[:, 0].copy()
     best_X = np.zeros_like(x)
     best_out = np.full(x.shape[1], np.inf)
+    scale = np.maximum(1.0, np.abs(x).max(axis=0))
+    # per point: candidates in order of distance, stop at the first that contains it, else keep
+    # the least-outside one (a point on the curved surface may sit just outside every element);
+    # the result of a point does not depend on the other points located with it
     for j in range(k):
-        cells = cand[:, j]
-        X = _newton(basis.mapping, x, cells)
-        err = np.linalg.norm(basis.mapping.F(X[:, :, None], cells)[:, :, 0] - x, axis=0)
-        out = _outside(mesh, X) + np.where(err < 1e-9 * max(1.0, np.abs(x).max()), 0.0, np.inf)
-        better = out < best_out
-        best_cell[better], best_X[:, better], best_out[better] = cells[better], X[:, better], out[better]
-        if (best_out <= 1e-12).all():   # every point inside an element: no better candidate exists
+        todo = np.flatnonzero(best_out > 1e-6)   # 1e-6 of an element: inside for every purpose
+        if not len(todo):
             break
+        cells = cand[todo, j]
+        xt = x[:, todo]
+        X = _newton(basis.mapping, xt, cells)
+        err = np.linalg.norm(basis.mapping.F(X[:, :, None], cells)[:, :, 0] - xt, axis=0)
+        out = _outside(mesh, X) + np.where(err < 1e-9 * scale[todo], 0.0, np.inf)
+        better = out < best_out[todo]
+        idx = todo[better]
+        best_cell[idx], best_X[:, idx], best_out[idx] = cells[better], X[:, better], out[better]
     bad = np.flatnonzero(best_out > tol)
     if len(bad):
         p = x[:, bad[0]]

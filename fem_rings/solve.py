@@ -20,6 +20,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 import skfem
 from scipy.sparse.linalg import eigsh
 from threadpoolctl import threadpool_limits
@@ -40,6 +41,7 @@ __all__ = [
     "surface_load",
     "point_load",
     "line_load",
+    "line_load_operator",
     "support_reaction_N",
     "classify_ring_mode",
 ]
@@ -301,25 +303,45 @@ def point_load(model: FEModel, points_m: np.ndarray, forces_N: np.ndarray) -> np
     return P.T @ f.ravel()
 
 
-def line_load(model: FEModel, curve_m: np.ndarray, force_per_length_N_m, closed: bool = True,
-              n_sub: int = 8) -> np.ndarray:
-    """Consistent nodal forces of a force per unit length along a polyline on or in the body.
+def line_load_operator(model: FEModel, curve_m: np.ndarray, closed: bool = True, n_sub: int = 8):
+    """A function q ↦ consistent nodal forces (3N,) for force-per-length values q (n, 3) N/m at the
+    polyline points ``curve_m`` (n, 3) (linear in between, ``n_sub`` Gauss points per piece).
 
-    The polyline through ``curve_m`` (n, 3) is integrated with ``n_sub`` Gauss points per piece;
-    ``force_per_length_N_m`` is a (3,) vector or (n, 3) values at the polyline points (linear in
-    between). For a circle pass enough points that the chords follow it (the resultant uses the
+    The points are located once, so many load cases on one curve (e.g. load harmonics) cost one
+    location. For a circle pass enough points that the chords follow it (the resultant uses the
     chord lengths).
     """
     c = np.asarray(curve_m, dtype=float)
-    q = np.broadcast_to(np.asarray(force_per_length_N_m, dtype=float), c.shape)
-    a, b = (c, np.roll(c, -1, axis=0)) if closed else (c[:-1], c[1:])
-    qa, qb = (q, np.roll(q, -1, axis=0)) if closed else (q[:-1], q[1:])
+    n = len(c)
+    i0 = np.arange(n) if closed else np.arange(n - 1)
+    i1 = (i0 + 1) % n
     s, w = np.polynomial.legendre.leggauss(n_sub)
     s, w = 0.5 * (s + 1.0), 0.5 * w
-    L = np.linalg.norm(b - a, axis=1)
-    pts = (a[:, None, :] + s[None, :, None] * (b - a)[:, None, :]).reshape(-1, 3)
-    f = ((qa[:, None, :] + s[None, :, None] * (qb - qa)[:, None, :]) * (L[:, None] * w[None, :])[:, :, None])
-    return point_load(model, pts, f.reshape(-1, 3))
+    L = np.linalg.norm(c[i1] - c[i0], axis=1)
+    pts = (c[i0][:, None, :] + s[None, :, None] * (c[i1] - c[i0])[:, None, :]).reshape(-1, 3)
+    wq = (L[:, None] * w[None, :]).ravel()                      # quadrature weight of each point, m
+    # value at a quadrature point = (1 − s) q[i0] + s q[i1]
+    rows = np.repeat(np.arange(len(pts)), 2)
+    cols = np.stack([np.repeat(i0, n_sub), np.repeat(i1, n_sub)], axis=1).ravel()
+    vals = np.stack([np.tile(1.0 - s, len(i0)), np.tile(s, len(i0))], axis=1).ravel()
+    A = sp.csr_matrix((vals, (rows, cols)), shape=(len(pts), n))
+    PT = vector_probe_matrix(model.basis(2), pts).T.tocsr()
+
+    def apply(force_per_length_N_m) -> np.ndarray:
+        q = np.broadcast_to(np.asarray(force_per_length_N_m, dtype=float), c.shape)
+        return PT @ ((A @ q) * wq[:, None]).ravel()
+
+    return apply
+
+
+def line_load(model: FEModel, curve_m: np.ndarray, force_per_length_N_m, closed: bool = True,
+              n_sub: int = 8) -> np.ndarray:
+    """Consistent nodal forces (3N,) N of a force per unit length along a polyline on or in the body.
+
+    ``force_per_length_N_m`` is a (3,) vector or (n, 3) values at the polyline points ``curve_m``
+    (n, 3), linear in between; see :func:`line_load_operator`.
+    """
+    return line_load_operator(model, curve_m, closed, n_sub)(force_per_length_N_m)
 
 
 def support_reaction_N(result: StaticResult, supports) -> np.ndarray:
