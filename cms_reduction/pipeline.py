@@ -22,7 +22,7 @@ from .body import ReducedBody
 from .craig_bampton import Augmentation, Interface, reduce_model
 from .invariants import compute_invariants
 from .persist import cached_body
-from .sampling import sample_raceway, sample_to_arrays
+from .sampling import pocket_contact_points, sample_across, sample_points, sample_raceway, sample_to_arrays
 from .stress_modes import add_stress_modes
 
 __all__ = ["InterfaceSpec", "RacewaySpec", "ReductionSpec", "reduced_body"]
@@ -57,7 +57,9 @@ class RacewaySpec:
     """A raceway sampled for moving contacts and (optionally) used for load-mode augmentation.
 
     ``at_rz_m`` is the contact point in the section (e.g. the nominal ball contact on a groove);
-    ``directions``/``n_max`` set the augmentation harmonics (``n_max < 0``: no augmentation).
+    ``directions``/``n_max`` set the augmentation harmonics (``n_max < 0``: no augmentation);
+    ``n_across > 0`` samples a (θ, s) grid of that many circles across a straight raceway (roller
+    slices) instead of one circle.
     """
 
     segment: str
@@ -65,6 +67,7 @@ class RacewaySpec:
     at_rz_m: tuple | None = None
     directions: tuple = ("normal",)
     n_max: int = 8
+    n_across: int = 0
 
 
 @dataclass(frozen=True)
@@ -76,6 +79,7 @@ class ReductionSpec:
     raceways: tuple = ()
     damping_ratio: float = 0.0
     stress_modes: bool = False
+    sample_pockets: bool = True
 
     def __post_init__(self) -> None:
         if int(self.n_modes) < 1:
@@ -99,8 +103,14 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
         body = reduce_model(model, spec.n_modes, interfaces, aug, damping_ratio=spec.damping_ratio,
                             name=name or profile.name)
         extras = dict(compute_invariants(model.M, body.nodes_m, body.shapes).to_arrays())
-        for c in curves:
-            extras.update(sample_to_arrays(sample_raceway(body, c, mesh_spec.full_circle)))
+        for c, r in zip(curves, spec.raceways):
+            samples = (sample_across(body, model.ring, r.segment, r.n_theta, r.n_across) if r.n_across > 0
+                       else [sample_raceway(body, c, mesh_spec.full_circle)])
+            for smp in samples:
+                extras.update(sample_to_arrays(smp))
+        if pockets is not None and spec.sample_pockets:
+            pts, th = pocket_contact_points(pockets)
+            extras.update(sample_to_arrays(sample_points(body, "pockets", pts, th)))
         body = replace(body, extras=extras, metadata={**body.metadata, "input_hash": key,
                                                        "material": material.name,
                                                        "element": mesh_spec.element,

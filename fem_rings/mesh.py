@@ -199,6 +199,8 @@ def _gmsh_mesh(profile: Profile, spec: MeshSpec, pockets, path: Path) -> None:
         gmsh.option.setNumber("Mesh.ElementOrder", 2)
         gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
         gmsh.option.setNumber("Mesh.HighOrderOptimize", 0)
+        if spec.element == "hex27":
+            _quadrilateral_section(gmsh)
         gmsh.model.mesh.generate(3)
         gmsh.model.mesh.removeDuplicateNodes()
         gmsh.write(str(path))
@@ -341,8 +343,20 @@ def _build_hex(gmsh, profile: Profile, spec: MeshSpec) -> None:
         out = geo.revolve(cur, 0, 0, 0, 0, 0, 1, spec.sector_rad / pieces, numElements=[per_piece], recombine=True)
         cur = [out[0]]
     geo.synchronize()
-    gmsh.option.setNumber("Mesh.Algorithm", 8)               # frontal-Delaunay for quadrilaterals
     gmsh.option.setNumber("Mesh.RecombinationAlgorithm", 1)  # blossom: all quads for an even boundary
+
+
+def _quadrilateral_section(gmsh) -> None:
+    """Mesh the section with quadrilaterals only, trying the 2-D algorithms in order of quality:
+    frontal-Delaunay for quads (8), frontal-Delaunay (6), Delaunay (5). Blossom recombination
+    leaves a triangle now and then; the sweep needs none."""
+    for algorithm in (8, 6, 5):
+        gmsh.option.setNumber("Mesh.Algorithm", algorithm)
+        gmsh.model.mesh.generate(2)
+        if not set(gmsh.model.mesh.getElementTypes(2)) & {2, 9}:   # 3-node / 6-node triangles
+            return
+        gmsh.model.mesh.clear()
+    raise RuntimeError("the section could not be meshed with quadrilaterals only; use element='tet10'")
 
 
 def _read_volume_mesh(path: Path, cell_type: str) -> skfem.Mesh:
