@@ -40,3 +40,21 @@ def test_bolted_race_reduced_cached_and_reloaded_identically(tmp_path, monkeypat
     # another spec is another entry
     c = reduced_body(profile, mesh, STEEL, ReductionSpec(n_modes=6))
     assert c.floating and c.n_modes == 6
+
+
+def test_cage_pockets_and_roller_track_grid_are_stored():
+    from cms_reduction.sampling import samples_from_arrays
+    from fem_rings.cages import CagePockets
+    from fem_rings.profile import rectangle
+
+    # pockets centred at 15° + k·30°, ±2.9° wide: clear of the 10° sampling grid on the outer face
+    pockets = CagePockets(12, "box", "radial", 0.5, 0.0, width_m=0.05, height_m=0.03, angle_offset_deg=15.0)
+    cage = reduced_body(rectangle("cage", 0.48, 0.52, -0.03, 0.03), MeshSpec(0.015, "tet10"), STEEL,
+                        ReductionSpec(n_modes=4, raceways=(RacewaySpec("outer", 36, None, ("radial",), -1, 3),)),
+                        pockets, use_cache=False)
+    samples = samples_from_arrays(cage.extras)
+    assert set(samples) == {"pockets", "outer@s0", "outer@s1", "outer@s2"}
+    assert samples["pockets"].displacement.shape == (24, 3, cage.n_modes)
+    # the grid circles sit at the Gauss points across the 60 mm high outer face
+    z = sorted(float(samples[f"outer@s{k}"].points_m[0, 2]) for k in range(3))
+    assert z == pytest.approx([-0.03 * np.sqrt(0.6), 0.0, 0.03 * np.sqrt(0.6)], abs=1e-12)
