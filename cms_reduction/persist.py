@@ -20,15 +20,13 @@ from __future__ import annotations
 import hashlib
 import json
 import logging
-import os
-import tempfile
 import zipfile
 from pathlib import Path
 from typing import Callable
 
 import numpy as np
 
-from fem_rings.cache import cache_dir
+from fem_rings.cache import atomic_path, cache_dir
 
 from .body import ReducedBody
 
@@ -69,20 +67,6 @@ def _sha256(path: Path) -> str:
         for block in iter(lambda: fh.read(_CHUNK_BYTES), b""):
             h.update(block)
     return h.hexdigest()
-
-
-def _write_atomic(target: Path, write: Callable) -> None:
-    """Call ``write(binary_file)`` on a temporary file beside ``target``, then rename it."""
-    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=target.name + ".", suffix=".part")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            write(fh)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, target)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
 
 
 def _arrays(body: ReducedBody) -> dict:
@@ -130,10 +114,12 @@ def save_body(body: ReducedBody, path) -> Path:
         raise TypeError(f"body {body.name!r}: metadata is not JSON-serialisable: {exc}") from exc
     npz_path.parent.mkdir(parents=True, exist_ok=True)
     json_path.unlink(missing_ok=True)
-    _write_atomic(npz_path, lambda fh: np.savez(fh, **arrays))
+    with atomic_path(npz_path, ".npz") as tmp:
+        np.savez(tmp, **arrays)
     header["npz_sha256"] = _sha256(npz_path)
     text = json.dumps(header, indent=1, ensure_ascii=False, allow_nan=False) + "\n"
-    _write_atomic(json_path, lambda fh: fh.write(text.encode("utf-8")))
+    with atomic_path(json_path, ".json") as tmp:
+        tmp.write_text(text, encoding="utf-8")
     log.info("saved reduced body %r (%d nodes, %d modes) to %s", body.name, header["n_nodes"],
              header["n_modes"], npz_path)
     return npz_path

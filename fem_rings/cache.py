@@ -15,12 +15,13 @@ import hashlib
 import json
 import logging
 import os
-import tempfile
+import uuid
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["cache_dir", "input_hash", "load_arrays", "save_arrays"]
+__all__ = ["atomic_path", "cache_dir", "input_hash", "load_arrays", "save_arrays"]
 
 log = logging.getLogger(__name__)
 
@@ -79,13 +80,25 @@ def load_arrays(kind: str, key: str) -> dict | None:
 def save_arrays(kind: str, key: str, arrays: dict) -> Path:
     """Store arrays atomically; returns the file."""
     p = _path(kind, key)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=p.parent, suffix=".npz.part")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            np.savez(fh, **arrays)
-        os.replace(tmp, p)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    with atomic_path(p, ".npz") as tmp:
+        np.savez(tmp, **arrays)
     return p
+
+
+@contextmanager
+def atomic_path(path: Path, suffix: str = ""):
+    """Yield a temporary file name next to ``path``; rename it to ``path`` on success.
+
+    The file appears under its final name only when complete (``os.replace`` within one folder
+    is atomic on POSIX and Windows); on error the temporary file is removed.
+    """
+    path.parent.mkdir(parents=True, exist_ok=True)
+    # a unique name that the writer creates itself, so the file gets the usual permissions
+    # (tempfile.mkstemp would leave it readable by the owner only)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}-{uuid.uuid4().hex[:12]}.part{suffix}")
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()

@@ -13,10 +13,11 @@ Backends
 ``"cholmod"``
     ``sksparse.cholmod.cholesky``, supernodal LLᵀ (which stops on a matrix that is not
     positive definite; the simplicial LDLᵀ does not) with CHOLMOD's default ordering (AMD, and
-    METIS when AMD fills in too much). Install with ``apt-get install libsuitesparse-dev libopenblas0-pthread``
-    and ``pip install "scikit-sparse<0.5"`` (the 0.5 series needs SuiteSparse ≥ 7, which
-    Debian 12 does not ship). Without OpenBLAS, CHOLMOD's supernodal factorisation runs on the
-    reference BLAS and loses most of its speed.
+    METIS when AMD fills in too much). Install with
+    ``apt-get install libsuitesparse-dev libopenblas0-pthread`` and
+    ``pip install "scikit-sparse<0.5"`` (the 0.5 series needs SuiteSparse ≥ 7, which Debian 12
+    does not ship). Without OpenBLAS, CHOLMOD's supernodal factorisation runs on the reference
+    BLAS and loses most of its speed.
 ``"superlu"``
     ``scipy.sparse.linalg.splu`` in symmetric mode: minimum-degree ordering of A + Aᵀ, diagonal
     pivots (``diag_pivot_thresh=0``), which for a symmetric positive definite matrix amounts to

@@ -30,15 +30,15 @@ from __future__ import annotations
 import logging
 import math
 import os
-import uuid
 import xml.etree.ElementTree as ET
 from collections.abc import Mapping, Sequence
-from contextlib import contextmanager
 from pathlib import Path
 
 import meshio
 import numpy as np
 import skfem
+
+from .cache import atomic_path
 
 __all__ = [
     "to_meshio",
@@ -192,25 +192,6 @@ def to_meshio(mesh, point_data: Mapping[str, np.ndarray] | None = None) -> meshi
     return meshio.Mesh(points, [(cell_type, cells)], point_data=data)
 
 
-@contextmanager
-def _atomic_target(path: Path, suffix: str):
-    """Yield a temporary file name next to ``path``; rename it to ``path`` on success.
-
-    The file appears under its final name only when complete (``os.replace`` within one folder
-    is atomic on POSIX and Windows); on error the temporary file is removed.
-    """
-    path.parent.mkdir(parents=True, exist_ok=True)
-    # a unique name that the writer creates itself, so the file gets the usual permissions
-    # (tempfile.mkstemp would leave it readable by the owner only)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}-{uuid.uuid4().hex[:12]}.part{suffix}")
-    try:
-        yield tmp
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-
-
 def write_vtu(path: str | os.PathLike, mesh,
               point_data: Mapping[str, np.ndarray] | None = None) -> Path:
     """Write the mesh and nodal fields to a VTK unstructured-grid file (``.vtu``) for ParaView.
@@ -236,7 +217,7 @@ def write_vtu(path: str | os.PathLike, mesh,
     if path.suffix.lower() != ".vtu":
         raise ValueError(f"path must end in .vtu, got {str(path)!r}")
     mio = to_meshio(mesh, point_data)
-    with _atomic_target(path, ".vtu") as tmp:
+    with atomic_path(path, ".vtu") as tmp:
         meshio.write(tmp, mio, file_format="vtu")
     logger.info("wrote %s (%d points, %d cells)", path, len(mio.points), len(mio.cells[0].data))
     return path
@@ -308,7 +289,7 @@ def write_vtu_series(folder: str | os.PathLike, mesh,
         write_vtu(folder / file_name, mesh, point_data)
         entries.append((time_s, file_name))
     pvd = folder / f"{name}.pvd"
-    with _atomic_target(pvd, ".pvd") as tmp:
+    with atomic_path(pvd, ".pvd") as tmp:
         tmp.write_bytes(_pvd_xml(entries))
     logger.info("wrote %s (%d frames, t = %g … %g s)", pvd, len(times), times[0], times[-1])
     return pvd

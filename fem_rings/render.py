@@ -13,7 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .output import _atomic_target, _cell_info, displacement_magnitude, vtk_cells
+from .cache import atomic_path
+from .output import _cell_info, displacement_magnitude, vtk_cells
 
 __all__ = ["render_png", "auto_warp_factor"]
 
@@ -210,7 +211,7 @@ def render_png(path: str | os.PathLike, mesh, scalars: np.ndarray, *,
     clim = (float(values.min()), float(values.max()))
     image = _render_surface(surface, bar_title, _title_text(title, factor), cmap,
                             (width_px, height_px), clim)
-    with _atomic_target(path, ".png") as tmp:
+    with atomic_path(path, ".png") as tmp:
         _write_png(tmp, image)
     logger.info("wrote %s (%d × %d px)", path, width_px, height_px)
     return path
