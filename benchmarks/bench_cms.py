@@ -17,7 +17,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from cms_reduction.persist import load_body, save_body
+from cms_reduction.persist import body_paths, load_body, save_body
 from cms_reduction.pipeline import RacewaySpec, ReductionSpec, reduced_body
 from fem_rings import MeshSpec
 from fem_rings.sections import SlewingSection, slewing_top_race
@@ -36,7 +36,7 @@ def main() -> None:
     body = reduced_body(slewing_top_race(2.0), MeshSpec(size, "hex27"), steel, spec, use_cache=False)
     t1 = time.perf_counter()
     with tempfile.TemporaryDirectory() as tmp:
-        npz, js = save_body(body, Path(tmp) / "top_race")
+        npz, js = body_paths(save_body(body, Path(tmp) / "top_race"))
         mb = (npz.stat().st_size + js.stat().st_size) / 2**20
         t2 = time.perf_counter()
         load_body(npz)
