@@ -1,9 +1,11 @@
 """Craig–Bampton reduction of a ring model into a modal body, with raceway load-mode augmentation.
 
-Interfaces (a bolted face, a support patch) are condensed to one 6-DOF master node each by a
-rigid multipoint constraint (RBE2): every slave node s follows u_s = t + θ × (x_s − c), so the
-FE displacement is u = T q with q = (retained node DOFs, master DOFs). With B the master DOFs and I
-the rest (Craig & Bampton, AIAA J. 6(7), 1968):
+Interfaces (a bolted face, a support patch) are condensed to one 6-DOF master node each, by a
+rigid multipoint constraint (RBE2-like: every slave node s follows u_s = t + θ × (x_s − c), so the
+FE displacement is u = T q with q = (retained node DOFs, master DOFs)) or by an averaging one
+(RBE3-like: the master follows the least-squares rigid fit of the patch, q_m = C u, imposed with
+Lagrange multipliers on a factor of K + α CᵀC, which equals K on the constraint set). With B the
+master DOFs and I the rest (Craig & Bampton, AIAA J. 6(7), 1968):
 
     fixed-interface modes   (K_II − ω² M_II) φ = 0,        lowest n_modes
     constraint modes        Ψ = −K_II⁻¹ K_IB               (interfaces that stay free)
@@ -38,14 +40,14 @@ from fem_rings.solve import line_load_operator, rigid_body_fields, solver_thread
 
 from .body import ReducedBody
 
-__all__ = ["Interface", "Augmentation", "reduce_model", "rbe2_transform"]
+__all__ = ["Interface", "Augmentation", "reduce_model", "rbe2_transform", "averaging_constraints"]
 
 log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
 class Interface:
-    """A patch of nodes condensed to one 6-DOF master node (rigid, RBE2-like).
+    """A patch of nodes condensed to one 6-DOF master node.
 
     Parameters
     ----------
@@ -57,16 +59,41 @@ class Interface:
     grounded : bool
         True: the master is fixed (bolted to a rigid housing). False: its 6 DOFs stay boundary
         DOFs of the reduced body (constraint modes kept).
+    kind : {"rigid", "averaging"}
+        ``"rigid"`` (RBE2-like): the patch moves as a rigid body with the master.
+        ``"averaging"`` (RBE3-like): the master moves with the least-squares rigid fit of the
+        patch, q_m = (GᵀG)⁻¹Gᵀ u_s (G the rigid-motion matrix of the slave positions about the
+        master, equal weights); the patch keeps its own deformation and adds no stiffness.
     """
 
     name: str
     nodes: np.ndarray
     master_m: np.ndarray | None = None
     grounded: bool = True
+    kind: str = "rigid"
 
     def __post_init__(self) -> None:
         if len(self.nodes) == 0:
             raise ValueError(f"interface {self.name!r}: node set is empty")
+        if self.kind not in ("rigid", "averaging"):
+            raise ValueError(f"interface {self.name!r}: kind must be 'rigid' or 'averaging', got {self.kind!r}")
+
+    def master_point(self, nodes_m: np.ndarray) -> np.ndarray:
+        return np.mean(nodes_m[self.nodes], axis=0) if self.master_m is None else np.asarray(self.master_m, float)
+
+    def rigid_motion_matrix(self, nodes_m: np.ndarray) -> np.ndarray:
+        """G (3k, 6): slave displacements of a master translation t and small rotation θ,
+        u_s = t + θ × (x_s − c); rows interleaved per slave node. Checks the patch is not a line."""
+        d = nodes_m[self.nodes] - self.master_point(nodes_m)
+        G = np.zeros((len(self.nodes), 3, 6))
+        G[:, :, :3] = np.eye(3)
+        for a, e in enumerate(np.eye(3)):
+            G[:, :, 3 + a] = np.cross(e, d)
+        sv = np.linalg.svd(G[:, :, 3:].reshape(-1, 3), compute_uv=False)
+        if sv[-1] <= 1e-8 * max(sv[0], 1e-300):
+            raise ValueError(f"interface {self.name!r}: its {len(self.nodes)} nodes lie on one line, so a "
+                             "rotation about that line moves none of them; widen the patch")
+        return G.reshape(-1, 6)
 
 
 @dataclass(frozen=True)
@@ -114,55 +141,90 @@ class Augmentation:
 
 
 def rbe2_transform(model: FEModel, interfaces) -> tuple[sp.csr_matrix, np.ndarray, np.ndarray]:
-    """u = T q for rigid interfaces.
+    """u = T q for the rigid interfaces (averaging ones are ignored here).
 
     Returns
     -------
     T : (3N, n_q) sparse
-        Columns: the 3 DOFs of every retained (non-slave) node, then 6 DOFs per interface
+        Columns: the 3 DOFs of every retained (non-slave) node, then 6 DOFs per rigid interface
         (translation x, y, z and rotation about x, y, z of the master).
     retained : (n_r,) int
         Retained nodes, in the order of their q-columns.
-    master_cols : (6 · n_interfaces,) int
+    master_cols : (6 · n_rigid,) int
         q-columns of the master DOFs.
     """
+    rigid = [i for i in interfaces if i.kind == "rigid"]
     n = model.ring.n_nodes
     slave = np.zeros(n, dtype=bool)
     for itf in interfaces:
         if slave[itf.nodes].any():
             raise ValueError(f"interface {itf.name!r} shares nodes with another interface")
-        slave[itf.nodes] = True
+        slave[itf.nodes] = itf.kind == "rigid"
     retained = np.flatnonzero(~slave)
     rows = [(3 * retained[:, None] + np.arange(3)).ravel()]
     cols = [np.arange(3 * len(retained))]
     vals = [np.ones(3 * len(retained))]
-    x = model.nodes_m
     col0 = 3 * len(retained)
-    for j, itf in enumerate(interfaces):
-        c = np.mean(x[itf.nodes], axis=0) if itf.master_m is None else np.asarray(itf.master_m, float)
-        d = x[itf.nodes] - c                      # (k, 3)
-        rot = np.stack([np.cross(e, d).ravel() for e in np.eye(3)], axis=1)
-        sv = np.linalg.svd(rot, compute_uv=False)
-        if sv[-1] <= 1e-8 * max(sv[0], 1e-300):
-            raise ValueError(f"interface {itf.name!r}: its {len(itf.nodes)} nodes lie on one line, so a "
-                             "rotation about that line moves none of them; widen the patch")
-        base = col0 + 6 * j
-        for i in range(3):
-            r = 3 * np.asarray(itf.nodes) + i
-            rows.append(r)
-            cols.append(np.full(len(r), base + i))
-            vals.append(np.ones(len(r)))
-            # rotation about axis a: u = e_a × d
-            for a in range(3):
-                e = np.zeros(3)
-                e[a] = 1.0
-                coef = np.cross(e, d)[:, i]
-                rows.append(r)
-                cols.append(np.full(len(r), base + 3 + a))
-                vals.append(coef)
+    for j, itf in enumerate(rigid):
+        G = itf.rigid_motion_matrix(model.nodes_m)            # (3k, 6)
+        r = (3 * np.asarray(itf.nodes)[:, None] + np.arange(3)).ravel()
+        rows.append(np.repeat(r, 6))
+        cols.append(np.tile(col0 + 6 * j + np.arange(6), len(r)))
+        vals.append(G.ravel())
     T = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                      shape=(3 * n, col0 + 6 * len(interfaces)))
-    return T, retained, np.arange(col0, col0 + 6 * len(interfaces))
+                      shape=(3 * n, col0 + 6 * len(rigid)))
+    return T, retained, np.arange(col0, col0 + 6 * len(rigid))
+
+
+def averaging_constraints(model: FEModel, interfaces, retained: np.ndarray) -> tuple[sp.csr_matrix, np.ndarray]:
+    """C (6 n_avg, 3 n_r) with q_m = C q for the averaging interfaces, and which rows are grounded.
+
+    q are the retained-node DOFs (the first 3 n_r columns of :func:`rbe2_transform`).
+    """
+    avg = [i for i in interfaces if i.kind == "averaging"]
+    pos = np.full(model.ring.n_nodes, -1)
+    pos[retained] = np.arange(len(retained))
+    rows, cols, vals, grounded = [], [], [], []
+    for j, itf in enumerate(avg):
+        G = itf.rigid_motion_matrix(model.nodes_m)
+        A = np.linalg.solve(G.T @ G, G.T)                      # (6, 3k) least-squares rigid fit
+        c = (3 * pos[np.asarray(itf.nodes)][:, None] + np.arange(3)).ravel()
+        rows.append(np.repeat(6 * j + np.arange(6), len(c)))
+        cols.append(np.tile(c, 6))
+        vals.append(A.ravel())
+        grounded += [itf.grounded] * 6
+    if not avg:
+        return sp.csr_matrix((0, 3 * len(retained))), np.zeros(0, dtype=bool)
+    C = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                      shape=(6 * len(avg), 3 * len(retained)))
+    return C, np.asarray(grounded)
+
+
+class _ConstrainedSolver:
+    """Solutions of K u + Cᵀλ = f, C u = g with one Cholesky factor of K̂ = K + α CᵀC.
+
+    K̂ equals K on the constraint set (CᵀC u is in the range of Cᵀ, absorbed by λ), so the
+    solutions are exact; K̂ is positive definite when the constraints hold the rigid motion that
+    K leaves free. The 6r × 6r Schur complement S = C K̂⁻¹ Cᵀ is dense and small.
+    """
+
+    def __init__(self, K, C, backend: str) -> None:
+        self.C = C.tocsr()
+        if C.shape[0]:
+            # scale the added term like K's diagonal (conditioning only; the solutions do not depend on it)
+            alpha = float(np.mean(K.diagonal())) / float(np.mean(np.asarray(C.multiply(C).sum(axis=1))))
+            K = K + alpha * (C.T @ C)
+        self.factor = factorize_spd(K.tocsc(), backend=backend)
+        self.KinvCt = self.factor.solve(C.T.toarray()) if C.shape[0] else np.zeros((K.shape[0], 0))
+        self.S = self.C @ self.KinvCt
+
+    def solve(self, f, g=None):
+        """u with C u = g (default 0)."""
+        u = self.factor.solve(f)
+        if not self.C.shape[0]:
+            return u
+        r = self.C @ u - (0.0 if g is None else g)
+        return u - self.KinvCt @ np.linalg.solve(self.S, r)
 
 
 def _orthonormal_modal_form(Kq, Mq, V, rel_tol: float = 1e-10):
@@ -212,12 +274,14 @@ def reduce_model(
     floating = (not grounded) if floating is None else bool(floating)
     if floating and grounded:
         raise ValueError("a floating body cannot have grounded interfaces")
-    T, _, master_cols = rbe2_transform(model, interfaces)
+    T, retained, master_cols = rbe2_transform(model, interfaces)
     Kq = (T.T @ model.K @ T).tocsr()
     Mq = (T.T @ model.M @ T).tocsr()
     nq = Kq.shape[0]
-    held = np.concatenate([master_cols[6 * j: 6 * j + 6] for j, itf in enumerate(interfaces) if itf.grounded]
+    rigid_itf = [i for i in interfaces if i.kind == "rigid"]
+    held = np.concatenate([master_cols[6 * j: 6 * j + 6] for j, itf in enumerate(rigid_itf) if itf.grounded]
                           or [np.zeros(0, dtype=np.int64)])
+    C_avg, avg_grounded = averaging_constraints(model, interfaces, retained)
     boundary = np.setdiff1d(master_cols, held)
     interior = np.setdiff1d(np.arange(nq), master_cols)
     KII = Kq[interior][:, interior].tocsc()
@@ -226,7 +290,7 @@ def reduce_model(
         if augmentation else np.zeros((nq, 0))
     interior_blocks, boundary_blocks = [], []     # q-rows: interior DOFs, free master DOFs
     with solver_threads():
-        if len(master_cols) == 0:
+        if len(master_cols) == 0 and C_avg.shape[0] == 0:
             # free body: free–free modes and inertia-relief load shapes from one factor of K − σM
             sigma = -(2.0 * math.pi) ** 2
             op, factor = shift_invert_operator(KII, MII, sigma, backend=backend)
@@ -239,15 +303,22 @@ def reduce_model(
                 U = factor.solve(f)
                 interior_blocks.append(U - R @ np.linalg.solve(R.T @ MR, MR.T @ U))
         else:
-            factor = factorize_spd(KII, backend=backend)
-            op = LinearOperator(KII.shape, matvec=factor.solve, dtype=float)
+            # interior rows: retained-node DOFs (rigid-interface masters excluded), which are also
+            # the first columns of q, so the averaging constraints apply to them directly
+            C = C_avg[:, :len(interior)]
+            solver = _ConstrainedSolver(KII, C, backend)
+            op = LinearOperator(KII.shape, matvec=solver.solve, dtype=float)
             _, phi = eigsh(KII, k=int(n_modes), M=MII, sigma=0.0, OPinv=op, which="LM")
             interior_blocks.append(phi)
             if len(boundary):
-                interior_blocks.append(-factor.solve(Kq[interior][:, boundary].toarray()))
+                interior_blocks.append(-solver.solve(Kq[interior][:, boundary].toarray()))
                 boundary_blocks.append((len(interior_blocks) - 1, np.eye(len(boundary))))
+            free_avg = np.flatnonzero(~avg_grounded)
+            if len(free_avg):
+                # constraint modes of the averaging masters: least strain energy with C u = e_j
+                interior_blocks.append(solver.KinvCt @ np.linalg.solve(solver.S, np.eye(C.shape[0])[:, free_avg]))
             if loads_q.shape[1]:
-                interior_blocks.append(factor.solve(loads_q[interior]))
+                interior_blocks.append(solver.solve(loads_q[interior]))
     widths = [blk.shape[1] for blk in interior_blocks]
     starts = np.concatenate(([0], np.cumsum(widths)))
     V = np.zeros((nq, int(starts[-1])))

@@ -44,12 +44,15 @@ class InterfaceSpec:
         Patch half-length along the circumference, m.
     grounded : bool
         Held (bolted to a rigid housing) or kept as boundary DOFs.
+    kind : {"rigid", "averaging"}
+        RBE2-like or RBE3-like condensation (:class:`cms_reduction.craig_bampton.Interface`).
     """
 
     facet_set: str
     angles_deg: tuple
     half_width_m: float
     grounded: bool = True
+    kind: str = "rigid"
 
 
 @dataclass(frozen=True)
@@ -96,7 +99,7 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
     def build() -> ReducedBody:
         model = build_model(profile, mesh_spec, material, pockets, use_cache=use_cache)
         interfaces = [Interface(f"{i.facet_set}@{a:g}°", patch_nodes(model.ring, i.facet_set, a, i.half_width_m),
-                                grounded=i.grounded)
+                                grounded=i.grounded, kind=i.kind)
                       for i in spec.interfaces for a in i.angles_deg]
         curves = [raceway_curve(model.ring, r.segment, r.n_theta, r.at_rz_m) for r in spec.raceways]
         aug = [Augmentation(c, r.directions, r.n_max) for c, r in zip(curves, spec.raceways) if r.n_max >= 0]
