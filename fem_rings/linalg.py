@@ -205,6 +205,8 @@ def _factor_cholmod(A: sp.csc_matrix) -> SparseFactor:
 
 def _factor_superlu(A: sp.csc_matrix) -> SparseFactor:
     """Symmetric-mode SuperLU factorisation; a singular matrix becomes LinAlgError."""
+    # measured on P2 elasticity blocks: 70k DOF 158 s (this setting) vs 233 s (same ordering,
+    # partial pivoting); 161k DOF slender bar 18 s vs 18 s, COLAMD (SciPy's default) 61 s
     try:
         lu = spla.splu(
             A,
