@@ -1,0 +1,29 @@
+"""numba kernels of the multibody core: plain functions on float64/int arrays, ``@njit(cache=True)``.
+
+Only this package imports numba. Each kernel has a plain-numpy twin under ``tests/reference``
+and a test comparing the two on seeded random and corner inputs (STYLE.md). Kernels dispatch on
+integer codes (``NORMAL_*``, ``FRICTION_*``) instead of taking callables, so whole step loops can
+be compiled.
+"""
+
+from .laws import (
+    FRICTION_COULOMB,
+    FRICTION_DREB_CONSTANT,
+    FRICTION_DREB_FALLING,
+    FRICTION_DREB_LINEAR,
+    FRICTION_KRAGELSKII,
+    NORMAL_HUNT_CROSSLEY,
+    NORMAL_IMPACT,
+    friction_coefficient,
+    friction_force,
+    normal_force,
+    step,
+)
+from .ball_groove import ball_groove_contacts
+
+__all__ = [
+    "NORMAL_IMPACT", "NORMAL_HUNT_CROSSLEY",
+    "FRICTION_COULOMB", "FRICTION_DREB_LINEAR", "FRICTION_DREB_CONSTANT", "FRICTION_DREB_FALLING",
+    "FRICTION_KRAGELSKII",
+    "step", "normal_force", "friction_coefficient", "friction_force", "ball_groove_contacts",
+]

@@ -1,0 +1,79 @@
+"""Ball–groove contact geometry on a ring with race deviations (batched kernel).
+
+The groove is the circle of its curvature centres in the ring frame (z the ring axis): radius r_c,
+height z_c, groove radius f·D. A ball of diameter D centred at x (ring frame) at angle
+θ = atan2(y, x) ∈ [0, 2π) touches the groove when its centre lies farther than f·D − D/2 from the
+curvature centre c(θ) (DESIGN §5.3):
+
+    c(θ) = ((r_c + Δr(θ)) cos θ, (r_c + Δr(θ)) sin θ, z_c + h(θ)),
+    δ = |x − c(θ)| − (f·D − D/2),      n = (x − c)/|x − c|,
+
+with h(θ) the raceway's axial undulation and Δr(θ) its radial offset (thermal misalignment),
+tabulated on a uniform periodic grid of θ ∈ [0, 2π) and interpolated linearly (a table of length
+1 is a constant). n is the unit normal from the groove centre towards the ball centre: the
+contact force on the ball is −F n, on the ring +F n at the contact point x − (D/2) n.
+The contact angle is atan2(n_z, n_r) with n_r the radial component of n.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+TWO_PI = 2.0 * math.pi
+
+
+@njit(cache=True)
+def periodic_lookup(table, theta):
+    """Linear interpolation of a uniform periodic table over [0, 2π) at θ ∈ [0, 2π)."""
+    n = table.shape[0]
+    if n == 1:
+        return table[0]
+    s = theta / TWO_PI * n
+    i0 = int(math.floor(s))
+    w = s - i0
+    i0 = i0 % n
+    i1 = (i0 + 1) % n
+    return (1.0 - w) * table[i0] + w * table[i1]
+
+
+@njit(cache=True)
+def ball_groove_contacts(x, r_c, z_c, clearance_radius, h_table, dr_table, out_theta, out_delta, out_normal):
+    """Penetration and normal of balls in a groove.
+
+    Parameters
+    ----------
+    x : (n, 3) float64, m
+        Ball centres in the ring frame.
+    r_c, z_c : float, m
+        Radius and height of the groove's curvature-centre circle.
+    clearance_radius : float, m
+        f·D − D/2: distance from the curvature centre at which a ball touches.
+    h_table, dr_table : (k,) float64, m
+        Axial undulation h(θ) and radial offset Δr(θ) on a uniform grid over [0, 2π).
+    out_theta : (n,) float64, rad — ball angle in [0, 2π)
+    out_delta : (n,) float64, m — penetration (negative: gap)
+    out_normal : (n, 3) float64 — unit normal, groove centre → ball centre (0 if undefined)
+    """
+    for i in range(x.shape[0]):
+        th = math.atan2(x[i, 1], x[i, 0])
+        if th < 0.0:
+            th += TWO_PI
+        if th >= TWO_PI:
+            th -= TWO_PI
+        r = r_c + periodic_lookup(dr_table, th)
+        dx = x[i, 0] - r * math.cos(th)
+        dy = x[i, 1] - r * math.sin(th)
+        dz = x[i, 2] - (z_c + periodic_lookup(h_table, th))
+        d = math.sqrt(dx * dx + dy * dy + dz * dz)
+        out_theta[i] = th
+        out_delta[i] = d - clearance_radius
+        if d > 0.0:
+            out_normal[i, 0] = dx / d
+            out_normal[i, 1] = dy / d
+            out_normal[i, 2] = dz / d
+        else:
+            out_normal[i, 0] = 0.0
+            out_normal[i, 1] = 0.0
+            out_normal[i, 2] = 0.0

@@ -1,0 +1,101 @@
+"""Contact force laws: penalty normal force and slip-dependent friction (scalar kernels).
+
+Normal force, never tensile (DESIGN §5.3), δ the penetration (m) and δ̇ its rate (m/s):
+
+``NORMAL_IMPACT`` (the Adams IMPACT function)
+    F = k δⁿ + STEP(δ, 0, 0, d_max, c) δ̇ — the damping coefficient ramps from 0 at touch-down to
+    c at δ = d_max, so there is no force jump when contact starts.
+``NORMAL_HUNT_CROSSLEY`` (Hunt & Crossley, J. Appl. Mech. 42, 1975)
+    F = k δⁿ (1 + c δ̇), with c = 3(1 − e)/(2 v₀) for a restitution e at impact speed v₀.
+
+STEP is Adams' cubic blend h0 + (h1 − h0) Δ² (3 − 2Δ), Δ = (x − x0)/(x1 − x0) clipped to [0, 1].
+
+Friction coefficient μ(u) of the slip speed u = |v_slip| ≥ 0 (m/s), parameters p0…p3:
+
+``FRICTION_COULOMB`` — regularised Coulomb (Adams): p0 = μ_static, p1 = μ_dynamic,
+    p2 = v_static, p3 = v_dynamic; μ = STEP(u, 0, 0, v_s, μ_s) below v_s, STEP(u, v_s, μ_s, v_d, μ_d)
+    between, μ_d above. μ(0) = 0, so a contact at rest carries no force jump.
+``FRICTION_DREB_LINEAR`` — κ = B u (p0 = B, s/m) (Gupta, DREB, 1977: traction models of seed 002).
+``FRICTION_DREB_CONSTANT`` — κ = A (p0 = A) for u > 0 (blended to 0 below p1 = u_0, m/s).
+``FRICTION_DREB_FALLING`` — κ = A − B u (p0 = A, p1 = B), not below 0.
+``FRICTION_KRAGELSKII`` — κ = (A + B u) e^(−C u) + D (p0 = A, p1 = B, p2 = C, p3 = D).
+
+The friction force on body 1 opposes the slip velocity v_t of body 1 relative to body 2:
+F_t = −μ(|v_t|) F_n v_t/|v_t| (zero at |v_t| = 0).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+NORMAL_IMPACT = 0
+NORMAL_HUNT_CROSSLEY = 1
+
+FRICTION_COULOMB = 0
+FRICTION_DREB_LINEAR = 1
+FRICTION_DREB_CONSTANT = 2
+FRICTION_DREB_FALLING = 3
+FRICTION_KRAGELSKII = 4
+
+
+@njit(cache=True)
+def step(x, x0, h0, x1, h1):
+    """Adams STEP: cubic blend from h0 at x ≤ x0 to h1 at x ≥ x1, zero slope at both ends."""
+    if x <= x0:
+        return h0
+    if x >= x1:
+        return h1
+    d = (x - x0) / (x1 - x0)
+    return h0 + (h1 - h0) * d * d * (3.0 - 2.0 * d)
+
+
+@njit(cache=True)
+def normal_force(law, delta, delta_dot, k, n, c, d_max):
+    """Penalty normal force ≥ 0 (N) for penetration delta (m) and its rate delta_dot (m/s)."""
+    if delta <= 0.0:
+        return 0.0
+    elastic = k * delta**n
+    if law == NORMAL_IMPACT:
+        f = elastic + step(delta, 0.0, 0.0, d_max, c) * delta_dot
+    else:
+        f = elastic * (1.0 + c * delta_dot)
+    return f if f > 0.0 else 0.0
+
+
+@njit(cache=True)
+def friction_coefficient(law, u, p0, p1, p2, p3):
+    """Friction (traction) coefficient μ ≥ 0 at slip speed u ≥ 0 (m/s)."""
+    if law == FRICTION_COULOMB:
+        if u < p2:
+            return step(u, 0.0, 0.0, p2, p0)
+        if u < p3:
+            return step(u, p2, p0, p3, p1)
+        return p1
+    if law == FRICTION_DREB_LINEAR:
+        return p0 * u
+    if law == FRICTION_DREB_CONSTANT:
+        return step(u, 0.0, 0.0, p1, p0)
+    if law == FRICTION_DREB_FALLING:
+        mu = p0 - p1 * u
+        return mu if mu > 0.0 else 0.0
+    mu = (p0 + p1 * u) * math.exp(-p2 * u) + p3
+    return mu if mu > 0.0 else 0.0
+
+
+@njit(cache=True)
+def friction_force(law, params, fn, v_slip, out):
+    """Friction force (3,) N on body 1 into ``out`` for normal force fn and slip velocity (3,)."""
+    u = math.sqrt(v_slip[0] ** 2 + v_slip[1] ** 2 + v_slip[2] ** 2)
+    if u == 0.0 or fn <= 0.0:
+        out[0] = 0.0
+        out[1] = 0.0
+        out[2] = 0.0
+        return
+    mu = friction_coefficient(law, u, params[0], params[1], params[2], params[3])
+    s = -mu * fn / u
+    out[0] = s * v_slip[0]
+    out[1] = s * v_slip[1]
+    out[2] = s * v_slip[2]
+
