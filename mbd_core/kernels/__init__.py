@@ -20,10 +20,12 @@ from .laws import (
     step,
 )
 from .ball_groove import ball_groove_contacts
+from .rigid import free_rotation_step, quat_rotate
 
 __all__ = [
     "NORMAL_IMPACT", "NORMAL_HUNT_CROSSLEY",
     "FRICTION_COULOMB", "FRICTION_DREB_LINEAR", "FRICTION_DREB_CONSTANT", "FRICTION_DREB_FALLING",
     "FRICTION_KRAGELSKII",
     "step", "normal_force", "friction_coefficient", "friction_force", "ball_groove_contacts",
+    "free_rotation_step", "quat_rotate",
 ]
