@@ -4,6 +4,10 @@ Only this package imports numba. Each kernel has a plain-numpy twin under ``test
 and a test comparing the two on seeded random and corner inputs (STYLE.md). Kernels dispatch on
 integer codes (``NORMAL_*``, ``FRICTION_*``) instead of taking callables, so whole step loops can
 be compiled.
+
+Modules: ``laws`` (normal force, friction), ``ball_groove`` (ball–groove geometry with race
+deviations), ``roller_slices`` (slice penetrations of tilted, skewed, crowned rollers),
+``rigid`` (quaternions, symplectic free rotation).
 """
 
 from .laws import (
