@@ -55,6 +55,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mbd_core.validation import check_positive
+
 from .profile import Arc, Line, Profile, polygon, rectangle
 
 __all__ = [
@@ -71,8 +73,8 @@ _FACES = {"bottom": (1, (0.0, 1.0)), "top": (1, (0.0, -1.0)),
 
 
 def _positive(value: float, what: str) -> float:
-    if not (math.isfinite(value) and value > 0.0):
-        raise ValueError(f"{what} must be a positive finite number, got {value!r}")
+    """The shared positive-number check (:func:`mbd_core.validation.check_positive`), returning the value."""
+    check_positive(**{what: value})
     return float(value)
 
 
