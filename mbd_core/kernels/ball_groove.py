@@ -39,6 +39,45 @@ def periodic_lookup(table, theta):
 
 
 @njit(cache=True)
+def periodic_lookup_range(table, start, stop, theta):
+    """:func:`periodic_lookup` on the table ``table[start:stop]`` (no view is made)."""
+    n = stop - start
+    if n == 1:
+        return table[start]
+    s = theta / TWO_PI * n
+    i0 = int(math.floor(s))
+    w = s - i0
+    i0 = i0 % n
+    i1 = (i0 + 1) % n
+    return (1.0 - w) * table[start + i0] + w * table[start + i1]
+
+
+@njit(cache=True)
+def groove_point(x0, x1, x2, r_c, z_c, clearance_radius, h_table, dr_table):
+    """(θ, δ, n_x, n_y, n_z) of one ball centred at (x0, x1, x2) in the ring frame (see module doc)."""
+    return groove_point_in(x0, x1, x2, r_c, z_c, clearance_radius, h_table, 0, h_table.shape[0],
+                           dr_table, 0, dr_table.shape[0])
+
+
+@njit(cache=True)
+def groove_point_in(x0, x1, x2, r_c, z_c, clearance_radius, h_all, h0, h1, dr_all, dr0, dr1):
+    """:func:`groove_point` with the tables given as ranges [h0, h1), [dr0, dr1) of larger arrays."""
+    th = math.atan2(x1, x0)
+    if th < 0.0:
+        th += TWO_PI
+    if th >= TWO_PI:
+        th -= TWO_PI
+    r = r_c + periodic_lookup_range(dr_all, dr0, dr1, th)
+    dx = x0 - r * math.cos(th)
+    dy = x1 - r * math.sin(th)
+    dz = x2 - (z_c + periodic_lookup_range(h_all, h0, h1, th))
+    d = math.sqrt(dx * dx + dy * dy + dz * dz)
+    if d > 0.0:
+        return th, d - clearance_radius, dx / d, dy / d, dz / d
+    return th, d - clearance_radius, 0.0, 0.0, 0.0
+
+
+@njit(cache=True)
 def ball_groove_contacts(x, r_c, z_c, clearance_radius, h_table, dr_table, out_theta, out_delta, out_normal):
     """Penetration and normal of balls in a groove.
 
@@ -57,23 +96,11 @@ def ball_groove_contacts(x, r_c, z_c, clearance_radius, h_table, dr_table, out_t
     out_normal : (n, 3) float64 — unit normal, groove centre → ball centre (0 if undefined)
     """
     for i in range(x.shape[0]):
-        th = math.atan2(x[i, 1], x[i, 0])
-        if th < 0.0:
-            th += TWO_PI
-        if th >= TWO_PI:
-            th -= TWO_PI
-        r = r_c + periodic_lookup(dr_table, th)
-        dx = x[i, 0] - r * math.cos(th)
-        dy = x[i, 1] - r * math.sin(th)
-        dz = x[i, 2] - (z_c + periodic_lookup(h_table, th))
-        d = math.sqrt(dx * dx + dy * dy + dz * dz)
+        th, delta, nx, ny, nz = groove_point(
+            x[i, 0], x[i, 1], x[i, 2], r_c, z_c, clearance_radius, h_table, dr_table
+        )
         out_theta[i] = th
-        out_delta[i] = d - clearance_radius
-        if d > 0.0:
-            out_normal[i, 0] = dx / d
-            out_normal[i, 1] = dy / d
-            out_normal[i, 2] = dz / d
-        else:
-            out_normal[i, 0] = 0.0
-            out_normal[i, 1] = 0.0
-            out_normal[i, 2] = 0.0
+        out_delta[i] = delta
+        out_normal[i, 0] = nx
+        out_normal[i, 1] = ny
+        out_normal[i, 2] = nz

@@ -1,0 +1,402 @@
+"""Forces on all bodies of a multibody model at one state (the force stage of a step).
+
+The model ``m`` is a namedtuple of flat arrays (:class:`mbd_core.multibody.model.ModelArrays`), the
+work ``w`` one of preallocated scratch arrays (:class:`mbd_core.multibody.model.WorkArrays`).
+State: ``q`` (n_b, 7) = position r (world, m) and unit quaternion (w, x, y, z) body → world;
+``v`` (n_b, 6) = velocity (world, m/s) and angular velocity ω (body frame, rad/s).
+
+Stages (DESIGN §5): external loads (constant + cubic-spline histories) → bushings → contacts. Each
+contact gives a penetration δ, the unit normal m of the force on its element (body a), and a
+contact point p; then (DESIGN §5.3)
+
+    F_n = normal_force(δ, δ̇) ≥ 0,        δ̇ = −(v_a(p) − v_b(p))·m,
+    v_t = (v_a(p) − v_b(p)) − ((v_a(p) − v_b(p))·m) m,     F_t = −μ(|v_t|) F_n v_t/|v_t|,
+
+with v_i(p) = v_i + ω_i × (p − r_i) the velocity of body i's material point at p. Body a gets
+F_n m + F_t at p, body b the opposite. Results: ``w.body_f`` (n_b, 3) N and ``w.body_t`` (n_b, 3) N·m
+(world frame, about the body's reference point = centre of mass) and the per-contact outputs.
+
+Returns (status, index): 0 ok; ``STATUS_NONFINITE`` (non-finite force at contact ``index``, or at
+body ``index`` when ``index`` ≥ n_contacts… see :mod:`mbd_core.multibody.errors`);
+``STATUS_PENETRATION`` (penetration beyond the pair's bound at contact ``index``).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .ball_groove import groove_point_in
+from .element_contacts import POCKET_CYLINDER, ball_ball, pocket_cylinder, pocket_slot, roller_end
+from .laws import friction_coefficient, normal_force
+from .roller_slices import roller_slices
+from .splines import spline_value
+
+BALL_GROOVE = 0
+BALL_BALL = 1
+ROLLER_RACEWAY = 2
+ROLLER_RIB = 3
+ELEMENT_POCKET = 4
+
+STATUS_OK = 0
+STATUS_NONFINITE = 1
+STATUS_PENETRATION = 2
+STATUS_ENERGY = 3
+
+
+@njit(cache=True)
+def rotate(q, i, x, y, z):
+    """R(q_i) (x, y, z): body frame → world."""
+    w, a, b, c = q[i, 3], q[i, 4], q[i, 5], q[i, 6]
+    tx = 2.0 * (b * z - c * y)
+    ty = 2.0 * (c * x - a * z)
+    tz = 2.0 * (a * y - b * x)
+    return x + w * tx + (b * tz - c * ty), y + w * ty + (c * tx - a * tz), z + w * tz + (a * ty - b * tx)
+
+
+@njit(cache=True)
+def rotate_back(q, i, x, y, z):
+    """R(q_i)ᵀ (x, y, z): world → body frame."""
+    w, a, b, c = q[i, 3], -q[i, 4], -q[i, 5], -q[i, 6]
+    tx = 2.0 * (b * z - c * y)
+    ty = 2.0 * (c * x - a * z)
+    tz = 2.0 * (a * y - b * x)
+    return x + w * tx + (b * tz - c * ty), y + w * ty + (c * tx - a * tz), z + w * tz + (a * ty - b * tx)
+
+
+@njit(cache=True)
+def point_velocity(q, v, i, px, py, pz):
+    """World velocity of body i's material point at world position p."""
+    ox, oy, oz = rotate(q, i, v[i, 3], v[i, 4], v[i, 5])
+    rx, ry, rz = px - q[i, 0], py - q[i, 1], pz - q[i, 2]
+    return v[i, 0] + oy * rz - oz * ry, v[i, 1] + oz * rx - ox * rz, v[i, 2] + ox * ry - oy * rx
+
+
+@njit(cache=True)
+def _add_force(q, bf, bt, i, fx, fy, fz, px, py, pz):
+    """Add force (fx, fy, fz) at world point p to body i's force and moment about its centre."""
+    rx, ry, rz = px - q[i, 0], py - q[i, 1], pz - q[i, 2]
+    bf[i, 0] += fx
+    bf[i, 1] += fy
+    bf[i, 2] += fz
+    bt[i, 0] += ry * fz - rz * fy
+    bt[i, 1] += rz * fx - rx * fz
+    bt[i, 2] += rx * fy - ry * fx
+
+
+# Hot per-contact functions take plain arrays and scalars, never the model namedtuple: passing a
+# tuple of ~50 arrays to a function that is not inlined costs about 0.5 µs per call.
+@njit(cache=True)
+def contact_force(q, v, bf, bt, fric_p, c, a, b, law, k, n_exp, damping, d_max, fric, delta,
+                  mx, my, mz, px, py, pz):
+    """Normal and friction force of contact point p of pair c between bodies a and b.
+
+    m is the unit normal of the force on a; the force goes to both bodies (a: +, b: −).
+    Returns (F_n N, |v_t| m/s, |F_t| N, elastic energy J).
+    """
+    if delta <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0
+    vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
+    vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
+    rx, ry, rz = vax - vbx, vay - vby, vaz - vbz
+    vn = rx * mx + ry * my + rz * mz
+    fn = normal_force(law, delta, -vn, k, n_exp, damping, d_max)
+    tx, ty, tz = rx - vn * mx, ry - vn * my, rz - vn * mz
+    u = math.sqrt(tx * tx + ty * ty + tz * tz)
+    ft = 0.0
+    fx, fy, fz = fn * mx, fn * my, fn * mz
+    if u > 0.0 and fn > 0.0:
+        mu = friction_coefficient(fric, u, fric_p[c, 0], fric_p[c, 1], fric_p[c, 2], fric_p[c, 3])
+        ft = mu * fn
+        s = ft / u
+        fx -= s * tx
+        fy -= s * ty
+        fz -= s * tz
+    _add_force(q, bf, bt, a, fx, fy, fz, px, py, pz)
+    _add_force(q, bf, bt, b, -fx, -fy, -fz, px, py, pz)
+    return fn, u, ft, k * delta ** (n_exp + 1.0) / (n_exp + 1.0)
+
+
+@njit(cache=True)
+def _to_world(q, b, lx, ly, lz):
+    """World position of a point given in body b's frame."""
+    x, y, z = rotate(q, b, lx, ly, lz)
+    return q[b, 0] + x, q[b, 1] + y, q[b, 2] + z
+
+
+@njit(cache=True)
+def _in_frame(q, b, x, y, z):
+    """Coordinates in body b's frame of the world point (x, y, z)."""
+    return rotate_back(q, b, x - q[b, 0], y - q[b, 1], z - q[b, 2])
+
+
+@njit(cache=True)
+def _contact_angle(q, b, nx, ny, nz, px, py, pz):
+    """atan2(|n_axial|, |n_radial|) of a world normal n at world point p, in body b's cylindrical frame."""
+    lx, ly, lz = rotate_back(q, b, nx, ny, nz)
+    ex, ey, _ = _in_frame(q, b, px, py, pz)
+    r = math.sqrt(ex * ex + ey * ey)
+    if r == 0.0:
+        return 0.0
+    return math.atan2(abs(lz), abs((lx * ex + ly * ey) / r))
+
+
+@njit(cache=True)
+def _roller_axis(q, a, b):
+    """Roller a's axis (its body z) in ring b's frame."""
+    x, y, z = rotate(q, a, 0.0, 0.0, 1.0)
+    return rotate_back(q, b, x, y, z)
+
+
+@njit(cache=True)
+def _store(w, c, fn, delta, u, ft):
+    w.contact_fn[c] = fn
+    w.contact_delta[c] = delta
+    w.contact_slip[c] = u
+    w.contact_ft[c] = ft
+
+
+@njit(cache=True)
+def _ball_groove_pairs(m, q, v, w):
+    e_sum = 0.0
+    bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
+    for c in range(m.pair_type.shape[0]):
+        if m.pair_type[c] != BALL_GROOVE:
+            continue
+        a, b, g = m.pair_a[c], m.pair_b[c], m.pair_geom[c]
+        ra = m.pair_radius[c]
+        lx, ly, lz = _in_frame(q, b, q[a, 0], q[a, 1], q[a, 2])
+        th, delta, nx, ny, nz = groove_point_in(
+            lx, ly, lz, m.groove_rc[g], m.groove_zc[g], m.groove_r[g] - ra,
+            m.groove_h, m.groove_h_off[g], m.groove_h_off[g + 1],
+            m.groove_dr, m.groove_dr_off[g], m.groove_dr_off[g + 1],
+        )
+        mx, my, mz = rotate(q, b, -nx, -ny, -nz)
+        px, py, pz = q[a, 0] - ra * mx, q[a, 1] - ra * my, q[a, 2] - ra * mz
+        fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
+                                     m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
+        _store(w, c, fn, delta, u, ft)
+        w.contact_theta[c] = th
+        w.contact_angle[c] = math.atan2(abs(nz), abs(nx * math.cos(th) + ny * math.sin(th)))
+        e_sum += e
+    return e_sum
+
+
+@njit(cache=True)
+def _ball_ball_pairs(m, q, v, w):
+    e_sum = 0.0
+    bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
+    for c in range(m.pair_type.shape[0]):
+        if m.pair_type[c] != BALL_BALL:
+            continue
+        a, b = m.pair_a[c], m.pair_b[c]
+        delta, mx, my, mz, px, py, pz = ball_ball(q[a], q[b], m.pair_radius[c], m.pair_radius_b[c])
+        fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
+                                     m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
+        _store(w, c, fn, delta, u, ft)
+        w.contact_angle[c] = 0.0
+        e_sum += e
+    return e_sum
+
+
+@njit(cache=True)
+def _roller_raceway_pairs(m, q, v, w):
+    e_sum = 0.0
+    bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
+    center, axis = w.center, w.axis
+    sd, sp, sn = w.slice_delta, w.slice_point, w.slice_normal
+    for c in range(m.pair_type.shape[0]):
+        if m.pair_type[c] != ROLLER_RACEWAY:
+            continue
+        a, b, g = m.pair_a[c], m.pair_b[c], m.pair_geom[c]
+        s0, s1 = m.pair_slice_off[c], m.pair_slice_off[c + 1]
+        ns = s1 - s0
+        center[0], center[1], center[2] = _in_frame(q, b, q[a, 0], q[a, 1], q[a, 2])
+        axis[0], axis[1], axis[2] = _roller_axis(q, a, b)
+        roller_slices(center, axis, m.pair_length[c], m.pair_radius[c], m.slice_drop[s0:s1],
+                      m.race_kind[g], m.race_value[g], sd, sp, sn)
+        fn_sum, dmax, u_at_max, ft_sum, f_max, angle = 0.0, -math.inf, 0.0, 0.0, -1.0, 0.0
+        for k in range(ns):
+            delta = sd[k]
+            if delta > dmax:
+                dmax = delta
+            if delta <= 0.0:
+                continue
+            px, py, pz = _to_world(q, b, sp[k, 0], sp[k, 1], sp[k, 2])
+            mx, my, mz = rotate(q, b, sn[k, 0], sn[k, 1], sn[k, 2])
+            fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
+                                         m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
+            fn_sum += fn
+            ft_sum += ft
+            e_sum += e
+            if fn > f_max:
+                f_max, u_at_max = fn, u
+                angle = _contact_angle(q, b, mx, my, mz, px, py, pz)
+        _store(w, c, fn_sum, dmax, u_at_max, ft_sum)
+        w.contact_angle[c] = angle
+    return e_sum
+
+
+@njit(cache=True)
+def _roller_rib_pairs(m, q, v, w):
+    e_sum = 0.0
+    bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
+    center, axis, point = w.center, w.axis, w.point
+    for c in range(m.pair_type.shape[0]):
+        if m.pair_type[c] != ROLLER_RIB:
+            continue
+        a, b, g = m.pair_a[c], m.pair_b[c], m.pair_geom[c]
+        center[0], center[1], center[2] = _in_frame(q, b, q[a, 0], q[a, 1], q[a, 2])
+        axis[0], axis[1], axis[2] = _roller_axis(q, a, b)
+        delta, nx, ny, nz = roller_end(center, axis, m.pair_radius[c], m.pair_length[c], m.pair_aux[c, 0],
+                                       m.pair_aux[c, 1], m.race_kind[g], m.race_value[g], point)
+        px, py, pz = _to_world(q, b, point[0], point[1], point[2])
+        mx, my, mz = rotate(q, b, nx, ny, nz)
+        fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
+                                     m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
+        _store(w, c, fn, delta, u, ft)
+        w.contact_angle[c] = 0.0
+        e_sum += e
+    return e_sum
+
+
+@njit(cache=True)
+def _element_pocket_pairs(m, q, v, w):
+    e_sum = 0.0
+    bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
+    center = w.center
+    for c in range(m.pair_type.shape[0]):
+        if m.pair_type[c] != ELEMENT_POCKET:
+            continue
+        a, b, g = m.pair_a[c], m.pair_b[c], m.pair_geom[c]
+        lx, ly, lz = _in_frame(q, b, q[a, 0], q[a, 1], q[a, 2])
+        ang, rp, zp, clr = m.pocket_angle[g], m.pocket_r[g], m.pocket_z[g], m.pocket_clearance[g]
+        r = m.pair_radius[c]
+        fn_sum, dmax, u_max, ft_sum, f_max = 0.0, -math.inf, 0.0, 0.0, -1.0
+        slot = m.pocket_kind[g] != POCKET_CYLINDER
+        ax, ay, az = _roller_axis(q, a, b)
+        for k in range(2 if slot else 1):
+            center[0], center[1], center[2] = lx, ly, lz
+            if slot:
+                s = (k - 0.5) * m.pair_length[c]
+                center[0] += s * ax
+                center[1] += s * ay
+                center[2] += s * az
+                delta, nx, ny, nz, plx, ply, plz = pocket_slot(center, r, ang, rp, zp, clr)
+            else:
+                delta, nx, ny, nz, plx, ply, plz = pocket_cylinder(center, r, ang, rp, zp, clr)
+            if delta > dmax:
+                dmax = delta
+            if delta <= 0.0:
+                continue
+            px, py, pz = _to_world(q, b, plx, ply, plz)
+            mx, my, mz = rotate(q, b, nx, ny, nz)
+            fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
+                                         m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
+            fn_sum += fn
+            ft_sum += ft
+            e_sum += e
+            if fn > f_max:
+                f_max, u_max = fn, u
+        _store(w, c, fn_sum, dmax, u_max, ft_sum)
+        w.contact_angle[c] = 0.0
+    return e_sum
+
+
+@njit(cache=True)
+def _external_loads(m, q, w, t):
+    for i in range(m.body_mass.shape[0]):
+        for j in range(3):
+            w.body_f[i, j] = m.body_force[i, j]
+            w.body_t[i, j] = m.body_force[i, 3 + j]
+    for l in range(m.load_body.shape[0]):
+        spline_value(m.knot_t, m.knot_coef, m.load_off[l], m.load_off[l + 1], t, w.load)
+        i = m.load_body[l]
+        for j in range(3):
+            w.body_f[i, j] += w.load[j]
+            w.body_t[i, j] += w.load[3 + j]
+
+
+@njit(cache=True)
+def _small_rotation(qa, qb, qr):
+    """Rotation vector (≈ small angles, rad) of q_a⁻¹ q_b relative to the reference q_r, in a's frame."""
+    # e = q_r⁻¹ (q_a⁻¹ q_b); small angles: rotation vector ≈ 2 e_vec sign(e_w)
+    aw, ax, ay, az = qa[0], -qa[1], -qa[2], -qa[3]
+    bw, bx, by, bz = qb[0], qb[1], qb[2], qb[3]
+    dw = aw * bw - ax * bx - ay * by - az * bz
+    dx = aw * bx + ax * bw + ay * bz - az * by
+    dy = aw * by - ax * bz + ay * bw + az * bx
+    dz = aw * bz + ax * by - ay * bx + az * bw
+    rw, rx, ry, rz = qr[0], -qr[1], -qr[2], -qr[3]
+    ew = rw * dw - rx * dx - ry * dy - rz * dz
+    ex = rw * dx + rx * dw + ry * dz - rz * dy
+    ey = rw * dy - rx * dz + ry * dw + rz * dx
+    ez = rw * dz + rx * dy - ry * dx + rz * dw
+    s = 2.0 if ew >= 0.0 else -2.0
+    return s * ex, s * ey, s * ez
+
+
+@njit(cache=True)
+def _bushings(m, q, v, w):
+    """Penalty bushings: diagonal stiffness/damping in body a's frame (translations, small rotations)."""
+    energy = 0.0
+    for j in range(m.bush_a.shape[0]):
+        a, b = m.bush_a[j], m.bush_b[j]
+        pax, pay, paz = _to_world(q, a, m.bush_p_a[j, 0], m.bush_p_a[j, 1], m.bush_p_a[j, 2])
+        pbx, pby, pbz = _to_world(q, b, m.bush_p_b[j, 0], m.bush_p_b[j, 1], m.bush_p_b[j, 2])
+        dx, dy, dz = rotate_back(q, a, pbx - pax, pby - pay, pbz - paz)
+        vax, vay, vaz = point_velocity(q, v, a, pax, pay, paz)
+        vbx, vby, vbz = point_velocity(q, v, b, pbx, pby, pbz)
+        ux, uy, uz = rotate_back(q, a, vbx - vax, vby - vay, vbz - vaz)
+        rx, ry, rz = _small_rotation(q[a, 3:], q[b, 3:], m.bush_q_ref[j])
+        obx, oby, obz = rotate(q, b, v[b, 3], v[b, 4], v[b, 5])
+        oax, oay, oaz = rotate(q, a, v[a, 3], v[a, 4], v[a, 5])
+        wx, wy, wz = rotate_back(q, a, obx - oax, oby - oay, obz - oaz)
+        k, cc = m.bush_k[j], m.bush_c[j]
+        # force and moment on b, in a's frame
+        fx, fy, fz = -k[0] * dx - cc[0] * ux, -k[1] * dy - cc[1] * uy, -k[2] * dz - cc[2] * uz
+        tx, ty, tz = -k[3] * rx - cc[3] * wx, -k[4] * ry - cc[4] * wy, -k[5] * rz - cc[5] * wz
+        energy += 0.5 * (k[0] * dx * dx + k[1] * dy * dy + k[2] * dz * dz
+                         + k[3] * rx * rx + k[4] * ry * ry + k[5] * rz * rz)
+        fx, fy, fz = rotate(q, a, fx, fy, fz)
+        tx, ty, tz = rotate(q, a, tx, ty, tz)
+        _add_force(q, w.body_f, w.body_t, b, fx, fy, fz, pbx, pby, pbz)
+        _add_force(q, w.body_f, w.body_t, a, -fx, -fy, -fz, pbx, pby, pbz)
+        w.body_t[b, 0] += tx
+        w.body_t[b, 1] += ty
+        w.body_t[b, 2] += tz
+        w.body_t[a, 0] -= tx
+        w.body_t[a, 1] -= ty
+        w.body_t[a, 2] -= tz
+    return energy
+
+
+@njit(cache=True)
+def compute_forces(m, t, q, v, w):
+    """Fill ``w.body_f``, ``w.body_t`` and the contact outputs at (t, q, v); returns (status, index)."""
+    _external_loads(m, q, w, t)
+    w.energy[1] = _bushings(m, q, v, w) if m.bush_a.shape[0] > 0 else 0.0
+    e = 0.0
+    n_of = w.type_count
+    if n_of[BALL_GROOVE] > 0:
+        e += _ball_groove_pairs(m, q, v, w)
+    if n_of[BALL_BALL] > 0:
+        e += _ball_ball_pairs(m, q, v, w)
+    if n_of[ROLLER_RACEWAY] > 0:
+        e += _roller_raceway_pairs(m, q, v, w)
+    if n_of[ROLLER_RIB] > 0:
+        e += _roller_rib_pairs(m, q, v, w)
+    if n_of[ELEMENT_POCKET] > 0:
+        e += _element_pocket_pairs(m, q, v, w)
+    w.energy[0] = e
+    for c in range(m.pair_type.shape[0]):
+        if not (math.isfinite(w.contact_fn[c]) and math.isfinite(w.contact_ft[c])):
+            return STATUS_NONFINITE, c
+        if w.contact_delta[c] > m.pair_delta_max[c]:
+            return STATUS_PENETRATION, c
+    for i in range(m.body_mass.shape[0]):
+        for j in range(3):
+            if not (math.isfinite(w.body_f[i, j]) and math.isfinite(w.body_t[i, j])):
+                return STATUS_NONFINITE, m.pair_type.shape[0] + i
+    return STATUS_OK, -1

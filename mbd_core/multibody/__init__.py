@@ -1,0 +1,18 @@
+"""Multibody dynamics of bearings: build a model, find its static equilibrium, integrate it.
+
+Data flow: :class:`ModelBuilder` → ``finalize()`` → (:class:`Model`, :class:`State`) →
+:func:`static_equilibrium` (optional start) → :func:`simulate` (explicit, compiled loop) or
+:func:`simulate_implicit` (generalized-α reference) → record folder → :func:`read_run`.
+Assemblers of whole bearings with Hertz-derived contact laws are in :mod:`.bearings`.
+"""
+
+from .builder import ContactLaw, Driven, Fixed, Free, ModelBuilder, quat_from_axis_angle, quat_z_to
+from .explicit import DivergenceError, SimulationError, StepTooLargeError, evaluate_forces, simulate, stable_timestep
+from .model import Model, State
+from .recorder import read_run
+
+__all__ = [
+    "ModelBuilder", "ContactLaw", "Free", "Fixed", "Driven", "quat_from_axis_angle", "quat_z_to",
+    "Model", "State", "simulate", "stable_timestep", "evaluate_forces", "read_run",
+    "SimulationError", "StepTooLargeError", "DivergenceError",
+]

@@ -1,0 +1,274 @@
+"""Whole bearing rows as multibody elements, with Hertz-derived contact laws by default.
+
+:func:`add_ball_row` and :func:`add_roller_row` take the row descriptions of the quasi-static
+solver (:class:`~mbd_core.quasistatic.BallRow`, :class:`~mbd_core.quasistatic.RollerRow`), so a
+dynamic model and a quasi-static load distribution describe the same bearing. Both rings must be
+bodies at the origin with identity orientation (ring axis = z); elements are placed at the
+unloaded geometric positions with the clearance split equally between the two raceways.
+
+Ball rows: with u the unit vector from the ball centre to the moving ring's contact point at the
+nominal angle α0, u = (∓cos α0 (inner/outer moving raceway), −s sin α0) in (radial, axial) with s
+the row's axial sign, the moving groove's curvature centre lies at x − (f_m D − D/2 + g/2) u and
+the fixed one at x + (f_f D − D/2 + g/2) u (Harris & Kotzalas, *Essential Concepts*, ch. 2).
+Each contact gets its own Hertz constant (exact elliptic integrals, :func:`ball_on_groove`).
+
+Roller rows: the moving raceway is the inner cylinder (radial row, load sign +1) or the plane below
+the rollers (thrust row, load sign +1); each roller–raceway contact has c = c_L 2^(10/9)/n_s per
+slice, c_L the ISO/TS 16281 constant of the roller between both raceways (two equal contacts in
+series give c_L back).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..contact.hertz import ball_on_groove
+from ..quasistatic.rows import BallRow, RollerRow
+from .builder import ContactLaw, ModelBuilder, quat_z_to
+from .model import Model, State
+
+__all__ = ["RowBodies", "add_ball_row", "add_roller_row", "set_rolling_velocities", "ball_mass_kg", "roller_mass_kg"]
+
+LINE_EXPONENT = 10.0 / 9.0
+
+
+@dataclass(frozen=True)
+class RowBodies:
+    """Indices of what a row added: element bodies, their contact pairs per raceway, the cage."""
+
+    elements: tuple[int, ...]
+    moving_pairs: tuple[int, ...]
+    fixed_pairs: tuple[int, ...]
+    cage: int | None = None
+    pocket_pairs: tuple[int, ...] = ()
+    other_pairs: tuple[int, ...] = ()
+
+
+def ball_mass_kg(diameter_m: float, density_kg_m3: float) -> float:
+    return density_kg_m3 * math.pi * diameter_m**3 / 6.0
+
+
+def roller_mass_kg(diameter_m: float, length_m: float, density_kg_m3: float) -> float:
+    return density_kg_m3 * math.pi * diameter_m**2 / 4.0 * length_m
+
+
+def _azimuths(n: int, first_rad: float) -> np.ndarray:
+    return first_rad + 2.0 * math.pi * np.arange(n) / n
+
+
+def _law(stiffness: float, exponent: float, damping: float, d_max_m: float, friction) -> ContactLaw:
+    return ContactLaw(stiffness, exponent, damping, d_max_m, "impact", friction)
+
+
+def _cage_body(builder, name, mass_kg, radius_m, motion):
+    from .builder import Free
+
+    inertia = (0.5 * mass_kg * radius_m**2, 0.5 * mass_kg * radius_m**2, mass_kg * radius_m**2)
+    return builder.add_body(name, mass_kg, inertia, motion=motion or Free())
+
+
+def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *, friction=None,
+                 damping_N_s_m: float = 0.0, d_max_m: float = 1e-6, cage_mass_kg: float | None = None,
+                 pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8) -> RowBodies:
+    """Add the balls of ``row`` with their two ball–groove contacts (and a cage if ``cage_mass_kg``).
+
+    ``damping_N_s_m`` is the IMPACT damping of every ball contact, reached at ``d_max_m``.
+    """
+    D, R = row.ball_diameter_m, row.pitch_diameter_m / 2
+    a0 = row.contact_angle_rad
+    s_rad = -1.0 if row.moving_raceway == "inner" else 1.0
+    u = np.array([s_rad * math.cos(a0), -row.axial_sign * math.sin(a0)])
+    g2 = row.gap_m / 2
+    c_m = np.array([R, row.axial_position_m]) - (row.conformity_moving * D - D / 2 + g2) * u
+    c_f = np.array([R, row.axial_position_m]) + (row.conformity_fixed * D - D / 2 + g2) * u
+    fixed_raceway = "outer" if row.moving_raceway == "inner" else "inner"
+    if row.stiffness_N_per_m1p5 is not None:
+        k_m = k_f = row.stiffness_N_per_m1p5 * 2.0**1.5  # two equal contacts in series give K back
+    else:
+        k_m = ball_on_groove(D, row.conformity_moving, row.pitch_diameter_m, a0, row.moving_raceway,
+                             row.ball_material, row.race_material).stiffness_N_per_m1p5
+        k_f = ball_on_groove(D, row.conformity_fixed, row.pitch_diameter_m, a0, fixed_raceway,
+                             row.ball_material, row.race_material).stiffness_N_per_m1p5
+    g_m = builder.add_groove(moving_ring, c_m[0], c_m[1], row.conformity_moving * D)
+    g_f = builder.add_groove(fixed_ring, c_f[0], c_f[1], row.conformity_fixed * D)
+    law_m = _law(k_m, 1.5, damping_N_s_m, d_max_m, friction)
+    law_f = _law(k_f, 1.5, damping_N_s_m, d_max_m, friction)
+    mass = ball_mass_kg(D, row.ball_material.density_kg_m3)
+    inertia = 0.1 * mass * D * D
+    cage = None
+    if cage_mass_kg is not None:
+        cage = _cage_body(builder, f"{row.name} cage", cage_mass_kg, R, None)
+    balls, mov, fix, pockets = [], [], [], []
+    for j, psi in enumerate(_azimuths(row.n_balls, row.first_azimuth_rad)):
+        b = builder.add_body(f"{row.name} ball {j}", mass, (inertia,) * 3,
+                             position_m=(R * math.cos(psi), R * math.sin(psi), row.axial_position_m))
+        balls.append(b)
+        mov.append(builder.add_ball_groove(b, moving_ring, g_m, D / 2, law_m, name=f"{row.name} ball {j}–moving"))
+        fix.append(builder.add_ball_groove(b, fixed_ring, g_f, D / 2, law_f, name=f"{row.name} ball {j}–fixed"))
+        if cage is not None:
+            p = builder.add_pocket(cage, "cylinder", psi, R, row.axial_position_m, pocket_clearance_m)
+            pockets.append(builder.add_element_pocket(
+                b, cage, p, D / 2, _law(cage_stiffness_N_per_m, 1.0, damping_N_s_m, d_max_m, friction),
+                name=f"{row.name} ball {j}–pocket"))
+    return RowBodies(tuple(balls), tuple(mov), tuple(fix), cage, tuple(pockets))
+
+
+def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_ring, *, friction=None,
+                   damping_N_s_m: float = 0.0, d_max_m: float = 1e-6, rib_clearance_m: float | None = None,
+                   edge_radius_m: float | None = None, cage_mass_kg: float | None = None,
+                   pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8) -> RowBodies:
+    """Add the rollers of ``row`` with their sliced raceway contacts.
+
+    ``rib_clearance_m``: ribs on the moving ring at both roller ends with this axial play (None:
+    no ribs); ``cage_mass_kg``: a cage with slot pockets. ``damping_N_s_m`` is the IMPACT damping
+    of one slice (ribs and pockets use it too).
+    """
+    D, L, R, ns = row.roller_diameter_m, row.roller_length_m, row.pitch_diameter_m / 2, row.n_slices
+    g2 = row.gap_m / 2
+    x = -0.5 * L + (np.arange(ns) + 0.5) * L / ns
+    drop = row.crown_drop_m * (2.0 * x / L) ** 2
+    k_slice = row.contact_stiffness() * 2.0**LINE_EXPONENT / ns
+    law = _law(k_slice, LINE_EXPONENT, damping_N_s_m, d_max_m, friction)
+    z0 = row.axial_position_m
+    if row.orientation == "radial":
+        inner, outer = R - D / 2 - g2, R + D / 2 + g2
+        moving_is_inner = row.load_sign > 0
+        s_m = builder.add_surface(moving_ring, "inner_cylinder" if moving_is_inner else "outer_cylinder",
+                                  inner if moving_is_inner else outer)
+        s_f = builder.add_surface(fixed_ring, "outer_cylinder" if moving_is_inner else "inner_cylinder",
+                                  outer if moving_is_inner else inner)
+    else:
+        below, above = z0 - D / 2 - g2, z0 + D / 2 + g2
+        s_m = builder.add_surface(moving_ring, "plane_up" if row.load_sign > 0 else "plane_down",
+                                  below if row.load_sign > 0 else above)
+        s_f = builder.add_surface(fixed_ring, "plane_down" if row.load_sign > 0 else "plane_up",
+                                  above if row.load_sign > 0 else below)
+    ribs = ()
+    e_r = edge_radius_m if edge_radius_m is not None else 0.1 * D
+    if rib_clearance_m is not None:
+        h = L / 2 + rib_clearance_m / 2
+        if row.orientation == "radial":
+            ribs = ((builder.add_surface(moving_ring, "plane_down", z0 + h), 1),
+                    (builder.add_surface(moving_ring, "plane_up", z0 - h), -1))
+        else:
+            ribs = ((builder.add_surface(moving_ring, "inner_cylinder", R + h), 1),
+                    (builder.add_surface(moving_ring, "outer_cylinder", R - h), -1))
+    density = row.roller_material.density_kg_m3
+    mass = roller_mass_kg(D, L, density)
+    i_axis = mass * D * D / 8
+    i_trans = mass * (3 * (D / 2) ** 2 + L * L) / 12
+    cage = None
+    if cage_mass_kg is not None:
+        cage = _cage_body(builder, f"{row.name} cage", cage_mass_kg, R, None)
+    rollers, mov, fix, pockets, other = [], [], [], [], []
+    for j, psi in enumerate(_azimuths(row.n_rollers, row.first_azimuth_rad)):
+        e = np.array([math.cos(psi), math.sin(psi), 0.0])
+        axis = (0.0, 0.0, 1.0) if row.orientation == "radial" else e
+        b = builder.add_body(f"{row.name} roller {j}", mass, (i_trans, i_trans, i_axis),
+                             position_m=(R * e[0], R * e[1], z0), orientation=quat_z_to(axis))
+        rollers.append(b)
+        mov.append(builder.add_roller_raceway(b, moving_ring, s_m, D / 2, L, law, ns, drop,
+                                              name=f"{row.name} roller {j}–moving"))
+        fix.append(builder.add_roller_raceway(b, fixed_ring, s_f, D / 2, L, law, ns, drop,
+                                              name=f"{row.name} roller {j}–fixed"))
+        for surface, end in ribs:
+            other.append(builder.add_roller_rib(
+                b, moving_ring, surface, D / 2, L, end, e_r, _rib_law(e_r, row, damping_N_s_m, d_max_m, friction),
+                name=f"{row.name} roller {j}–rib {'+' if end > 0 else '-'}"))
+        if cage is not None:
+            p = builder.add_pocket(cage, "slot", psi, R, z0, pocket_clearance_m)
+            pockets.append(builder.add_element_pocket(
+                b, cage, p, D / 2, _law(cage_stiffness_N_per_m, 1.0, damping_N_s_m, d_max_m, friction), length_m=L,
+                name=f"{row.name} roller {j}–pocket"))
+    return RowBodies(tuple(rollers), tuple(mov), tuple(fix), cage, tuple(pockets), tuple(other))
+
+
+def _rib_law(edge_radius_m, row: RollerRow, damping, d_max_m, friction) -> ContactLaw:
+    """Sphere of the edge radius on a flat rib (Hertz, circular contact): K = (4/3) E* √r, E* = E'/2
+    (Johnson, *Contact Mechanics*, eq. 4.23)."""
+    from ..materials import effective_modulus_Pa
+
+    e_eff = effective_modulus_Pa(row.roller_material, row.race_material)
+    return _law(2.0 / 3.0 * e_eff * math.sqrt(edge_radius_m), 1.5, damping, d_max_m, friction)
+
+
+def set_rolling_velocities(model: Model, state: State, elements, ring, axis_omega_rad_s: float | None = None,
+                           other_ring=None) -> None:
+    """Give rolling elements (and nothing else) the no-slip velocities between two rings.
+
+    Each element's centre orbits at the speed and its angular velocity makes the slip zero at
+    its contact points with both rings in the least-squares sense (minimum-norm spin): for
+    elements touching ``ring`` and ``other_ring`` along the line through their centres this is
+    the classical rolling kinematics (Harris & Kotzalas, *Essential Concepts*, ch. 8).
+    The contact points are the element's surface points along its contact normals at ``state``.
+    """
+    a = model.arrays
+    omega_ring = [0.0, 0.0]
+    for k, body in enumerate((ring, other_ring)):
+        if body is not None:
+            omega_ring[k] = _spin_z(state, body)
+    for e in elements:
+        pairs = [c for c in range(model.n_pairs) if a.pair_a[c] == e and a.pair_b[c] in (ring, other_ring)]
+        x = state.q[e, :3]
+        pts, vel = [], []
+        for c in pairs:
+            b = a.pair_b[c]
+            n = _pair_normal(model, state, c)
+            p = x - a.pair_radius[c] * n
+            wz = omega_ring[0] if b == ring else omega_ring[1]
+            pts.append(p - x)
+            vel.append(np.cross([0.0, 0.0, wz], p - state.q[b, :3]))
+        if len(pts) < 2:
+            raise ValueError(f"set_rolling_velocities: element {model.body_names[e]!r} does not touch both rings")
+        # unknowns: orbit speed ω_c (centre velocity ω_c ẑ × x) and ω (world) of the element
+        rows, rhs = [], []
+        for r, vp in zip(pts, vel):
+            for i in range(3):
+                # v_i = ω_c (ẑ × x)_i + (ω × r)_i,  (ω × r)·e_i = ω·(r × e_i)
+                e_i = np.eye(3)[i]
+                rows.append(np.concatenate([[np.cross([0.0, 0.0, 1.0], x)[i]], np.cross(r, e_i)]))
+                rhs.append(vp[i])
+        sol = np.linalg.lstsq(np.array(rows), np.array(rhs), rcond=None)[0]
+        omega_c, omega_w = sol[0], sol[1:]
+        state.v[e, :3] = omega_c * np.cross([0.0, 0.0, 1.0], x)
+        state.v[e, 3:] = _rotate_back(state.q[e, 3:], omega_w)
+
+
+def _spin_z(state: State, body: int) -> float:
+    return float(_rotate(state.q[body, 3:], state.v[body, 3:])[2])
+
+
+def _pair_normal(model: Model, state: State, c: int) -> np.ndarray:
+    """Unit vector from an element's centre towards its contact point of pair c (world)."""
+    a = model.arrays
+    e, b = a.pair_a[c], a.pair_b[c]
+    x = state.q[e, :3] - state.q[b, :3]
+    xl = _rotate_back(state.q[b, 3:], x)
+    kind = model.pair_kinds[c]
+    if kind == "ball_groove":
+        g = a.pair_geom[c]
+        th = math.atan2(xl[1], xl[0])
+        centre = np.array([a.groove_rc[g] * math.cos(th), a.groove_rc[g] * math.sin(th), a.groove_zc[g]])
+        d = xl - centre
+        return _rotate(state.q[b, 3:], d / np.linalg.norm(d))
+    g = a.pair_geom[c]
+    kind_s, value = a.race_kind[g], a.race_value[g]
+    if kind_s <= 1:
+        er = np.array([xl[0], xl[1], 0.0]) / math.hypot(xl[0], xl[1])
+        n = -er if kind_s == 0 else er
+    else:
+        n = np.array([0.0, 0.0, -1.0 if kind_s == 2 else 1.0])
+    return _rotate(state.q[b, 3:], n)
+
+
+def _rotate(q, x):
+    w, v = q[0], np.asarray(q[1:])
+    t = 2.0 * np.cross(v, x)
+    return x + w * t + np.cross(v, t)
+
+
+def _rotate_back(q, x):
+    return _rotate(np.array([q[0], -q[1], -q[2], -q[3]]), x)

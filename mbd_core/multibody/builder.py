@@ -1,0 +1,461 @@
+"""Collect bodies, drivers, loads and contact pairs; ``finalize()`` validates and freezes them.
+
+Frames: every body has a reference point (its centre of mass) and body axes that are its principal
+axes of inertia. Rings, cages and the bearing use z as their axis; a roller's body z is its own axis.
+Positions and forces are given in the world frame, m and N; angular velocities in the body frame.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+from ..contact.friction import Coulomb, DrebConstant, DrebFalling, DrebLinear, Kragelskii
+from ..kernels.element_contacts import POCKET_CYLINDER, POCKET_SLOT
+from ..kernels.forces import BALL_BALL, BALL_GROOVE, ELEMENT_POCKET, ROLLER_RACEWAY, ROLLER_RIB
+from ..kernels.laws import NORMAL_HUNT_CROSSLEY, NORMAL_IMPACT
+from ..kernels.roller_slices import (
+    RACEWAY_INNER_CYLINDER,
+    RACEWAY_OUTER_CYLINDER,
+    RACEWAY_PLANE_DOWN,
+    RACEWAY_PLANE_UP,
+)
+from .model import Model, ModelArrays, State
+
+__all__ = ["ModelBuilder", "ContactLaw", "Free", "Fixed", "Driven", "quat_from_axis_angle", "quat_z_to"]
+
+PAIR_KIND_NAMES = {
+    BALL_GROOVE: "ball_groove", BALL_BALL: "ball_ball", ROLLER_RACEWAY: "roller_raceway",
+    ROLLER_RIB: "roller_rib", ELEMENT_POCKET: "element_pocket",
+}
+SURFACE_KINDS = {
+    "inner_cylinder": RACEWAY_INNER_CYLINDER, "outer_cylinder": RACEWAY_OUTER_CYLINDER,
+    "plane_up": RACEWAY_PLANE_UP, "plane_down": RACEWAY_PLANE_DOWN,
+}
+POCKET_KINDS = {"cylinder": POCKET_CYLINDER, "slot": POCKET_SLOT}
+FRICTION_TYPES = (Coulomb, DrebLinear, DrebConstant, DrebFalling, Kragelskii)
+
+
+def quat_from_axis_angle(axis, angle_rad: float) -> np.ndarray:
+    """Unit quaternion (w, x, y, z) of a rotation by ``angle_rad`` about ``axis``."""
+    a = np.asarray(axis, float)
+    a = a / np.linalg.norm(a)
+    return np.concatenate([[math.cos(angle_rad / 2)], math.sin(angle_rad / 2) * a])
+
+
+def quat_z_to(direction) -> np.ndarray:
+    """Unit quaternion turning the body z axis onto ``direction`` (shortest rotation)."""
+    d = np.asarray(direction, float)
+    d = d / np.linalg.norm(d)
+    axis = np.cross([0.0, 0.0, 1.0], d)
+    s = np.linalg.norm(axis)
+    if s < 1e-15:
+        return np.array([1.0, 0, 0, 0]) if d[2] > 0 else np.array([0.0, 1, 0, 0])
+    return quat_from_axis_angle(axis / s, math.atan2(s, d[2]))
+
+
+@dataclass(frozen=True)
+class Free:
+    """All six velocity components integrated."""
+
+
+@dataclass(frozen=True)
+class Fixed:
+    """Held at its initial pose (a housing, a ring bolted to the structure)."""
+
+
+@dataclass(frozen=True)
+class Driven:
+    """Spin about the body's own z axis held at ``omega_rad_s``.
+
+    ``translation_free``: the centre moves under the forces (else it is held);
+    ``tilt_free``: the rotations about body x and y are integrated (else held at zero rate).
+    """
+
+    omega_rad_s: float
+    translation_free: bool = False
+    tilt_free: bool = False
+
+    def __post_init__(self) -> None:
+        if not math.isfinite(self.omega_rad_s):
+            raise ValueError(f"Driven: omega_rad_s must be finite, got {self.omega_rad_s!r}")
+
+
+@dataclass(frozen=True)
+class ContactLaw:
+    """Penalty law of a contact pair (DESIGN §5.3).
+
+    Parameters
+    ----------
+    stiffness : float
+        K of F = K δⁿ (N/m^n); for roller–raceway pairs the stiffness of one slice.
+    exponent : float
+        n (1.5 point contact, 10/9 line contact slices, 1 linear).
+    damping : float
+        IMPACT: c in N·s/m reached at δ = d_max; Hunt–Crossley: c in s/m.
+    d_max_m : float
+        Penetration over which the IMPACT damping ramps from 0 to c.
+    model : {"impact", "hunt_crossley"}
+    friction : friction law object or None
+        One of :mod:`mbd_core.contact.friction` (None: frictionless).
+    max_penetration_m : float or None
+        Divergence bound: a run stops when this pair penetrates deeper. Default: 2 % of the
+        element radius (far beyond the range where Hertz theory holds).
+    """
+
+    stiffness: float
+    exponent: float = 1.5
+    damping: float = 0.0
+    d_max_m: float = 1e-6
+    model: str = "impact"
+    friction: object | None = None
+    max_penetration_m: float | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("stiffness", "exponent", "d_max_m"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and v > 0):
+                raise ValueError(f"contact law: {name} must be a positive number, got {v!r}")
+        if not (math.isfinite(self.damping) and self.damping >= 0):
+            raise ValueError(f"contact law: damping must be ≥ 0, got {self.damping!r}")
+        if self.model not in ("impact", "hunt_crossley"):
+            raise ValueError(f"contact law: model must be 'impact' or 'hunt_crossley', got {self.model!r}")
+        if self.friction is not None and not isinstance(self.friction, FRICTION_TYPES):
+            raise TypeError(f"contact law: friction must be one of {[t.__name__ for t in FRICTION_TYPES]}")
+        if self.max_penetration_m is not None and not self.max_penetration_m > 0:
+            raise ValueError(f"contact law: max_penetration_m must be > 0, got {self.max_penetration_m!r}")
+
+    def without_friction(self) -> "ContactLaw":
+        return ContactLaw(self.stiffness, self.exponent, self.damping, self.d_max_m, self.model, None,
+                          self.max_penetration_m)
+
+
+@dataclass
+class _Body:
+    name: str
+    mass: float
+    inertia: np.ndarray
+    q: np.ndarray
+    v: np.ndarray
+    free: np.ndarray
+    force: np.ndarray = field(default_factory=lambda: np.zeros(6))
+
+
+def _vec(owner: str, name: str, value, n: int) -> np.ndarray:
+    a = np.asarray(value, dtype=float).reshape(-1)
+    if a.shape != (n,) or not np.all(np.isfinite(a)):
+        raise ValueError(f"{owner}: {name} must be {n} finite numbers, got {value!r}")
+    return a
+
+
+def _positive(owner: str, **values) -> None:
+    for k, v in values.items():
+        if not (isinstance(v, (int, float, np.floating)) and math.isfinite(v) and v > 0):
+            raise ValueError(f"{owner}: {k} must be a positive number, got {v!r}")
+
+
+class ModelBuilder:
+    """Edit freely, then :meth:`finalize` into a frozen :class:`Model` and its initial :class:`State`."""
+
+    def __init__(self, gravity_m_s2=(0.0, 0.0, 0.0)):
+        self.gravity_m_s2 = _vec("model", "gravity_m_s2", gravity_m_s2, 3)
+        self._bodies: list[_Body] = []
+        self._pairs: list[dict] = []
+        self._grooves: list[dict] = []
+        self._surfaces: list[tuple[int, float]] = []
+        self._pockets: list[tuple[int, float, float, float, float]] = []
+        self._bushings: list[dict] = []
+        self._loads: list[tuple[int, np.ndarray, np.ndarray]] = []
+
+    # -- bodies ---------------------------------------------------------------------------------
+    def add_body(self, name: str, mass_kg: float, inertia_kg_m2, position_m=(0, 0, 0), orientation=(1, 0, 0, 0),
+                 velocity_m_s=(0, 0, 0), omega_rad_s=(0, 0, 0), motion=Free()) -> int:
+        """Add a rigid body; returns its index.
+
+        ``inertia_kg_m2`` are the principal moments (body axes); ``orientation`` the unit quaternion
+        (w, x, y, z) body → world; ``omega_rad_s`` the angular velocity in body axes. ``motion`` is
+        :class:`Free`, :class:`Fixed` or :class:`Driven` (a driven body's spin overrides ω_z).
+        """
+        owner = f"body {name!r}"
+        if any(b.name == name for b in self._bodies):
+            raise ValueError(f"{owner}: a body of this name exists already")
+        _positive(owner, mass_kg=mass_kg)
+        inertia = _vec(owner, "inertia_kg_m2", inertia_kg_m2, 3)
+        if np.any(inertia <= 0):
+            raise ValueError(f"{owner}: inertia_kg_m2 must be positive, got {inertia.tolist()}")
+        q = _vec(owner, "orientation", orientation, 4)
+        if np.linalg.norm(q) < 1e-12:
+            raise ValueError(f"{owner}: orientation must be a non-zero quaternion")
+        q = q / np.linalg.norm(q)
+        v = np.concatenate([_vec(owner, "velocity_m_s", velocity_m_s, 3), _vec(owner, "omega_rad_s", omega_rad_s, 3)])
+        if isinstance(motion, Free):
+            free = np.ones(6, dtype=np.int64)
+        elif isinstance(motion, Fixed):
+            free = np.zeros(6, dtype=np.int64)
+            v[:] = 0.0
+        elif isinstance(motion, Driven):
+            t, r = int(motion.translation_free), int(motion.tilt_free)
+            free = np.array([t, t, t, r, r, 0], dtype=np.int64)
+            v[:3] *= t
+            v[3:5] *= r
+            v[5] = motion.omega_rad_s
+        else:
+            raise TypeError(f"{owner}: motion must be Free(), Fixed() or Driven(...), got {motion!r}")
+        self._bodies.append(_Body(name, float(mass_kg), inertia, np.concatenate([_vec(owner, "position_m", position_m, 3), q]), v, free))
+        return len(self._bodies) - 1
+
+    def _body_index(self, body, owner: str) -> int:
+        if isinstance(body, str):
+            for i, b in enumerate(self._bodies):
+                if b.name == body:
+                    return i
+            raise ValueError(f"{owner}: no body named {body!r}")
+        if not (isinstance(body, (int, np.integer)) and 0 <= body < len(self._bodies)):
+            raise ValueError(f"{owner}: no body with index {body!r}")
+        return int(body)
+
+    # -- loads ----------------------------------------------------------------------------------
+    def add_force(self, body, force_N=(0, 0, 0), moment_Nm=(0, 0, 0)) -> None:
+        """Constant world-frame force (at the body's reference point) and moment."""
+        i = self._body_index(body, "force")
+        self._bodies[i].force += np.concatenate([_vec("force", "force_N", force_N, 3), _vec("force", "moment_Nm", moment_Nm, 3)])
+
+    def add_load_history(self, body, times_s, loads) -> None:
+        """Time-varying world force and moment: a cubic spline through (t_k, [F, M]_k).
+
+        ``times_s`` (k,) strictly increasing, k ≥ 2; ``loads`` (k, 6) N and N·m. Before the first
+        and after the last time the end values are held.
+        """
+        i = self._body_index(body, "load history")
+        t = np.asarray(times_s, float)
+        f = np.asarray(loads, float)
+        if t.ndim != 1 or t.size < 2 or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
+            raise ValueError("load history: times_s must be ≥ 2 finite, strictly increasing times")
+        if f.shape != (t.size, 6) or not np.all(np.isfinite(f)):
+            raise ValueError(f"load history: loads must be finite with shape ({t.size}, 6), got {f.shape}")
+        self._loads.append((i, t, f))
+
+    # -- joints ---------------------------------------------------------------------------------
+    def add_bushing(self, body_a, body_b, point_m, stiffness, damping=(0, 0, 0, 0, 0, 0)) -> None:
+        """Penalty bushing between two bodies at a world point (their current relative pose is at rest).
+
+        ``stiffness`` (6,) N/m ×3 then N·m/rad ×3 and ``damping`` (6,) N·s/m, N·m·s/rad, along
+        body a's axes.
+        """
+        a, b = self._body_index(body_a, "bushing"), self._body_index(body_b, "bushing")
+        if a == b:
+            raise ValueError("bushing: body_a and body_b must differ")
+        k = _vec("bushing", "stiffness", stiffness, 6)
+        c = _vec("bushing", "damping", damping, 6)
+        if np.any(k < 0) or np.any(c < 0):
+            raise ValueError("bushing: stiffness and damping must be ≥ 0")
+        self._bushings.append(dict(a=a, b=b, point=_vec("bushing", "point_m", point_m, 3), k=k, c=c))
+
+    # -- contact geometry -----------------------------------------------------------------------
+    def add_groove(self, ring, centre_radius_m: float, centre_height_m: float, groove_radius_m: float,
+                   undulation_m=None, radial_offset_m=None) -> int:
+        """A groove on ``ring``: circle of curvature centres (radius, height in the ring frame) and f·D.
+
+        ``undulation_m`` h(θ) and ``radial_offset_m`` Δr(θ): tables on a uniform grid over
+        [0, 2π) (ring frame angle), interpolated linearly and periodically; None = 0.
+        """
+        owner = "groove"
+        r = self._body_index(ring, owner)
+        _positive(owner, centre_radius_m=centre_radius_m, groove_radius_m=groove_radius_m)
+        if not math.isfinite(centre_height_m):
+            raise ValueError(f"{owner}: centre_height_m must be finite")
+        tables = []
+        for name, tab in (("undulation_m", undulation_m), ("radial_offset_m", radial_offset_m)):
+            a = np.zeros(1) if tab is None else np.asarray(tab, float).reshape(-1)
+            if a.size == 0 or not np.all(np.isfinite(a)):
+                raise ValueError(f"{owner}: {name} must be a non-empty table of finite values")
+            tables.append(a)
+        self._grooves.append(dict(ring=r, rc=float(centre_radius_m), zc=float(centre_height_m),
+                                  r=float(groove_radius_m), h=tables[0], dr=tables[1]))
+        return len(self._grooves) - 1
+
+    def add_surface(self, ring, kind: str, value_m: float) -> int:
+        """A raceway or rib surface on ``ring``: kind in {inner_cylinder, outer_cylinder, plane_up,
+        plane_down} with its radius or height ``value_m`` (ring frame)."""
+        self._body_index(ring, "surface")
+        if kind not in SURFACE_KINDS:
+            raise ValueError(f"surface: kind must be one of {sorted(SURFACE_KINDS)}, got {kind!r}")
+        if not math.isfinite(value_m) or (kind.endswith("cylinder") and value_m <= 0):
+            raise ValueError(f"surface: value_m must be finite (and > 0 for a cylinder), got {value_m!r}")
+        self._surfaces.append((SURFACE_KINDS[kind], float(value_m)))
+        return len(self._surfaces) - 1
+
+    def add_pocket(self, cage, kind: str, angle_rad: float, radius_m: float, height_m: float, clearance_m: float) -> int:
+        """A cage pocket (kind "cylinder" for balls, "slot" for rollers) at angle/radius/height in the cage frame."""
+        self._body_index(cage, "pocket")
+        if kind not in POCKET_KINDS:
+            raise ValueError(f"pocket: kind must be one of {sorted(POCKET_KINDS)}, got {kind!r}")
+        _positive("pocket", radius_m=radius_m)
+        if not (math.isfinite(clearance_m) and clearance_m >= 0):
+            raise ValueError(f"pocket: clearance_m must be ≥ 0, got {clearance_m!r}")
+        self._pockets.append((POCKET_KINDS[kind], float(angle_rad), float(radius_m), float(height_m), float(clearance_m)))
+        return len(self._pockets) - 1
+
+    # -- contact pairs --------------------------------------------------------------------------
+    def _add_pair(self, kind: int, element, other, geom: int, law: ContactLaw, radius: float, name: str | None,
+                  radius_b: float = 0.0, length: float = 0.0, aux=(0.0, 0.0), drop=()) -> int:
+        owner = f"{PAIR_KIND_NAMES[kind]} contact"
+        a, b = self._body_index(element, owner), self._body_index(other, owner)
+        if a == b:
+            raise ValueError(f"{owner}: a body cannot touch itself ({self._bodies[a].name!r})")
+        if not isinstance(law, ContactLaw):
+            raise TypeError(f"{owner}: law must be a ContactLaw")
+        _positive(owner, element_radius_m=radius)
+        name = name or f"{self._bodies[a].name}–{self._bodies[b].name}"
+        self._pairs.append(dict(kind=kind, a=a, b=b, geom=geom, law=law, radius=float(radius), radius_b=float(radius_b),
+                                length=float(length), aux=np.asarray(aux, float), drop=np.asarray(drop, float), name=name))
+        return len(self._pairs) - 1
+
+    def add_ball_groove(self, ball, ring, groove: int, ball_radius_m: float, law: ContactLaw, name=None) -> int:
+        """Ball–groove point contact (the groove must belong to ``ring``)."""
+        if not 0 <= groove < len(self._grooves):
+            raise ValueError(f"ball–groove contact: no groove {groove}")
+        if self._grooves[groove]["ring"] != self._body_index(ring, "ball–groove contact"):
+            raise ValueError("ball–groove contact: the groove belongs to another body")
+        if self._grooves[groove]["r"] <= ball_radius_m:
+            raise ValueError(
+                f"ball–groove contact: the groove radius {self._grooves[groove]['r']} m must exceed the ball "
+                f"radius {ball_radius_m} m (conformity > 0.5)")
+        return self._add_pair(BALL_GROOVE, ball, ring, groove, law, ball_radius_m, name)
+
+    def add_ball_ball(self, ball_a, ball_b, radius_a_m: float, radius_b_m: float, law: ContactLaw, name=None) -> int:
+        """Sphere–sphere contact (load ball against spacer ball)."""
+        _positive("ball–ball contact", radius_b_m=radius_b_m)
+        return self._add_pair(BALL_BALL, ball_a, ball_b, -1, law, radius_a_m, name, radius_b=radius_b_m)
+
+    def add_roller_raceway(self, roller, ring, surface: int, radius_m: float, length_m: float, law: ContactLaw,
+                           n_slices: int = 20, drop_m=None, name=None) -> int:
+        """Sliced line contact of a roller (body z = its axis) on a raceway surface of ``ring``.
+
+        ``drop_m`` (n_slices,) is the profile drop of each slice (crown, logarithmic), m; None = flat.
+        ``law.stiffness`` is the stiffness of one slice.
+        """
+        owner = "roller–raceway contact"
+        if not 0 <= surface < len(self._surfaces):
+            raise ValueError(f"{owner}: no surface {surface}")
+        if not (isinstance(n_slices, (int, np.integer)) and n_slices >= 1):
+            raise ValueError(f"{owner}: n_slices must be an integer ≥ 1, got {n_slices!r}")
+        _positive(owner, length_m=length_m)
+        drop = np.zeros(n_slices) if drop_m is None else np.asarray(drop_m, float).reshape(-1)
+        if drop.shape != (n_slices,) or not np.all(np.isfinite(drop)) or np.any(drop < 0) or np.any(drop >= radius_m):
+            raise ValueError(f"{owner}: drop_m must be {n_slices} values in [0, radius)")
+        return self._add_pair(ROLLER_RACEWAY, roller, ring, surface, law, radius_m, name, length=length_m, drop=drop)
+
+    def add_roller_rib(self, roller, ring, surface: int, radius_m: float, length_m: float, end_sign: int,
+                       edge_radius_m: float, law: ContactLaw, name=None) -> int:
+        """Roller end (at s = end_sign·L/2, rim rounded with edge_radius_m) against a rib surface."""
+        owner = "roller–rib contact"
+        if not 0 <= surface < len(self._surfaces):
+            raise ValueError(f"{owner}: no surface {surface}")
+        if end_sign not in (1, -1):
+            raise ValueError(f"{owner}: end_sign must be +1 or -1, got {end_sign!r}")
+        _positive(owner, length_m=length_m, edge_radius_m=edge_radius_m)
+        if edge_radius_m >= min(radius_m, length_m / 2):
+            raise ValueError(f"{owner}: edge_radius_m must be smaller than the roller radius and half length")
+        return self._add_pair(ROLLER_RIB, roller, ring, surface, law, radius_m, name, length=length_m,
+                              aux=(float(end_sign), edge_radius_m))
+
+    def add_element_pocket(self, element, cage, pocket: int, radius_m: float, law: ContactLaw, length_m: float = 0.0,
+                           name=None) -> int:
+        """Rolling element in a cage pocket (a slot pocket needs the roller length)."""
+        owner = "element–pocket contact"
+        if not 0 <= pocket < len(self._pockets):
+            raise ValueError(f"{owner}: no pocket {pocket}")
+        if self._pockets[pocket][0] == POCKET_SLOT:
+            _positive(owner, length_m=length_m)
+        return self._add_pair(ELEMENT_POCKET, element, cage, pocket, law, radius_m, name, length=length_m)
+
+    # -- finalize -------------------------------------------------------------------------------
+    def finalize(self) -> tuple[Model, State]:
+        """Validate and freeze: returns the model of flat arrays and the initial state."""
+        if not self._bodies:
+            raise ValueError("model: no bodies")
+        bodies, pairs = self._bodies, self._pairs
+        nb = len(bodies)
+        mass = np.array([b.mass for b in bodies])
+        force = np.array([b.force for b in bodies]).reshape(nb, 6)
+        force[:, :3] += mass[:, None] * self.gravity_m_s2
+        for name in {p["name"] for p in pairs}:
+            if sum(p["name"] == name for p in pairs) > 1:
+                raise ValueError(f"model: contact name {name!r} is used twice")
+        laws = [p["law"] for p in pairs]
+        slice_counts = [p["drop"].size if p["kind"] == ROLLER_RACEWAY else 0 for p in pairs]
+        fric = [(l.friction.code, l.friction.params) if l.friction is not None else (0, np.zeros(4)) for l in laws]
+        knot_t, knot_coef, load_off = [], [], [0]
+        for _, t, f in self._loads:
+            pp = CubicSpline(t, f, axis=0)
+            coef = np.zeros((t.size, 4, 6))
+            coef[:-1] = np.transpose(pp.c, (1, 0, 2))
+            knot_t.append(t)
+            knot_coef.append(coef)
+            load_off.append(load_off[-1] + t.size)
+        i64 = lambda x: np.asarray(x, dtype=np.int64)  # noqa: E731
+        f64 = lambda x, shape=None: np.asarray(x, dtype=np.float64).reshape(shape) if shape else np.asarray(x, dtype=np.float64)  # noqa: E731
+        q0 = np.array([b.q for b in bodies])
+        bq = []
+        for bu in self._bushings:
+            qa, qb = q0[bu["a"], 3:], q0[bu["b"], 3:]
+            bq.append(_quat_mul(_quat_conj(qa), qb))
+        p_a = [_rotate_back(q0[bu["a"]], bu["point"]) for bu in self._bushings]
+        p_b = [_rotate_back(q0[bu["b"]], bu["point"]) for bu in self._bushings]
+        grooves = self._grooves
+        arrays = ModelArrays(
+            body_mass=mass, body_inertia=np.array([b.inertia for b in bodies]),
+            body_free=np.array([b.free for b in bodies], dtype=np.int64), body_force=force,
+            load_body=i64([l[0] for l in self._loads]), load_off=i64(load_off),
+            knot_t=f64(np.concatenate(knot_t) if knot_t else np.zeros(0)),
+            knot_coef=f64(np.concatenate(knot_coef) if knot_coef else np.zeros((0, 4, 6))),
+            bush_a=i64([b["a"] for b in self._bushings]), bush_b=i64([b["b"] for b in self._bushings]),
+            bush_p_a=f64(p_a, (-1, 3)), bush_p_b=f64(p_b, (-1, 3)), bush_q_ref=f64(bq, (-1, 4)),
+            bush_k=f64([b["k"] for b in self._bushings], (-1, 6)), bush_c=f64([b["c"] for b in self._bushings], (-1, 6)),
+            pair_type=i64([p["kind"] for p in pairs]), pair_a=i64([p["a"] for p in pairs]),
+            pair_b=i64([p["b"] for p in pairs]), pair_geom=i64([p["geom"] for p in pairs]),
+            pair_law=i64([NORMAL_IMPACT if l.model == "impact" else NORMAL_HUNT_CROSSLEY for l in laws]),
+            pair_k=f64([l.stiffness for l in laws]), pair_n=f64([l.exponent for l in laws]),
+            pair_c=f64([l.damping for l in laws]), pair_dmax=f64([l.d_max_m for l in laws]),
+            pair_fric=i64([f[0] for f in fric]), pair_fric_p=f64([f[1] for f in fric], (-1, 4)),
+            pair_radius=f64([p["radius"] for p in pairs]), pair_radius_b=f64([p["radius_b"] for p in pairs]),
+            pair_length=f64([p["length"] for p in pairs]), pair_aux=f64([p["aux"] for p in pairs], (-1, 2)),
+            pair_slice_off=i64(np.concatenate([[0], np.cumsum(slice_counts)])),
+            slice_drop=f64(np.concatenate([p["drop"] for p in pairs if p["kind"] == ROLLER_RACEWAY] or [np.zeros(0)])),
+            pair_delta_max=f64([l.max_penetration_m if l.max_penetration_m is not None else 0.02 * p["radius"]
+                                for l, p in zip(laws, pairs)]),
+            groove_rc=f64([g["rc"] for g in grooves]), groove_zc=f64([g["zc"] for g in grooves]),
+            groove_r=f64([g["r"] for g in grooves]),
+            groove_h_off=i64(np.concatenate([[0], np.cumsum([g["h"].size for g in grooves])])),
+            groove_h=f64(np.concatenate([g["h"] for g in grooves] or [np.zeros(0)])),
+            groove_dr_off=i64(np.concatenate([[0], np.cumsum([g["dr"].size for g in grooves])])),
+            groove_dr=f64(np.concatenate([g["dr"] for g in grooves] or [np.zeros(0)])),
+            race_kind=i64([s[0] for s in self._surfaces]), race_value=f64([s[1] for s in self._surfaces]),
+            pocket_kind=i64([p[0] for p in self._pockets]), pocket_angle=f64([p[1] for p in self._pockets]),
+            pocket_r=f64([p[2] for p in self._pockets]), pocket_z=f64([p[3] for p in self._pockets]),
+            pocket_clearance=f64([p[4] for p in self._pockets]),
+        )
+        model = Model(arrays, tuple(b.name for b in bodies), tuple(p["name"] for p in pairs),
+                      tuple(PAIR_KIND_NAMES[p["kind"]] for p in pairs), self.gravity_m_s2.copy())
+        state = State(0.0, q0.copy(), np.array([b.v for b in bodies]).reshape(nb, 6))
+        return model, state
+
+
+def _quat_conj(q):
+    return np.array([q[0], -q[1], -q[2], -q[3]])
+
+
+def _quat_mul(p, q):
+    pw, pv, qw, qv = p[0], p[1:], q[0], q[1:]
+    return np.concatenate([[pw * qw - pv @ qv], pw * qv + qw * pv + np.cross(pv, qv)])
+
+
+def _rotate_back(q7, point):
+    """Coordinates of a world point in the frame of a body at pose q7 = (r, quaternion)."""
+    qc = _quat_conj(q7[3:])
+    d = np.concatenate([[0.0], np.asarray(point) - q7[:3]])
+    return _quat_mul(_quat_mul(qc, d), q7[3:])[1:]

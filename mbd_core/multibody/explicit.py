@@ -1,0 +1,267 @@
+"""Explicit dynamic runs: the stable time step, the chunked run loop, and its errors.
+
+The time step is limited (DESIGN §5.4) by
+
+* the contacts of each body, linearised at ``load_factor`` × their present load (at least the
+  largest external force, so a run that starts unloaded is not underestimated): k = n F/δ at
+  F = K δⁿ; the contacts of one body add up to the Gershgorin bound of the largest eigenvalue
+  of M⁻¹K, ω_i² = Σ k (1 + [other body free]) / m_i, and likewise the damping; for velocity Verlet with damping ratio ζ the limit is h < (2/ω)(√(1 + ζ²) − ζ)
+  (Belytschko, Liu & Moran, *Nonlinear Finite Elements for Continua and Structures*, §6.3);
+* friction: below the transition speed the friction force acts as a damper of slope
+  c = F·max dμ/du on the tangential effective mass m_t (translation plus rotation of the element
+  about its centre, 1/m_t = 1/m + r²/I), and an explicit damper needs h < 2 m_t / c;
+* bushings: as contacts, with their linear stiffness and damping.
+
+The smallest limit times ``safety`` is the automatic step; a larger requested step is refused with
+the contact that sets the limit. During the run a non-finite force, a penetration beyond a pair's
+bound or a kinetic-energy runaway stops the run with :class:`DivergenceError` naming the contact or
+body and the time; the record folder then says "failed" and holds only the samples before it.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kernels.explicit import kinetic_energy, record_now, run_explicit
+from ..kernels.forces import STATUS_ENERGY, STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION, compute_forces
+from ..kernels.laws import friction_coefficient
+from .model import Model, State, make_record_buffers, make_work
+from .recorder import RunRecord, read_run
+
+__all__ = ["StepLimit", "stable_timestep", "simulate", "SimulationError", "StepTooLargeError", "DivergenceError",
+           "evaluate_forces"]
+
+log = logging.getLogger(__name__)
+
+
+class SimulationError(RuntimeError):
+    """A run could not be done as asked."""
+
+
+class StepTooLargeError(SimulationError):
+    """The requested time step exceeds the explicit stability limit."""
+
+
+class DivergenceError(SimulationError):
+    """A run diverged; the message names the cause, the contact or body, and the time."""
+
+
+@dataclass(frozen=True)
+class StepLimit:
+    """Stable explicit step: ``timestep_s`` (= safety × limit) and what sets the limit."""
+
+    limit_s: float
+    timestep_s: float
+    reason: str
+
+
+def evaluate_forces(model: Model, state: State, work=None):
+    """Forces and contact outputs at a state (raises on a non-finite force); returns the work arrays."""
+    work = make_work(model) if work is None else work
+    status, index = compute_forces(model.arrays, state.t, state.q, state.v, work)
+    if status != STATUS_OK:
+        raise DivergenceError(_failure_text(model, status, index, state.t, work))
+    return work
+
+
+def _external_force_scale(model: Model) -> float:
+    a = model.arrays
+    free = a.body_free[:, :3].any(axis=1)
+    f = np.linalg.norm(a.body_force[:, :3], axis=1)[free]
+    scale = float(f.max()) if f.size else 0.0
+    if a.knot_coef.size:
+        scale = max(scale, float(np.abs(a.knot_coef[:, 3, :3]).max()) * math.sqrt(3))
+    return scale
+
+
+def _friction_slope(code: int, p: np.ndarray) -> float:
+    """max over slip speeds of dμ/du and μ/u; inf for laws with μ(0⁺) > 0 (no bounded slope)."""
+    u = np.geomspace(1e-9, 20.0, 1500)
+    mu = np.array([friction_coefficient(code, x, p[0], p[1], p[2], p[3]) for x in u])
+    if mu[0] > 1e-3 * max(mu.max(), 1e-300):
+        return math.inf
+    return float(max(np.max(mu / u), np.max(np.abs(np.diff(mu) / np.diff(u)))))
+
+
+def stable_timestep(model: Model, state: State, load_factor: float = 3.0, safety: float = 0.8) -> StepLimit:
+    """Stable explicit step for this model at this state (see the module docstring)."""
+    a = model.arrays
+    work = evaluate_forces(model, state)
+    free_t = a.body_free[:, :3].any(axis=1)
+    inv_m = np.where(free_t, 1.0 / a.body_mass, 0.0)
+    f_floor = _external_force_scale(model)
+    best = (math.inf, "no contact or bushing limits the step")
+    # contacts in parallel on one body add up (Gershgorin row sums of M⁻¹K and M⁻¹C)
+    k_sum = np.zeros(model.n_bodies)
+    c_sum = np.zeros(model.n_bodies)
+    stiffest = np.full(model.n_bodies, -1)
+    k_lin_of = np.zeros(model.n_pairs)
+    fric_cache: dict[tuple, float] = {}
+    for c in range(model.n_pairs):
+        ia, ib = a.pair_a[c], a.pair_b[c]
+        w_inv = inv_m[ia] + inv_m[ib]
+        if w_inv == 0.0:
+            continue
+        n_s = max(int(a.pair_slice_off[c + 1] - a.pair_slice_off[c]), 1)
+        k_total, n = a.pair_k[c] * n_s, a.pair_n[c]
+        f_ref = load_factor * max(work.contact_fn[c], f_floor, 1.0)
+        delta = (f_ref / k_total) ** (1.0 / n)
+        k_lin = n * f_ref / delta
+        k_lin_of[c] = k_lin
+        c_damp = a.pair_c[c] if a.pair_law[c] == 0 else a.pair_c[c] * f_ref
+        both = 2.0 if inv_m[ia] > 0.0 and inv_m[ib] > 0.0 else 1.0
+        for i in (ia, ib):
+            if inv_m[i] > 0.0:
+                k_sum[i] += k_lin * both * inv_m[i]
+                c_sum[i] += c_damp * both * inv_m[i]
+                if stiffest[i] < 0 or k_lin > k_lin_of[stiffest[i]]:
+                    stiffest[i] = c
+        if not np.any(a.pair_fric_p[c]):
+            continue
+        key = (int(a.pair_fric[c]), tuple(a.pair_fric_p[c]))
+        if key not in fric_cache:
+            fric_cache[key] = _friction_slope(key[0], a.pair_fric_p[c])
+        slope = fric_cache[key]
+        if not math.isfinite(slope):
+            continue
+        r = a.pair_radius[c]
+        inv_mt = inv_m[ia] + (r * r / a.body_inertia[ia].min() if a.body_free[ia, 3:].any() else 0.0) + inv_m[ib]
+        h_f = 2.0 / (inv_mt * slope * f_ref)
+        if h_f < best[0]:
+            best = (h_f, f"friction at contact {model.pair_names[c]!r} (slope dμ/du up to {slope:.3g} s/m at "
+                         f"{f_ref:.3g} N on a tangential effective mass {1.0 / inv_mt:.3g} kg)")
+    for i in np.flatnonzero(k_sum > 0):
+        omega = math.sqrt(k_sum[i])
+        zeta = c_sum[i] / (2.0 * omega)
+        h = 2.0 / omega * (math.sqrt(1.0 + zeta * zeta) - zeta)
+        if h < best[0]:
+            c = stiffest[i]
+            best = (h, f"the contacts of body {model.body_names[i]!r} (stiffest: {model.pair_names[c]!r}, "
+                       f"linearised stiffness {k_lin_of[c]:.3g} N/m at {load_factor:g}× its load; "
+                       f"body mass {a.body_mass[i]:.3g} kg, damping ratio {zeta:.2g})")
+    for j in range(a.bush_a.shape[0]):
+        w_inv = inv_m[a.bush_a[j]] + inv_m[a.bush_b[j]]
+        k = a.bush_k[j, :3].max()
+        if w_inv == 0.0 or k == 0.0:
+            continue
+        omega = math.sqrt(k * w_inv)
+        zeta = a.bush_c[j, :3].max() * math.sqrt(w_inv / k) / 2.0
+        h = 2.0 / omega * (math.sqrt(1.0 + zeta * zeta) - zeta)
+        if h < best[0]:
+            best = (h, f"bushing {j} (stiffness {k:.3g} N/m)")
+    return StepLimit(best[0], safety * best[0], best[1])
+
+
+def _failure_text(model: Model, status: int, index: int, t: float, work) -> str:
+    if status == STATUS_PENETRATION:
+        name = model.pair_names[index]
+        return (f"penetration {work.contact_delta[index]:.3g} m at contact {name!r} beyond its bound "
+                f"{model.arrays.pair_delta_max[index]:.3g} m at t = {t:.6g} s (time step too large for the "
+                f"contact stiffness, or a load the bearing cannot carry)")
+    if status == STATUS_NONFINITE:
+        if index < model.n_pairs:
+            return f"non-finite force at contact {model.pair_names[index]!r} at t = {t:.6g} s"
+        return f"non-finite force on body {model.body_names[index - model.n_pairs]!r} at t = {t:.6g} s"
+    if status == STATUS_ENERGY:
+        return f"kinetic energy ran away (beyond the limit) at t ≈ {t:.6g} s: the run is unstable"
+    return f"run failed with status {status} at t = {t:.6g} s"
+
+
+def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | None = None, record_every: int = 10,
+             folder=None, resume: bool = False, chunk_samples: int = 500, energy_limit_J: float | None = None,
+             allow_unstable: bool = False):
+    """Integrate with the explicit scheme from ``state`` to ``t_end_s``.
+
+    Parameters
+    ----------
+    model, state
+        The state is advanced in place.
+    timestep_s : float or None
+        None: the automatic stable step. A larger step than the stable limit is refused
+        (:class:`StepTooLargeError`) unless ``allow_unstable``.
+    record_every : int
+        Store one sample every this many steps (and the start).
+    folder : path or None
+        Write the record there in chunks, with a checkpoint after each (see :mod:`.recorder`);
+        None keeps the samples in memory only.
+    resume : bool
+        Continue the run recorded in ``folder`` from its checkpoint (``state`` is then ignored).
+
+    Returns
+    -------
+    dict of numpy arrays (see :func:`mbd_core.multibody.recorder.read_run`).
+    """
+    if not (math.isfinite(t_end_s) and t_end_s > state.t):
+        raise ValueError(f"simulate: t_end_s must be later than the state's time {state.t}, got {t_end_s!r}")
+    if not (isinstance(record_every, int) and record_every >= 1):
+        raise ValueError(f"simulate: record_every must be an integer ≥ 1, got {record_every!r}")
+    a = model.arrays
+    work = make_work(model)
+    if resume:
+        if folder is None:
+            raise ValueError("simulate: resume needs the record folder")
+        rec_file = RunRecord(folder, model, timestep_s, record_every, t_end_s, resume=True)
+        ck = rec_file.load_checkpoint()
+        t_origin, step = float(ck["t_origin"]), int(ck["step"])
+        state.q[:], state.v[:] = ck["q"], ck["v"]
+        work.body_f[:], work.body_t[:] = ck["body_f"], ck["body_t"]
+        for f in ("fn", "delta", "slip", "ft", "angle", "theta"):
+            getattr(work, f"contact_{f}")[:] = ck[f]
+        h = timestep_s
+        state.t = t_origin + step * h
+    else:
+        limit = stable_timestep(model, state)
+        h = limit.timestep_s if timestep_s is None else float(timestep_s)
+        if not (math.isfinite(h) and h > 0):
+            raise ValueError(f"simulate: timestep_s must be positive, got {timestep_s!r}")
+        if h > limit.limit_s and not allow_unstable:
+            raise StepTooLargeError(
+                f"time step {h:.3g} s exceeds the explicit stability limit {limit.limit_s:.3g} s set by "
+                f"{limit.reason}; use at most {limit.timestep_s:.3g} s")
+        log.info("explicit step %.3g s (limit %.3g s from %s)", h, limit.limit_s, limit.reason)
+        t_origin, step = float(state.t), 0
+        status, index = compute_forces(a, state.t, state.q, state.v, work)
+        if status != STATUS_OK:
+            raise DivergenceError(_failure_text(model, status, index, state.t, work))
+        rec_file = RunRecord(folder, model, h, record_every, t_end_s) if folder is not None else None
+    n_total = int(round((t_end_s - t_origin) / h))
+    e_limit = energy_limit_J if energy_limit_J is not None else 1e3 * max(kinetic_energy(a.body_mass, a.body_inertia, state.v), 10.0)
+    rec = make_record_buffers(model, chunk_samples)
+    in_memory: list[dict] = []
+
+    def store(k):
+        if k == 0:
+            return
+        if rec_file is not None:
+            rec_file.write_chunk(rec, k)
+        else:
+            in_memory.append({f: getattr(rec, f)[:k].copy() for f in rec._fields})
+
+    if step == 0:
+        record_now(a, state.q, state.v, work, state.t, 0, rec)
+        store(1)
+    while step < n_total:
+        n_run = min(chunk_samples * record_every, n_total - step)
+        status, index, done, k = run_explicit(a, state.q, state.v, work, t_origin, step, n_run, h, record_every,
+                                              rec, e_limit)
+        step += done
+        state.t = t_origin + step * h
+        store(k)
+        if status != STATUS_OK:
+            text = _failure_text(model, status, index, t_origin + (step + 1) * h, work)
+            if rec_file is not None:
+                rec_file.finish(f"failed: {text}")
+            raise DivergenceError(text)
+        if rec_file is not None:
+            rec_file.write_checkpoint(t_origin, step, state.q, state.v, work)
+    if rec_file is not None:
+        rec_file.finish("complete")
+        return read_run(folder)
+    out = {f: np.concatenate([c[f] for c in in_memory]) for f in rec._fields}
+    out.update(body_names=list(model.body_names), pair_names=list(model.pair_names),
+               pair_kinds=list(model.pair_kinds), status="complete", timestep_s=h, every=record_every)
+    return out

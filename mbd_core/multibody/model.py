@@ -1,0 +1,149 @@
+"""Frozen model, restartable state and preallocated work of a multibody bearing model.
+
+The model is a set of flat arrays (structure of arrays, DESIGN §5.1) grouped in one namedtuple so
+that the compiled kernels take it as a single argument; per-entity arrays are named
+``entity_property``. Shapes (n_b bodies, n_c contact pairs, n_g grooves, n_r raceway/rib surfaces,
+n_p cage pockets, n_u bushings, n_l load histories):
+
+Bodies
+    body_mass (n_b,) kg; body_inertia (n_b, 3) kg·m², principal, body frame;
+    body_free (n_b, 6) int64, 1 where the component of v is integrated (v_x, v_y, v_z world,
+    ω_x, ω_y, ω_z body), 0 where it is held at its prescribed value;
+    body_force (n_b, 6) N and N·m: constant world force and moment (gravity included).
+Load histories (cubic splines, :mod:`mbd_core.kernels.splines`)
+    load_body (n_l,), load_off (n_l + 1,), knot_t (n_k,) s, knot_coef (n_k, 4, 6).
+Bushings (:func:`mbd_core.kernels.forces._bushings`)
+    bush_a, bush_b (n_u,); bush_p_a, bush_p_b (n_u, 3) m in each body's frame; bush_q_ref (n_u, 4)
+    relative orientation q_a⁻¹ q_b at rest; bush_k (n_u, 6) N/m, N·m/rad; bush_c (n_u, 6).
+Contact pairs (body a: the rolling element; b: the ring, cage or other ball)
+    pair_type, pair_a, pair_b, pair_geom (index into the geometry of its type) (n_c,) int64;
+    pair_law (n_c,) int64, pair_k (n_c,) N/m^n (per slice for rollers), pair_n, pair_c N·s/m,
+    pair_dmax m; pair_fric (n_c,) int64, pair_fric_p (n_c, 4); pair_radius, pair_radius_b,
+    pair_length (n_c,) m; pair_aux (n_c, 2) (roller end: end sign, edge radius m);
+    pair_slice_off (n_c + 1,) into slice_drop (n_s,) m; pair_delta_max (n_c,) m (divergence bound).
+Grooves (ball–groove)
+    groove_rc, groove_zc, groove_r (n_g,) m; groove_h_off, groove_dr_off (n_g + 1,) into the
+    undulation h(θ) and radial offset Δr(θ) tables groove_h, groove_dr, m.
+Raceways and ribs of rollers: race_kind (n_r,) int64, race_value (n_r,) m.
+Cage pockets: pocket_kind (n_p,) int64, pocket_angle rad, pocket_r m, pocket_z m,
+    pocket_clearance m.
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+from dataclasses import dataclass, field
+
+import numpy as np
+
+MODEL_FIELDS = (
+    "body_mass body_inertia body_free body_force "
+    "load_body load_off knot_t knot_coef "
+    "bush_a bush_b bush_p_a bush_p_b bush_q_ref bush_k bush_c "
+    "pair_type pair_a pair_b pair_geom pair_law pair_k pair_n pair_c pair_dmax pair_fric pair_fric_p "
+    "pair_radius pair_radius_b pair_length pair_aux pair_slice_off slice_drop pair_delta_max "
+    "groove_rc groove_zc groove_r groove_h_off groove_h groove_dr_off groove_dr "
+    "race_kind race_value "
+    "pocket_kind pocket_angle pocket_r pocket_z pocket_clearance"
+)
+ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
+
+#: Scratch arrays of one force evaluation. body_f/body_t (n_b, 3) world force N / moment N·m;
+#: contact_* (n_c,) outputs: fn N (sum over slices/points), delta m (largest), slip m/s (at the
+#: most loaded point), ft N (sum of friction magnitudes), angle rad (atan2(n_axial, n_radial) of
+#: the normal in the ring's frame), theta rad (ball angle on its groove); energy (2,) J: contact
+#: and bushing potential; type_count (5,) the number of pairs of each kind; the rest is scratch.
+WorkArrays = namedtuple(
+    "WorkArrays",
+    "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta energy "
+    "load pi center axis point slice_delta slice_point slice_normal type_count",
+)
+
+#: Buffers for k samples: t (k,), q (k, n_b, 7), v (k, n_b, 6), contact outputs (k, n_c).
+RecordBuffers = namedtuple("RecordBuffers", "t q v fn delta slip ft angle theta")
+RECORDED_CONTACT_FIELDS = ("fn", "delta", "slip", "ft", "angle", "theta")
+
+
+@dataclass(frozen=True)
+class Model:
+    """A finalized multibody model: flat arrays plus the names that make results readable.
+
+    Build it with :class:`mbd_core.multibody.ModelBuilder`; it does not change afterwards.
+
+    Attributes
+    ----------
+    arrays : ModelArrays
+        Everything the kernels need (see the module docstring).
+    body_names, pair_names : tuple of str
+    pair_kinds : tuple of str
+        "ball_groove", "ball_ball", "roller_raceway", "roller_rib" or "element_pocket".
+    gravity_m_s2 : (3,) float
+    """
+
+    arrays: ModelArrays
+    body_names: tuple[str, ...]
+    pair_names: tuple[str, ...]
+    pair_kinds: tuple[str, ...]
+    gravity_m_s2: np.ndarray = field(default_factory=lambda: np.zeros(3))
+
+    @property
+    def n_bodies(self) -> int:
+        return len(self.body_names)
+
+    @property
+    def n_pairs(self) -> int:
+        return len(self.pair_names)
+
+    def body(self, name: str) -> int:
+        """Index of the body called ``name``."""
+        try:
+            return self.body_names.index(name)
+        except ValueError:
+            raise KeyError(f"no body named {name!r}") from None
+
+    def pairs_of(self, kind: str) -> np.ndarray:
+        """Indices of the contact pairs of one kind."""
+        return np.array([i for i, k in enumerate(self.pair_kinds) if k == kind], dtype=np.int64)
+
+    def free_mask(self) -> np.ndarray:
+        """(n_b, 6) bool: integrated velocity components."""
+        return self.arrays.body_free.astype(bool)
+
+
+@dataclass
+class State:
+    """Restartable state: time t (s), q (n_b, 7) positions m and quaternions, v (n_b, 6) m/s, rad/s."""
+
+    t: float
+    q: np.ndarray
+    v: np.ndarray
+
+    def copy(self) -> "State":
+        return State(float(self.t), self.q.copy(), self.v.copy())
+
+
+def make_work(model: Model) -> WorkArrays:
+    """Preallocate the scratch arrays of one force evaluation."""
+    a = model.arrays
+    nb, nc = model.n_bodies, model.n_pairs
+    ns = int(np.max(np.diff(a.pair_slice_off))) if nc else 0
+    ns = max(ns, 1)
+    return WorkArrays(
+        body_f=np.zeros((nb, 3)), body_t=np.zeros((nb, 3)),
+        contact_fn=np.zeros(nc), contact_delta=np.zeros(nc), contact_slip=np.zeros(nc),
+        contact_ft=np.zeros(nc), contact_angle=np.zeros(nc), contact_theta=np.zeros(nc),
+        energy=np.zeros(2), load=np.zeros(6), pi=np.zeros(3), center=np.zeros(3), axis=np.zeros(3),
+        point=np.zeros(3), slice_delta=np.zeros(ns), slice_point=np.zeros((ns, 3)),
+        slice_normal=np.zeros((ns, 3)),
+        type_count=np.bincount(a.pair_type, minlength=5).astype(np.int64),
+    )
+
+
+def make_record_buffers(model: Model, n_samples: int) -> RecordBuffers:
+    """Buffers for ``n_samples`` recorded samples."""
+    nb, nc = model.n_bodies, model.n_pairs
+    k = max(int(n_samples), 1)
+    return RecordBuffers(
+        t=np.zeros(k), q=np.zeros((k, nb, 7)), v=np.zeros((k, nb, 6)),
+        **{name: np.zeros((k, nc)) for name in RECORDED_CONTACT_FIELDS},
+    )

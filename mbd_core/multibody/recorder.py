@@ -1,0 +1,124 @@
+"""Chunked on-disk record of a run, its checkpoint, and the reader.
+
+Layout of a run folder (one place, DESIGN §5.5)::
+
+    layout.json         names, shapes, units, time step, decimation, status ("running",
+                        "complete" or "failed: <reason>"), number of chunks
+    chunk_000000.npz    one chunk of samples, each array with the sample axis first:
+                        t (k,) s; q (k, n_b, 7) positions m + quaternions (w, x, y, z);
+                        v (k, n_b, 6) velocity m/s (world) + angular velocity rad/s (body);
+                        fn, delta, slip, ft, angle, theta (k, n_c): normal force N, penetration m,
+                        slip speed m/s, friction force N, contact angle rad, ball angle on its
+                        groove rad (0 for other contacts)
+    checkpoint.npz      the integrator state after the last chunk: t_origin, step, q, v, body_f,
+                        body_t, the contact outputs and n_chunks, from which a run resumes bit
+                        for bit
+
+Chunks and the checkpoint are written atomically (temporary file, then rename), so an interrupted
+run leaves complete chunks only; ``layout.json`` says whether the run finished.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+
+from .model import RECORDED_CONTACT_FIELDS, Model
+
+__all__ = ["RunRecord", "read_run", "FORMAT_VERSION"]
+
+FORMAT_VERSION = 1
+UNITS = {"t": "s", "q": "m | quaternion", "v": "m/s | rad/s (body)", "fn": "N", "delta": "m", "slip": "m/s",
+         "ft": "N", "angle": "rad", "theta": "rad"}
+
+
+def _atomic_save(path: Path, **arrays) -> None:
+    tmp = path.with_name(path.name + ".tmp.npz")
+    np.savez(tmp, **arrays)
+    os.replace(tmp, path)
+
+
+def _atomic_json(path: Path, data: dict) -> None:
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps(data, indent=1))
+    os.replace(tmp, path)
+
+
+class RunRecord:
+    """Writer of one run folder (see the module docstring)."""
+
+    def __init__(self, folder, model: Model, timestep_s: float, every: int, t_end_s: float, resume: bool = False):
+        self.folder = Path(folder)
+        self.folder.mkdir(parents=True, exist_ok=True)
+        self.layout_path = self.folder / "layout.json"
+        if resume:
+            layout = json.loads(self.layout_path.read_text())
+            if layout["body_names"] != list(model.body_names) or layout["pair_names"] != list(model.pair_names):
+                raise ValueError(f"{self.folder}: the record was written by a different model")
+            if layout["timestep_s"] != timestep_s or layout["every"] != every:
+                raise ValueError(f"{self.folder}: resume needs the same time step and decimation as the record")
+            self.layout = layout
+        else:
+            for old in self.folder.glob("chunk_*.npz"):
+                old.unlink()
+            (self.folder / "checkpoint.npz").unlink(missing_ok=True)
+            self.layout = {
+                "format_version": FORMAT_VERSION, "body_names": list(model.body_names),
+                "pair_names": list(model.pair_names), "pair_kinds": list(model.pair_kinds),
+                "timestep_s": timestep_s, "every": every, "t_end_s": t_end_s, "n_chunks": 0,
+                "status": "running", "units": UNITS,
+            }
+        self.layout["t_end_s"] = t_end_s
+        self.layout["status"] = "running"
+        _atomic_json(self.layout_path, self.layout)
+
+    def write_chunk(self, rec, k: int) -> None:
+        """Store the first k samples of the buffers as the next chunk."""
+        if k > 0:
+            n = self.layout["n_chunks"]
+            _atomic_save(self.folder / f"chunk_{n:06d}.npz", **{f: getattr(rec, f)[:k] for f in rec._fields})
+            self.layout["n_chunks"] = n + 1
+
+    def write_checkpoint(self, t_origin: float, step: int, q, v, work) -> None:
+        _atomic_save(self.folder / "checkpoint.npz", t_origin=t_origin, step=step, q=q, v=v,
+                     n_chunks=self.layout["n_chunks"],
+                     body_f=work.body_f, body_t=work.body_t,
+                     **{f: getattr(work, f"contact_{f}") for f in RECORDED_CONTACT_FIELDS})
+        _atomic_json(self.layout_path, self.layout)
+
+    def finish(self, status: str) -> None:
+        self.layout["status"] = status
+        _atomic_json(self.layout_path, self.layout)
+
+    def load_checkpoint(self):
+        path = self.folder / "checkpoint.npz"
+        if not path.exists():
+            raise FileNotFoundError(f"{self.folder}: no checkpoint to resume from")
+        with np.load(path) as d:
+            ck = {k: d[k] for k in d.files}
+        self.layout["n_chunks"] = int(ck["n_chunks"])  # chunks written after the checkpoint are dropped
+        return ck
+
+
+def read_run(folder) -> dict:
+    """Read a run folder: a dict of the concatenated arrays (see the module docstring) plus
+    ``body_names``, ``pair_names``, ``pair_kinds``, ``status``, ``timestep_s`` and ``every``."""
+    folder = Path(folder)
+    layout_path = folder / "layout.json"
+    if not layout_path.exists():
+        raise FileNotFoundError(f"{folder}: not a run record (no layout.json)")
+    layout = json.loads(layout_path.read_text())
+    if layout.get("format_version") != FORMAT_VERSION:
+        raise ValueError(f"{folder}: record format {layout.get('format_version')} is not {FORMAT_VERSION}")
+    parts: dict[str, list] = {}
+    for n in range(layout["n_chunks"]):
+        with np.load(folder / f"chunk_{n:06d}.npz") as d:
+            for k in d.files:
+                parts.setdefault(k, []).append(d[k])
+    out = {k: np.concatenate(v) for k, v in parts.items()}
+    for key in ("body_names", "pair_names", "pair_kinds", "status", "timestep_s", "every"):
+        out[key] = layout[key]
+    return out

@@ -1,0 +1,140 @@
+"""Static equilibrium of a multibody model: a start without start-up shock (DESIGN §5.4).
+
+Unknowns are the free translations of every body and the free rotations (small rotation vector,
+body frame) of the bodies that are not spheres (a ball's orientation carries no static stiffness
+without friction). The residual is the force and moment on each body from
+:func:`mbd_core.kernels.forces.compute_forces` at zero velocity (no damping, no friction); the
+returned state has the new positions and the velocities of the given state (set rolling
+velocities there, e.g. with :func:`mbd_core.multibody.bearings.set_rolling_velocities`). Neutral directions — a ball's place along its groove when there is no
+cage, a ring's spin — are handled by the Levenberg–Marquardt damping of
+``scipy.optimize.least_squares``, which leaves them where they are.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from ..kernels.forces import STATUS_OK, compute_forces
+from .explicit import DivergenceError, _failure_text
+from .model import Model, State, make_work
+
+__all__ = ["StaticResult", "static_equilibrium"]
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class StaticResult:
+    """Equilibrium state and how well it holds.
+
+    ``force_residual_N`` is the largest force left on a free component, ``moment_residual_Nm``
+    the largest moment; ``force_scale_N`` the largest external force (the residual's yardstick).
+    """
+
+    state: State
+    force_residual_N: float
+    moment_residual_Nm: float
+    force_scale_N: float
+    n_evaluations: int
+
+
+def _spherical(inertia: np.ndarray) -> bool:
+    return float(np.ptp(inertia)) <= 1e-9 * float(np.max(inertia))
+
+
+def _rotate_quat(q: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """q ⊗ exp(φ/2) for a body-frame rotation vector φ."""
+    angle = float(np.linalg.norm(phi))
+    if angle == 0.0:
+        return q.copy()
+    e = np.concatenate([[math.cos(angle / 2)], math.sin(angle / 2) * phi / angle])
+    w1, v1, w2, v2 = q[0], q[1:], e[0], e[1:]
+    out = np.concatenate([[w1 * w2 - v1 @ v2], w1 * v2 + w2 * v1 + np.cross(v1, v2)])
+    return out / np.linalg.norm(out)
+
+
+def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evaluations: int = 2000) -> StaticResult:
+    """Find the equilibrium closest to ``state`` (returns a new state; ``state`` is unchanged).
+
+    Raises :class:`~mbd_core.multibody.explicit.DivergenceError` if forces become non-finite and
+    ``RuntimeError`` if no equilibrium is found (the residual stays above 1e-6 of the load scale).
+    """
+    # trial points of the solver may penetrate deeply: no divergence bound here
+    a = model.arrays._replace(pair_delta_max=np.full(model.n_pairs, np.inf))
+    free = a.body_free.astype(bool)
+    unknowns = []  # (body, component 0..5)
+    for i in range(model.n_bodies):
+        for j in range(3):
+            if free[i, j]:
+                unknowns.append((i, j))
+        if not _spherical(a.body_inertia[i]):
+            for j in range(3, 6):
+                if free[i, j]:
+                    unknowns.append((i, j))
+    body_idx = np.array([u[0] for u in unknowns], dtype=int)
+    comp_idx = np.array([u[1] for u in unknowns], dtype=int)
+    work = make_work(model)
+    base = state.copy()
+    base.v[:] = 0.0
+    force_scale = max(float(np.abs(a.body_force[free[:, :3].any(axis=1), :3]).max(initial=0.0)), 1.0)
+    lengths = [r for r in a.pair_radius if r > 0]
+    length_scale = max(lengths) if lengths else 1.0
+    trial = base.copy()
+    count = [0]
+
+    def place(x):
+        trial.q[:] = base.q
+        for i in np.unique(body_idx):
+            sel = body_idx == i
+            comps, vals = comp_idx[sel], x[sel]
+            trial.q[i, :3] += np.bincount(comps[comps < 3], vals[comps < 3], minlength=3)[:3]
+            rot = np.zeros(3)
+            rot[comps[comps >= 3] - 3] = vals[comps >= 3]
+            if rot.any():
+                trial.q[i, 3:] = _rotate_quat(base.q[i, 3:], rot)
+
+    def residual(x):
+        place(x)
+        count[0] += 1
+        status, index = compute_forces(a, trial.t, trial.q, trial.v, work)
+        if status != STATUS_OK:
+            raise DivergenceError("static equilibrium: " + _failure_text(model, status, index, trial.t, work))
+        r = np.empty(len(unknowns))
+        for n, (i, j) in enumerate(unknowns):
+            if j < 3:
+                r[n] = work.body_f[i, j] / force_scale
+            else:
+                q = trial.q[i, 3:]
+                tb = _rotate_back_vec(q, work.body_t[i])
+                r[n] = tb[j - 3] / (force_scale * length_scale)
+        return r
+
+    if not unknowns:
+        return StaticResult(base, 0.0, 0.0, force_scale, 0)
+    x_scale = np.where(comp_idx < 3, 1e-4, 1e-4 / length_scale)
+    sol = least_squares(residual, np.zeros(len(unknowns)), method="lm", x_scale=x_scale, xtol=tol, ftol=tol,
+                        gtol=tol, max_nfev=max_evaluations)
+    place(sol.x)
+    r = residual(sol.x)
+    f_res = float(np.abs(r[comp_idx < 3]).max(initial=0.0)) * force_scale
+    m_res = float(np.abs(r[comp_idx >= 3]).max(initial=0.0)) * force_scale * length_scale
+    if max(f_res, m_res / length_scale) > 1e-6 * force_scale:
+        raise RuntimeError(
+            f"static equilibrium not found: residual force {f_res:.3g} N, moment {m_res:.3g} N·m "
+            f"(load scale {force_scale:.3g} N) after {count[0]} evaluations — can the bearing carry the load?")
+    result = trial.copy()
+    result.v[:] = state.v
+    log.info("static equilibrium: residual %.3g N, %.3g N·m after %d evaluations", f_res, m_res, count[0])
+    return StaticResult(result, f_res, m_res, force_scale, count[0])
+
+
+def _rotate_back_vec(q: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """R(q)ᵀ x."""
+    w, v = q[0], -q[1:]
+    t = 2.0 * np.cross(v, x)
+    return x + w * t + np.cross(v, t)
