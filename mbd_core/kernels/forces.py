@@ -17,7 +17,7 @@ F_n m + F_t at p, body b the opposite. Results: ``w.body_f`` (n_b, 3) N and ``w.
 (world frame, about the body's reference point = centre of mass) and the per-contact outputs.
 
 Returns (status, index): 0 ok; ``STATUS_NONFINITE`` (non-finite force at contact ``index``, or at
-body ``index`` when ``index`` ≥ n_contacts… see :mod:`mbd_core.multibody.errors`);
+body ``index`` − n_contacts when ``index`` ≥ n_contacts; messages in :mod:`mbd_core.multibody.explicit`);
 ``STATUS_PENETRATION`` (penetration beyond the pair's bound at contact ``index``).
 """
 
@@ -321,7 +321,8 @@ def _external_loads(m, q, w, t):
 @njit(cache=True)
 def _small_rotation(qa, qb, qr):
     """Rotation vector (≈ small angles, rad) of q_a⁻¹ q_b relative to the reference q_r, in a's frame."""
-    # e = q_r⁻¹ (q_a⁻¹ q_b); small angles: rotation vector ≈ 2 e_vec sign(e_w)
+    # e = (q_a⁻¹ q_b) q_r⁻¹ = q_a⁻¹ (q_b q_b,rest⁻¹) q_a: b's turn from its rest pose q_a q_r, in a's axes
+    # (q_r⁻¹ (q_a⁻¹ q_b) would give it in b's axes). Small angles: rotation vector ≈ 2 e_vec sign(e_w)
     aw, ax, ay, az = qa[0], -qa[1], -qa[2], -qa[3]
     bw, bx, by, bz = qb[0], qb[1], qb[2], qb[3]
     dw = aw * bw - ax * bx - ay * by - az * bz
@@ -329,10 +330,10 @@ def _small_rotation(qa, qb, qr):
     dy = aw * by - ax * bz + ay * bw + az * bx
     dz = aw * bz + ax * by - ay * bx + az * bw
     rw, rx, ry, rz = qr[0], -qr[1], -qr[2], -qr[3]
-    ew = rw * dw - rx * dx - ry * dy - rz * dz
-    ex = rw * dx + rx * dw + ry * dz - rz * dy
-    ey = rw * dy - rx * dz + ry * dw + rz * dx
-    ez = rw * dz + rx * dy - ry * dx + rz * dw
+    ew = dw * rw - dx * rx - dy * ry - dz * rz
+    ex = dw * rx + dx * rw + dy * rz - dz * ry
+    ey = dw * ry - dx * rz + dy * rw + dz * rx
+    ez = dw * rz + dx * ry - dy * rx + dz * rw
     s = 2.0 if ew >= 0.0 else -2.0
     return s * ex, s * ey, s * ez
 

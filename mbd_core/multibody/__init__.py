@@ -7,12 +7,13 @@ Assemblers of whole bearings with Hertz-derived contact laws are in :mod:`.beari
 """
 
 from .builder import ContactLaw, Driven, Fixed, Free, ModelBuilder, quat_from_axis_angle, quat_z_to
+from .implicit import simulate_implicit
 from .explicit import DivergenceError, SimulationError, StepTooLargeError, evaluate_forces, simulate, stable_timestep
 from .model import Model, State
 from .recorder import read_run
 
 __all__ = [
     "ModelBuilder", "ContactLaw", "Free", "Fixed", "Driven", "quat_from_axis_angle", "quat_z_to",
-    "Model", "State", "simulate", "stable_timestep", "evaluate_forces", "read_run",
+    "Model", "State", "simulate", "simulate_implicit", "stable_timestep", "evaluate_forces", "read_run",
     "SimulationError", "StepTooLargeError", "DivergenceError",
 ]

@@ -8,8 +8,11 @@ unloaded geometric positions with the clearance split equally between the two ra
 
 Ball rows: with u the unit vector from the ball centre to the moving ring's contact point at the
 nominal angle α0, u = (∓cos α0 (inner/outer moving raceway), −s sin α0) in (radial, axial) with s
-the row's axial sign, the moving groove's curvature centre lies at x − (f_m D − D/2 + g/2) u and
-the fixed one at x + (f_f D − D/2 + g/2) u (Harris & Kotzalas, *Essential Concepts*, ch. 2).
+the row's axial sign, the moving groove's curvature centre lies at x − (f_m D − D/2) u and the
+fixed one at x + (f_f D − D/2) u (Harris & Kotzalas, *Essential Concepts*, ch. 2). The free play g
+along the contact line is taken as in the quasi-static solver: the curvature centres stay A =
+(f_m + f_f − 1) D apart and the ball touches both grooves when they are A + g apart (each
+groove's touching distance grows by g/2), so a loaded contact angle differs from α0 with play.
 Each contact gets its own Hertz constant (exact elliptic integrals, :func:`ball_on_groove`).
 
 Roller rows: the moving raceway is the inner cylinder (radial row, load sign +1) or the plane below
@@ -82,8 +85,8 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
     s_rad = -1.0 if row.moving_raceway == "inner" else 1.0
     u = np.array([s_rad * math.cos(a0), -row.axial_sign * math.sin(a0)])
     g2 = row.gap_m / 2
-    c_m = np.array([R, row.axial_position_m]) - (row.conformity_moving * D - D / 2 + g2) * u
-    c_f = np.array([R, row.axial_position_m]) + (row.conformity_fixed * D - D / 2 + g2) * u
+    c_m = np.array([R, row.axial_position_m]) - (row.conformity_moving * D - D / 2) * u
+    c_f = np.array([R, row.axial_position_m]) + (row.conformity_fixed * D - D / 2) * u
     fixed_raceway = "outer" if row.moving_raceway == "inner" else "inner"
     if row.stiffness_N_per_m1p5 is not None:
         k_m = k_f = row.stiffness_N_per_m1p5 * 2.0**1.5  # two equal contacts in series give K back
@@ -92,8 +95,8 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
                              row.ball_material, row.race_material).stiffness_N_per_m1p5
         k_f = ball_on_groove(D, row.conformity_fixed, row.pitch_diameter_m, a0, fixed_raceway,
                              row.ball_material, row.race_material).stiffness_N_per_m1p5
-    g_m = builder.add_groove(moving_ring, c_m[0], c_m[1], row.conformity_moving * D)
-    g_f = builder.add_groove(fixed_ring, c_f[0], c_f[1], row.conformity_fixed * D)
+    g_m = builder.add_groove(moving_ring, c_m[0], c_m[1], row.conformity_moving * D + g2)
+    g_f = builder.add_groove(fixed_ring, c_f[0], c_f[1], row.conformity_fixed * D + g2)
     law_m = _law(k_m, 1.5, damping_N_s_m, d_max_m, friction)
     law_f = _law(k_f, 1.5, damping_N_s_m, d_max_m, friction)
     mass = ball_mass_kg(D, row.ball_material.density_kg_m3)

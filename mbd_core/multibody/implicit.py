@@ -23,8 +23,9 @@ f(t_0, q_0, v_0). Held components (``body_free`` = 0) keep their velocity: v̇ =
 
 The unknowns v̇_{n+1} of the free components solve the residual v̇ − f = 0 by modified Newton: a
 forward-difference Jacobian (dense, LU-factorised) is kept from step to step and recomputed at
-the current iterate when the corrections shrink by less than half per iteration or a trial state
-fails; the predictor is v̇_{n+1} = v̇_n. With h² β' = h² β (1 − α_f)/(1 − α_m) the change of
+the current iterate when a correction is more than 1 % of the one before (the contraction test of
+Hairer & Wanner's RADAU5, *Solving ODEs II*, §IV.8) or a trial state fails; the predictor is
+v̇_{n+1} = v̇_n. With h² β' = h² β (1 − α_f)/(1 − α_m) the change of
 q_{n+1} per unit change of v̇_{n+1}, an iterate x is accepted when every component of its Newton
 correction is below ``tol`` × max(‖x‖∞, ‖v̇_n‖∞, 1 m/s² or rad/s²) or moves the configuration by
 less than four units of round-off, 4 ε |q_k| / (h² β') (|q_k| the body's distance from the origin
@@ -44,7 +45,7 @@ import numpy as np
 from scipy.linalg import lu_factor, lu_solve
 
 from ..kernels.explicit import record_now
-from ..kernels.forces import STATUS_NONFINITE, STATUS_OK
+from ..kernels.forces import STATUS_OK
 from ..kernels.implicit import accelerations, fd_jacobian, residual
 from .explicit import DivergenceError, _failure_text
 from .model import Model, State, make_record_buffers, make_work
@@ -64,7 +65,7 @@ StepArrays = namedtuple("StepArrays", "free_idx q0 v0 vd0 a0 vd1 a1 dq q1 v1 f1 
 
 CONFIG_STEP_REF = 1e-9   # m or rad: smallest configuration change of a Jacobian difference
 ACC_FLOOR = 1.0          # m/s², rad/s²: absolute floor of the Newton tolerance scale
-SLOW_RATE = 0.5          # contraction per iteration above which the Jacobian is recomputed
+SLOW_RATE = 0.01         # contraction per iteration above which the Jacobian is recomputed
 ROUNDOFF_ULPS = 4.0      # configuration round-off units below which a correction is noise
 
 
@@ -82,7 +83,7 @@ def _make_step_arrays(model: Model, state: State) -> StepArrays:
     nb = model.n_bodies
     free_idx = np.flatnonzero(model.arrays.body_free.reshape(-1)).astype(np.int64)
     z = lambda: np.zeros((nb, 6))  # noqa: E731
-    return StepArrays(free_idx=free_idx, q0=state.q.astype(float).copy(), v0=state.v.astype(float).copy(),
+    return StepArrays(free_idx=free_idx, q0=np.array(state.q, dtype=float), v0=np.array(state.v, dtype=float),
                       vd0=z(), a0=z(), vd1=z(), a1=z(), dq=z(), q1=np.zeros((nb, 7)), v1=z(), f1=z(),
                       res=np.zeros(free_idx.size), res_p=np.zeros(free_idx.size))
 
@@ -117,7 +118,7 @@ def _refactor(model, t1, h, c, s, work, x, mat: _IterationMatrix) -> None:
     if status != STATUS_OK:
         raise DivergenceError(_failure_text(model, status, index, t1, work))
     if not np.all(np.isfinite(jac)):
-        raise DivergenceError(_failure_text(model, STATUS_NONFINITE, model.n_pairs, t1, work))
+        raise DivergenceError(f"non-finite Jacobian of the generalized-α residual at t = {t1:.6g} s")
     mat.lu = lu_factor(jac, check_finite=False)
     mat.n_jacobians += 1
 
@@ -137,9 +138,8 @@ def _solve_step(model, t1, h, c, s, work, mat: _IterationMatrix, tol, max_iter) 
         ok = status == STATUS_OK and np.all(np.isfinite(s.res))
         if not ok:
             if fresh_step:
-                if status == STATUS_OK:
-                    status, index = STATUS_NONFINITE, model.n_pairs
-                raise DivergenceError(_failure_text(model, status, index, t1, work))
+                raise DivergenceError(_failure_text(model, status, index, t1, work) if status != STATUS_OK else
+                                      f"non-finite accelerations in the Newton iteration at t = {t1:.6g} s")
             x[:] = x0   # a stale matrix led astray: restart from the predictor with a new one
             _refactor(model, t1, h, c, s, work, x, mat)
             fresh_here = fresh_step = True
@@ -211,7 +211,7 @@ def simulate_implicit(model: Model, state: State, t_end_s: float, timestep_s: fl
     work = make_work(model)
     s = _make_step_arrays(model, state)
     t0 = float(state.t)
-    n_total = max(int(round((t_end_s - t0) / h)), 1)
+    n_total = int(round((t_end_s - t0) / h))
     status, index = accelerations(a, t0, s.q0, s.v0, work, s.vd0)
     if status != STATUS_OK:
         raise DivergenceError(_failure_text(model, status, index, t0, work))

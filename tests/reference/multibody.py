@@ -24,7 +24,10 @@ INNER_CYLINDER, OUTER_CYLINDER, PLANE_UP, PLANE_DOWN = range(4)
 POCKET_CYLINDER, POCKET_SLOT = range(2)
 PARALLEL_TOL = 1e-12  # |projection of d normal to the axis| below which the roller end is parallel to the rib
 
-Forces = namedtuple("Forces", "body_f body_t fn delta slip ft angle theta energy_contact energy_bushing")
+#: body_f_scale, body_t_scale (n_b,): Σ of the magnitudes of the terms summed into each body's force and
+#: moment (|F|, |p − r| |F|, |M|), the scale of their round-off.
+Forces = namedtuple("Forces", "body_f body_t fn delta slip ft angle theta energy_contact energy_bushing "
+                              "body_f_scale body_t_scale")
 
 
 # -- rotations ---------------------------------------------------------------------------------
@@ -78,7 +81,7 @@ def ball_ball(xa, xb, ra, rb):
     return ra + rb - dist, m, xa - ra * m
 
 
-def _into_surface(kind, x):
+def into_surface(kind, x):
     """Unit direction into a surface of the roller_slices kinds at point x."""
     if kind in (INNER_CYLINDER, OUTER_CYLINDER):
         e_r = np.array([x[0], x[1], 0.0]) / np.hypot(x[0], x[1])
@@ -100,10 +103,10 @@ def roller_end(center, axis, radius, length, end_sign, edge_radius, kind, value)
     """
     axis = np.asarray(axis, float)
     e = np.asarray(center, float) + end_sign * (0.5 * length - edge_radius) * axis
-    d = _into_surface(kind, e)
-    u = d - (d @ axis) * axis
+    d = into_surface(kind, e)
+    u = np.cross(axis, np.cross(d, axis))      # d without its axial part, ⟂ a to round-off even when |u| ≪ 1
     tube = e + (radius - edge_radius) * u / np.linalg.norm(u) if np.linalg.norm(u) > PARALLEL_TOL else e
-    d = _into_surface(kind, tube)
+    d = into_surface(kind, tube)
     p = tube + edge_radius * d
     return _depth(kind, value, p), -d, p
 
@@ -151,13 +154,27 @@ def _stored_spline(m, l, t):
 
 # -- force stage --------------------------------------------------------------------------------
 class _Bodies:
-    """Poses and velocities of all bodies as matrices and world vectors."""
+    """Poses and velocities of all bodies as matrices and world vectors; accumulated forces and moments."""
 
     def __init__(self, q, v):
         self.r = q[:, :3]
         self.R = matrix(q[:, 3:])
         self.v = v[:, :3]
         self.omega = np.einsum("nij,nj->ni", self.R, v[:, 3:])   # world angular velocities
+        n = len(q)
+        self.f, self.t = np.zeros((n, 3)), np.zeros((n, 3))
+        self.f_scale, self.t_scale = np.zeros(n), np.zeros(n)
+
+    def add(self, i, force, p):
+        """Force (world) applied at world point p to body i."""
+        self.f[i] += force
+        self.t[i] += np.cross(p - self.r[i], force)
+        self.f_scale[i] += np.linalg.norm(force)
+        self.t_scale[i] += np.linalg.norm(p - self.r[i]) * np.linalg.norm(force)
+
+    def add_moment(self, i, moment):
+        self.t[i] += moment
+        self.t_scale[i] += np.linalg.norm(moment)
 
     def velocity(self, i, p):
         return self.v[i] + np.cross(self.omega[i], p - self.r[i])
@@ -187,10 +204,15 @@ def contact_point_force(m, bodies, c, delta, normal, p):
     return fn, slip, mu * fn, k * delta ** (n + 1) / (n + 1), fn * normal + f_t
 
 
+def contact_force(m, q, v, c, delta, normal, p):
+    """One contact point of pair c at state (q, v): (F_n, |v_t|, |F_t|, energy, force (3,) on body a)."""
+    return contact_point_force(m, _Bodies(q, v), c, delta, np.asarray(normal, float), np.asarray(p, float))
+
+
 def _angle_in_ring(R_b, r_b, normal, p):
-    """atan2(n_axial, n_radial) of a world normal at world point p, in the ring's cylindrical frame."""
+    """Contact angle atan2(|n_axial|, |n_radial|) of a world normal at world point p, in the ring's frame."""
     n_l, p_l = R_b.T @ normal, R_b.T @ (p - r_b)
-    return np.arctan2(n_l[2], n_l[:2] @ p_l[:2] / np.hypot(p_l[0], p_l[1]))
+    return np.arctan2(abs(n_l[2]), abs(n_l[:2] @ p_l[:2]) / np.hypot(p_l[0], p_l[1]))
 
 
 def _points_ball_groove(m, bodies, c):
@@ -203,7 +225,7 @@ def _points_ball_groove(m, bodies, c):
     n_w = bodies.R[b] @ n[0]
     # force on the ball towards the curvature centre; contact on the ball's far side from it
     point = (delta[0], -n_w, bodies.r[a] + ra * n_w)
-    angle = np.arctan2(n[0, 2], n[0, 0] * np.cos(th[0]) + n[0, 1] * np.sin(th[0]))
+    angle = np.arctan2(abs(n[0, 2]), abs(n[0, 0] * np.cos(th[0]) + n[0, 1] * np.sin(th[0])))
     return [point], angle, th[0]
 
 
@@ -248,12 +270,7 @@ POINTS = {BALL_GROOVE: _points_ball_groove, BALL_BALL: _points_ball_ball, ROLLER
           ROLLER_RIB: _points_roller_rib, ELEMENT_POCKET: _points_element_pocket}
 
 
-def _apply(body_f, body_t, bodies, i, force, p):
-    body_f[i] += force
-    body_t[i] += np.cross(p - bodies.r[i], force)
-
-
-def _bushings(m, q, bodies, body_f, body_t):
+def _bushings(m, q, bodies):
     """Diagonal stiffness and damping in body a's frame on the deflection of b relative to a; returns the energy."""
     energy = 0.0
     for j in range(len(m.bush_a)):
@@ -267,10 +284,10 @@ def _bushings(m, q, bodies, body_f, body_t):
         k, damp = m.bush_k[j], m.bush_c[j]
         force = Ra @ (-k[:3] * disp - damp[:3] * rate)          # on b, at p_b; a gets the reaction there
         torque = Ra @ (-k[3:] * rot - damp[3:] * spin_rate)
-        _apply(body_f, body_t, bodies, b, force, pb)
-        _apply(body_f, body_t, bodies, a, -force, pb)
-        body_t[b] += torque
-        body_t[a] -= torque
+        bodies.add(b, force, pb)
+        bodies.add(a, -force, pb)
+        bodies.add_moment(b, torque)
+        bodies.add_moment(a, -torque)
         energy += 0.5 * (k[:3] @ disp**2 + k[3:] @ rot**2)
     return energy
 
@@ -284,12 +301,12 @@ def compute_forces(m, t, q, v):
     """
     nc = len(m.pair_type)
     bodies = _Bodies(q, v)
-    body_f, body_t = m.body_force[:, :3].copy(), m.body_force[:, 3:].copy()
-    for l in range(len(m.load_body)):
-        load = _stored_spline(m, l, t)
-        body_f[m.load_body[l]] += load[:3]
-        body_t[m.load_body[l]] += load[3:]
-    e_bushing = _bushings(m, q, bodies, body_f, body_t)
+    loads = [(i, m.body_force[i]) for i in range(len(m.body_mass))]
+    loads += [(m.load_body[l], _stored_spline(m, l, t)) for l in range(len(m.load_body))]
+    for i, load in loads:                      # at the body's centre
+        bodies.add(i, load[:3], bodies.r[i])
+        bodies.add_moment(i, load[3:])
+    e_bushing = _bushings(m, q, bodies)
     out = {k: np.zeros(nc) for k in ("fn", "delta", "slip", "ft", "angle", "theta")}
     e_contact = 0.0
     for c in range(nc):
@@ -300,18 +317,18 @@ def compute_forces(m, t, q, v):
             if not delta > 0:
                 continue
             fn, slip, ft, e, force = contact_point_force(m, bodies, c, delta, normal, p)
-            _apply(body_f, body_t, bodies, a, force, p)
-            _apply(body_f, body_t, bodies, b, -force, p)
+            bodies.add(a, force, p)
+            bodies.add(b, -force, p)
             loaded.append((fn, slip, ft, normal, p))
             e_contact += e
-        out["delta"][c] = max(p[0] for p in points)
+        out["delta"][c] = max(point[0] for point in points)
         out["fn"][c] = sum(x[0] for x in loaded)
         out["ft"][c] = sum(x[2] for x in loaded)
         if loaded:
             top = loaded[int(np.argmax([x[0] for x in loaded]))]
             out["slip"][c] = top[1]
-        if angle is None:      # roller–raceway: normal into the ring at the most loaded slice
-            angle = _angle_in_ring(bodies.R[b], bodies.r[b], -top[3], top[4]) if loaded else 0.0
+        if angle is None:      # roller–raceway: at the most loaded slice
+            angle = _angle_in_ring(bodies.R[b], bodies.r[b], top[3], top[4]) if loaded else 0.0
         out["angle"][c], out["theta"][c] = angle, theta
-    return Forces(body_f, body_t, out["fn"], out["delta"], out["slip"], out["ft"], out["angle"], out["theta"],
-                  e_contact, e_bushing)
+    return Forces(bodies.f, bodies.t, out["fn"], out["delta"], out["slip"], out["ft"], out["angle"], out["theta"],
+                  e_contact, e_bushing, bodies.f_scale, bodies.t_scale)
