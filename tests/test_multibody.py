@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from mbd_core.bearing import rolling_kinematics
-from mbd_core.contact.friction import Coulomb
+from mbd_core.contact.friction import Coulomb, DrebLinear
 from mbd_core.multibody import (
     DivergenceError,
     Driven,
@@ -31,12 +31,15 @@ G = 9.81
 SLEWING_ROW = BallRow("balls", 16, 95.25e-3, 1.0, math.radians(60), 0.525, 0.525, "inner", axial_sign=-1)
 
 
-def slewing_model(row, load: RingLoad, damping=2e4, cage_mass_kg=None):
+def slewing_model(row, load: RingLoad, damping=2e4, cage_mass_kg=None, friction=None):
     b = ModelBuilder()
     top = b.add_body("top race", 500.0, (100.0, 100.0, 200.0))
     bottom = b.add_body("bottom race", 500.0, (100.0, 100.0, 200.0), motion=Fixed())
     bodies = add_ball_row(b, row, top, bottom, damping_N_s_m=damping, d_max_m=1e-5, cage_mass_kg=cage_mass_kg,
+                          friction=friction,
                           pocket_clearance_m=0.2e-3, cage_stiffness_N_per_m=1e8)
+    if cage_mass_kg is not None:  # the cage is centred on the fixed ring (land guidance)
+        b.add_bushing(bottom, bodies.cage, (0.0, 0.0, 0.0), (1e8, 1e8, 0, 0, 0, 0), (1e4, 1e4, 0, 0, 0, 0))
     b.add_force(top, (load.Fx_N, load.Fy_N, load.Fz_N), (load.Mx_Nm, load.My_Nm, 0.0))
     model, state = b.finalize()
     return model, state, bodies
@@ -67,16 +70,20 @@ def test_radial_load_with_clearance_matches_quasistatic_per_ball():
     load = RingLoad(Fx_N=0.15 * 68.9e3 * G, Fz_N=-68.9e3 * G)
     qs = solve_load_distribution(Bearing("slewing", (row,)), load).rows[0].load_N
     assert qs.min() < 0.5 * qs.max()  # a real distribution, not a uniform one
-    # a cage keeps the balls evenly spaced, as the quasi-static solution assumes (without one there
-    # is no equilibrium: the balls of the less loaded side drift along the groove)
-    model, state, bodies = slewing_model(row, load, cage_mass_kg=20.0)
+    # A cage centred on the fixed ring keeps the balls evenly spaced, as the quasi-static solution
+    # assumes (without one there is no equilibrium: the balls of the less loaded side drift along the
+    # groove). The contact lines of a single angular-contact row meet at one point of the axis, so
+    # the ring's rocking about it is nearly free; normal damping hardly sees it and Coulomb friction
+    # would stick at a history-dependent state. A viscous traction (DREB κ = B·u) damps it and
+    # vanishes at rest, so the dynamic steady state is the frictionless equilibrium.
+    model, state, bodies = slewing_model(row, load, cage_mass_kg=20.0, friction=DrebLinear(0.2))
     moving = list(bodies.moving_pairs)
     scale = np.maximum(qs, 0.02 * qs.max())  # 2 % of the largest load where a ball is unloaded
     eq = static_equilibrium(model, state).state
     assert np.max(np.abs(evaluate_forces(model, eq).contact_fn[moving] - qs) / scale) < 0.02
-    # the dynamic run from that equilibrium stays on the quasi-static distribution, per ball
-    out = simulate(model, eq, 0.05, record_every=100)
-    assert np.max(np.abs(out["fn"][:, moving] - qs) / scale) < 0.02
+    # dynamics from the unloaded, touching start: the steady state, per ball
+    out = simulate(model, state, 3.0, record_every=2000)
+    assert np.max(np.abs(out["fn"][-1, moving] - qs) / scale) < 0.02
 
 
 def test_start_from_static_equilibrium_has_no_shock():
@@ -93,8 +100,10 @@ def _angular_contact_bearing(friction, omega_i):
     b = ModelBuilder()
     inner = b.add_body("inner ring", 1.0, (1e-3, 1e-3, 2e-3), motion=Driven(omega_i, translation_free=True))
     outer = b.add_body("outer ring", 1.0, (1e-3, 1e-3, 2e-3), motion=Fixed())
-    bodies = add_ball_row(b, row, inner, outer, friction=friction, damping_N_s_m=50.0, d_max_m=1e-6,
+    bodies = add_ball_row(b, row, inner, outer, friction=friction, damping_N_s_m=200.0, d_max_m=1e-6,
                           cage_mass_kg=0.05, pocket_clearance_m=0.2e-3, cage_stiffness_N_per_m=2e6)
+    # the cage is centred on the outer ring (land guidance), so it does not whirl
+    b.add_bushing(outer, bodies.cage, (0.0, 0.0, 0.0), (1e6, 1e6, 0, 0, 0, 0), (50.0, 50.0, 0, 0, 0, 0))
     b.add_force(inner, (0.0, 0.0, 2000.0))
     model, state = b.finalize()
     return row, model, state, bodies, inner
@@ -119,7 +128,9 @@ def _mean_spin_relative_to_cage(out, model, balls, cage, normals_axis):
 
 def test_ball_bearing_kinematics_match_no_slip_formulas():
     omega_i = 2 * math.pi * 1000 / 60
-    row, model, state, bodies, inner = _angular_contact_bearing(Coulomb(0.1, 0.08, 0.05, 0.1), omega_i)
+    # the regularised Coulomb law needs some micro-slip to carry traction (the balls' gyroscopic
+    # moment): its transition speed must be small against the rolling speed (here 0.2 % of 4.6 m/s)
+    row, model, state, bodies, inner = _angular_contact_bearing(Coulomb(0.1, 0.08, 0.01, 0.02), omega_i)
     eq = static_equilibrium(model, state).state
     out = simulate(model, eq, 0.15, record_every=100)
     alpha = float(np.mean(out["angle"][-1, list(bodies.moving_pairs)]))
@@ -137,10 +148,9 @@ def test_ball_bearing_kinematics_match_no_slip_formulas():
         return math.cos(alpha) * e_r + math.sin(alpha) * np.array([0.0, 0.0, 1.0])
 
     spin = _mean_spin_relative_to_cage(out, model, bodies.elements, bodies.cage, contact_line)
-    # ω_R = (d_m / 2D)(1 − γ²) ω_i relative to the cage (eq. 8.31). Measured: 1.8 % below, outside
-    # the 1 % asked; the ball's attitude about its contact line is free with point contacts and the
-    # measure (ω component normal to the contact line) is under review — asserted at 2.5 %.
-    assert spin == pytest.approx(kin.element_speed_magnitude_rad_s, rel=0.025)
+    # ω_R = (d_m / 2D)(1 − γ²) ω_i relative to the cage (eq. 8.31), for the component normal to the
+    # contact line (the spin about the line itself is free with point contacts)
+    assert spin == pytest.approx(kin.element_speed_magnitude_rad_s, rel=0.01)
 
 
 def test_cylindrical_roller_bearing_kinematics_match_no_slip_formulas():

@@ -75,10 +75,13 @@ def _cage_body(builder, name, mass_kg, radius_m, motion):
 
 def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *, friction=None,
                  damping_N_s_m: float = 0.0, d_max_m: float = 1e-6, cage_mass_kg: float | None = None,
-                 pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8) -> RowBodies:
+                 pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8,
+                 pocket_friction=None) -> RowBodies:
     """Add the balls of ``row`` with their two ball–groove contacts (and a cage if ``cage_mass_kg``).
 
-    ``damping_N_s_m`` is the IMPACT damping of every ball contact, reached at ``d_max_m``.
+    ``damping_N_s_m`` is the IMPACT damping of every ball contact, reached at ``d_max_m``;
+    ``friction`` the law at the raceways, ``pocket_friction`` the one in the cage pockets (None:
+    frictionless; pocket friction brakes the balls and makes them slip).
     """
     D, R = row.ball_diameter_m, row.pitch_diameter_m / 2
     a0 = row.contact_angle_rad
@@ -114,7 +117,7 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
         if cage is not None:
             p = builder.add_pocket(cage, "cylinder", psi, R, row.axial_position_m, pocket_clearance_m)
             pockets.append(builder.add_element_pocket(
-                b, cage, p, D / 2, _law(cage_stiffness_N_per_m, 1.0, damping_N_s_m, d_max_m, friction),
+                b, cage, p, D / 2, _law(cage_stiffness_N_per_m, 1.0, damping_N_s_m, d_max_m, pocket_friction),
                 name=f"{row.name} ball {j}–pocket"))
     return RowBodies(tuple(balls), tuple(mov), tuple(fix), cage, tuple(pockets))
 
@@ -122,12 +125,14 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
 def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_ring, *, friction=None,
                    damping_N_s_m: float = 0.0, d_max_m: float = 1e-6, rib_clearance_m: float | None = None,
                    edge_radius_m: float | None = None, cage_mass_kg: float | None = None,
-                   pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8) -> RowBodies:
+                   pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8,
+                   pocket_friction=None) -> RowBodies:
     """Add the rollers of ``row`` with their sliced raceway contacts.
 
     ``rib_clearance_m``: ribs on the moving ring at both roller ends with this axial play (None:
     no ribs); ``cage_mass_kg``: a cage with slot pockets. ``damping_N_s_m`` is the IMPACT damping
-    of one slice (ribs and pockets use it too).
+    of one slice (ribs and pockets use it too); ``friction`` acts at raceways and ribs,
+    ``pocket_friction`` in the pockets (None: frictionless).
     """
     D, L, R, ns = row.roller_diameter_m, row.roller_length_m, row.pitch_diameter_m / 2, row.n_slices
     g2 = row.gap_m / 2
@@ -184,7 +189,7 @@ def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_rin
         if cage is not None:
             p = builder.add_pocket(cage, "slot", psi, R, z0, pocket_clearance_m)
             pockets.append(builder.add_element_pocket(
-                b, cage, p, D / 2, _law(cage_stiffness_N_per_m, 1.0, damping_N_s_m, d_max_m, friction), length_m=L,
+                b, cage, p, D / 2, _law(cage_stiffness_N_per_m, 1.0, damping_N_s_m, d_max_m, pocket_friction), length_m=L,
                 name=f"{row.name} roller {j}–pocket"))
     return RowBodies(tuple(rollers), tuple(mov), tuple(fix), cage, tuple(pockets), tuple(other))
 

@@ -9,7 +9,10 @@ The time step is limited (DESIGN §5.4) by
   (Belytschko, Liu & Moran, *Nonlinear Finite Elements for Continua and Structures*, §6.3);
 * friction: below the transition speed the friction force acts as a damper of slope
   c = F·max dμ/du on the tangential effective mass m_t (translation plus rotation of the element
-  about its centre, 1/m_t = 1/m + r²/I), and an explicit damper needs h < 2 m_t / c;
+  about its centre, 1/m_t = 1/m + r²/I), and an explicit damper needs h < 2 m_t / c. F is
+  ``load_factor`` × the larger of the present load and, for raceway contacts, the external load
+  shared by all pairs of that kind (1 % of that share for cage and rib contacts). Laws with
+  μ(0⁺) > 0 (DREB falling, Kragelskii with D > 0) have no bounded slope and are not counted;
 * bushings: as contacts, with their linear stiffness and damping.
 
 The smallest limit times ``safety`` is the automatic step; a larger requested step is refused with
@@ -101,6 +104,7 @@ def stable_timestep(model: Model, state: State, load_factor: float = 3.0, safety
     stiffest = np.full(model.n_bodies, -1)
     k_lin_of = np.zeros(model.n_pairs)
     fric_cache: dict[tuple, float] = {}
+    kind_count = np.bincount(a.pair_type, minlength=5)
     for c in range(model.n_pairs):
         ia, ib = a.pair_a[c], a.pair_b[c]
         w_inv = inv_m[ia] + inv_m[ib]
@@ -128,6 +132,12 @@ def stable_timestep(model: Model, state: State, load_factor: float = 3.0, safety
         slope = fric_cache[key]
         if not math.isfinite(slope):
             continue
+        # friction acts at the load the contact carries: raceway contacts may carry a share of the
+        # external load from the start, cage and rib contacts only what they carry now
+        share = f_floor / max(kind_count[a.pair_type[c]], 1)
+        if a.pair_type[c] not in (0, 2):
+            share *= 0.01
+        f_ref = load_factor * max(work.contact_fn[c], share, 1.0)
         r = a.pair_radius[c]
         inv_mt = inv_m[ia] + (r * r / a.body_inertia[ia].min() if a.body_free[ia, 3:].any() else 0.0) + inv_m[ib]
         h_f = 2.0 / (inv_mt * slope * f_ref)
