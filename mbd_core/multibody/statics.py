@@ -114,16 +114,19 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
                 q = trial.q[i, 3:]
                 tb = _rotate_back_vec(q, work.body_t[i])
                 r[n] = tb[j - 3] / (force_scale * length_scale)
-        return r - spring[0] * x / x_scale
+        return r - spring[0] * spring_k * x
 
     if not unknowns:
         return StaticResult(base, 0.0, 0.0, force_scale, 0)
     x_scale = np.where(comp_idx < 3, 1e-4, 1e-4 / length_scale)
-    # Stage 1: a soft spring to the start (the whole load moves a body by about 1 mm) gives the
-    # solver a gradient while contacts are still open (Hertz forces have zero slope at touch-down).
-    # Stage 2: the true equilibrium from there.
+    # Stage 1: a soft spring from each body to its start, so stiff that the body's own load
+    # moves it by 1 mm, gives the solver a gradient while contacts are
+    # still open (Hertz forces have zero slope at touch-down). Stage 2: the true equilibrium.
+    own = np.where(comp_idx < 3, np.abs(a.body_force[body_idx, comp_idx % 3]) / force_scale,
+                   np.abs(a.body_force[body_idx, 3 + comp_idx % 3]) / (force_scale * length_scale))
+    spring_k = np.maximum(own, 1e-6) / np.where(comp_idx < 3, 1e-3, 1e-3 / length_scale)
     x0 = np.zeros(len(unknowns))
-    for spring[0] in (0.1, 0.0):
+    for spring[0] in (1.0, 0.0):
         sol = least_squares(residual, x0, method="lm", x_scale=x_scale, xtol=tol, ftol=tol, gtol=tol,
                             max_nfev=max_evaluations)
         x0 = sol.x
@@ -133,9 +136,12 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     f_res = float(np.abs(r[comp_idx < 3]).max(initial=0.0)) * force_scale
     m_res = float(np.abs(r[comp_idx >= 3]).max(initial=0.0)) * force_scale * length_scale
     if max(f_res, m_res / length_scale) > 1e-4 * force_scale:
+        worst = int(np.argmax(np.abs(r)))
         raise RuntimeError(
             f"static equilibrium not found: residual force {f_res:.3g} N, moment {m_res:.3g} N·m "
-            f"(load scale {force_scale:.3g} N) after {count[0]} evaluations — can the bearing carry the load?")
+            f"(load scale {force_scale:.3g} N), largest on body {model.body_names[body_idx[worst]]!r} "
+            f"(component {'xyz'[comp_idx[worst] % 3]}{'' if comp_idx[worst] < 3 else ' rotation'}) after "
+            f"{count[0]} evaluations — can the bearing carry the load?")
     result = trial.copy()
     result.v[:] = state.v
     log.info("static equilibrium: residual %.3g N, %.3g N·m after %d evaluations", f_res, m_res, count[0])
