@@ -29,3 +29,14 @@ def test_slewing_race_static(monkeypatch, tmp_path):
     assert ex.reaction_N == pytest.approx(-ex.applied_N, abs=1e-9 * np.abs(ex.applied_N).max())
     assert (tmp_path / "slewing_race_static" / "race.vtu").stat().st_size > 0
     assert (tmp_path / "slewing_race_static" / "von_mises.png").stat().st_size > 0
+
+
+def test_ball_bearing_dynamics(monkeypatch, tmp_path):
+    ex = _run("ball_bearing_dynamics", monkeypatch, tmp_path)
+    # friction drives the cage up to the no-slip speed ω_i (1 − γ)/2 (Harris & Kotzalas, Essential
+    # Concepts, eq. 8.24) within 1 % once spun up; the cage then swings about it (±1.8 %, period
+    # about 30 ms, lightly damped), so the mean is taken from 10 ms on (over two swings)
+    after = ex.run["t"] > 0.01
+    assert np.mean(ex.cage_speed_rad_s[after]) == pytest.approx(ex.theory.cage_speed_rad_s, rel=0.01)
+    assert ex.run["status"] == "complete"
+    assert (tmp_path / "ball_bearing_dynamics" / "cage_speed.png").stat().st_size > 0
