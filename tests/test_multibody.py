@@ -277,3 +277,19 @@ def test_an_interrupted_run_resumes_to_the_same_result(tmp_path):
     assert resumed["t"].shape == whole["t"].shape
     for key in ("t", "q", "v", "fn", "delta", "slip"):
         np.testing.assert_array_equal(resumed[key], whole[key])
+
+
+def test_rolling_velocities_leave_no_slip_at_the_raceways():
+    omega_i = 2 * math.pi * 1000 / 60
+    row, model, state, bodies, inner = _angular_contact_bearing(None, omega_i)
+    eq = static_equilibrium(model, state).state
+    set_rolling_velocities(model, eq, bodies.elements, inner, other_ring=1)
+    w = evaluate_forces(model, eq)
+    raceway = list(bodies.moving_pairs) + list(bodies.fixed_pairs)
+    # the contact points move with both raceways (slip relative to a surface speed of ~4.6 m/s)
+    assert np.max(w.contact_slip[raceway]) < 1e-9
+    # and the balls orbit at the no-slip cage speed ω_i (1 − γ)/2 at their loaded contact angle
+    alpha = float(np.mean(w.contact_angle[list(bodies.moving_pairs)]))
+    kin = rolling_kinematics(row.ball_diameter_m, row.pitch_diameter_m, alpha, row.n_balls, omega_i, 0.0)
+    x, v = eq.q[bodies.elements[0], :3], eq.v[bodies.elements[0], :3]
+    assert np.cross(x, v)[2] / (x[0] ** 2 + x[1] ** 2) == pytest.approx(kin.cage_speed_rad_s, rel=1e-6)

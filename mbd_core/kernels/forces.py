@@ -19,6 +19,7 @@ F_n m + F_t at p, body b the opposite. Results: ``w.body_f`` (n_b, 3) N and ``w.
 Returns (status, index): 0 ok; ``STATUS_NONFINITE`` (non-finite force at contact ``index``, or at
 body ``index`` − n_contacts when ``index`` ≥ n_contacts; messages in :mod:`mbd_core.multibody.explicit`);
 ``STATUS_PENETRATION`` (penetration beyond the pair's bound at contact ``index``).
+``STATUS_ENERGY`` is set by the step loop (:mod:`.explicit`) on a kinetic-energy runaway.
 """
 
 from __future__ import annotations

@@ -225,7 +225,7 @@ def set_rolling_velocities(model: Model, state: State, elements, ring, axis_omeg
         for c in pairs:
             b = a.pair_b[c]
             n = _pair_normal(model, state, c)
-            p = x - a.pair_radius[c] * n
+            p = x + a.pair_radius[c] * n
             wz = omega_ring[0] if b == ring else omega_ring[1]
             pts.append(p - x)
             vel.append(np.cross([0.0, 0.0, wz], p - state.q[b, :3]))
@@ -250,7 +250,8 @@ def _spin_z(state: State, body: int) -> float:
 
 
 def _pair_normal(model: Model, state: State, c: int) -> np.ndarray:
-    """Unit vector from an element's centre towards its contact point of pair c (world)."""
+    """Unit vector from an element's centre towards its contact point of pair c (world): for a
+    groove, from the curvature centre through the ball centre; for a raceway, into the raceway."""
     a = model.arrays
     e, b = a.pair_a[c], a.pair_b[c]
     x = state.q[e, :3] - state.q[b, :3]
