@@ -5,7 +5,8 @@ One step of size h (velocity Verlet in kick–drift–kick form; DESIGN §5.4):
     kick   v ← v + (h/2) M⁻¹ F,   ω ← ω + (h/2) I⁻¹ τ_B        (free components only)
     drift  r ← r + h v;  rotation: symplectic splitting of the free rigid-body rotation
            (:func:`.rigid.free_rotation_step`, gyroscopic terms exact) for bodies whose three
-           rotations are free, q ← q ⊗ exp(h ω/2) for bodies with a prescribed spin
+           rotations are free; q ← q ⊗ exp(h ω/2) for spheres (their free rotation keeps ω, so
+           this is exact) and for bodies with a prescribed spin
     force  F, τ at (t + h, q, v)
     kick   as above.
 
@@ -84,7 +85,8 @@ def _drift(q, v, body_inertia, body_free, pi, h):
             q[i, j] += h * v[i, j]
         free = body_free[i]
         inertia = body_inertia[i]
-        if free[3] and free[4] and free[5]:
+        spherical = inertia[0] == inertia[1] and inertia[1] == inertia[2]
+        if free[3] and free[4] and free[5] and not spherical:
             for j in range(3):
                 pi[j] = inertia[j] * v[i, 3 + j]
             free_rotation_step(q[i, 3:], pi, inertia, h)

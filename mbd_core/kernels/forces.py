@@ -46,7 +46,7 @@ STATUS_PENETRATION = 2
 STATUS_ENERGY = 3
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rotate(q, i, x, y, z):
     """R(q_i) (x, y, z): body frame → world."""
     w, a, b, c = q[i, 3], q[i, 4], q[i, 5], q[i, 6]
@@ -56,7 +56,7 @@ def rotate(q, i, x, y, z):
     return x + w * tx + (b * tz - c * ty), y + w * ty + (c * tx - a * tz), z + w * tz + (a * ty - b * tx)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rotate_back(q, i, x, y, z):
     """R(q_i)ᵀ (x, y, z): world → body frame."""
     w, a, b, c = q[i, 3], -q[i, 4], -q[i, 5], -q[i, 6]
@@ -66,7 +66,7 @@ def rotate_back(q, i, x, y, z):
     return x + w * tx + (b * tz - c * ty), y + w * ty + (c * tx - a * tz), z + w * tz + (a * ty - b * tx)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def point_velocity(q, v, i, px, py, pz):
     """World velocity of body i's material point at world position p."""
     ox, oy, oz = rotate(q, i, v[i, 3], v[i, 4], v[i, 5])
@@ -74,7 +74,7 @@ def point_velocity(q, v, i, px, py, pz):
     return v[i, 0] + oy * rz - oz * ry, v[i, 1] + oz * rx - ox * rz, v[i, 2] + ox * ry - oy * rx
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _add_force(q, bf, bt, i, fx, fy, fz, px, py, pz):
     """Add force (fx, fy, fz) at world point p to body i's force and moment about its centre."""
     rx, ry, rz = px - q[i, 0], py - q[i, 1], pz - q[i, 2]
@@ -87,8 +87,10 @@ def _add_force(q, bf, bt, i, fx, fy, fz, px, py, pz):
 
 
 # Hot per-contact functions take plain arrays and scalars, never the model namedtuple: passing a
-# tuple of ~50 arrays to a function that is not inlined costs about 0.5 µs per call.
-@njit(cache=True)
+# tuple of ~50 arrays to a function that is not inlined costs about 0.5 µs per call, and every
+# array argument of a call costs reference counting (~10 ns), so the small helpers that take
+# arrays are inlined by numba (inline="always").
+@njit(cache=True, inline="always")
 def contact_force(q, v, bf, bt, fric_p, c, a, b, law, k, n_exp, damping, d_max, fric, delta,
                   mx, my, mz, px, py, pz):
     """Normal and friction force of contact point p of pair c between bodies a and b.
@@ -119,20 +121,20 @@ def contact_force(q, v, bf, bt, fric_p, c, a, b, law, k, n_exp, damping, d_max, 
     return fn, u, ft, k * delta ** (n_exp + 1.0) / (n_exp + 1.0)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _to_world(q, b, lx, ly, lz):
     """World position of a point given in body b's frame."""
     x, y, z = rotate(q, b, lx, ly, lz)
     return q[b, 0] + x, q[b, 1] + y, q[b, 2] + z
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _in_frame(q, b, x, y, z):
     """Coordinates in body b's frame of the world point (x, y, z)."""
     return rotate_back(q, b, x - q[b, 0], y - q[b, 1], z - q[b, 2])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _contact_angle(q, b, nx, ny, nz, px, py, pz):
     """atan2(|n_axial|, |n_radial|) of a world normal n at world point p, in body b's cylindrical frame."""
     lx, ly, lz = rotate_back(q, b, nx, ny, nz)
@@ -143,14 +145,14 @@ def _contact_angle(q, b, nx, ny, nz, px, py, pz):
     return math.atan2(abs(lz), abs((lx * ex + ly * ey) / r))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _roller_axis(q, a, b):
     """Roller a's axis (its body z) in ring b's frame."""
     x, y, z = rotate(q, a, 0.0, 0.0, 1.0)
     return rotate_back(q, b, x, y, z)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _store(w, c, fn, delta, u, ft):
     w.contact_fn[c] = fn
     w.contact_delta[c] = delta

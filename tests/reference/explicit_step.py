@@ -61,14 +61,15 @@ def kick(m, q, v, body_f, body_t, hh):
 
 
 def drift(m, q, v, h):
-    """Positions by h v; orientations by the free-rotation splitting or at constant ω; returns (q, v)."""
+    """Positions by h v; orientations by the free-rotation splitting (unequal inertias) or at
+    constant ω (spheres, whose free rotation keeps ω; driven bodies); returns (q, v)."""
     q, v = q.copy(), v.copy()
     free = m.body_free.astype(bool)
     q[:, :3] += h * v[:, :3]
     for i in range(len(m.body_mass)):
         R = mb.matrix(q[i, 3:])
-        if free[i, 3:].all():
-            inertia = m.body_inertia[i]
+        inertia = m.body_inertia[i]
+        if free[i, 3:].all() and np.ptp(inertia) > 0:
             R, pi = rigid_rotation.free_rotation_step(R, inertia * v[i, 3:], inertia, h)
             v[i, 3:] = pi / inertia
         else:
