@@ -15,11 +15,13 @@ rollers
 
 The start is the quasi-static load distribution of the same row (rigid rings, Newton) with every
 element centred between its raceways, then :func:`static_equilibrium` from there for the balls.
-A cage-less ball on the tilted groove is pushed along it by a force of a few newtons, so the balls
-have no exact equilibrium (that residual is printed); for the rollers the centred start is already
-in equilibrium to about 1e-5 of the load, and the static solver, with a finite-difference Jacobian
-over 593 unknowns, would add about 25 s without improving it. The friction transition speed is the
-smallest that :func:`stable_timestep` accepts at 1e-5 s (μ_static = μ_dynamic, v_dynamic = 2 v_static).
+The single row tilts the ring by about 1.6 mrad under this load, and a cage-less ball on the tilted
+groove is pushed along it by a few newtons: there is no exact equilibrium (the residual is
+printed), so the static solver is given a small evaluation budget instead of running to its limit.
+For the rollers the centred start is in equilibrium to about 1e-5 of the load already; the static
+solver (finite-difference Jacobian over 593 unknowns) would add over 20 s without improving it.
+The friction transition speed is the smallest that :func:`stable_timestep` accepts at 1e-5 s
+(μ_static = μ_dynamic, v_dynamic = 2 v_static).
 
 Only the stepping is timed (a short run first loads or compiles the kernels). The run is checked
 against the load: the contact resultant on the inner ring (forces re-evaluated at the recorded
@@ -46,7 +48,8 @@ import numpy as np
 from mbd_core.contact.friction import Coulomb
 from mbd_core.kernels.explicit import kinetic_energy, run_explicit
 from mbd_core.kernels.forces import STATUS_OK, compute_forces
-from mbd_core.multibody import Driven, Fixed, ModelBuilder, State, evaluate_forces, quat_from_axis_angle, stable_timestep
+from mbd_core.multibody import (Driven, Fixed, ModelBuilder, State, evaluate_forces, quat_from_axis_angle,
+                                stable_timestep)
 from mbd_core.multibody.bearings import RowBodies, add_ball_row, add_roller_row, set_rolling_velocities
 from mbd_core.multibody.model import Model, make_record_buffers, make_work
 from mbd_core.multibody.statics import static_equilibrium
@@ -79,14 +82,16 @@ class Scene:
     v_static_m_s: float
 
 
-def _rings(builder: ModelBuilder, ring_mass_kg: float, ring_radius_m: float, outer_mass_kg: float) -> tuple[int, int]:
-    """Fixed outer ring and driven inner ring; thin-ring inertias m r² (axis) and m r²/2."""
+def _thin_ring_inertia(mass_kg: float, radius_m: float) -> tuple[float, float, float]:
+    return (0.5 * mass_kg * radius_m**2, 0.5 * mass_kg * radius_m**2, mass_kg * radius_m**2)
+
+
+def _rings(builder: ModelBuilder, inner_mass_kg: float, inner_radius_m: float, outer_mass_kg: float) -> tuple[int, int]:
+    """Driven inner ring (free to translate and tilt) and fixed outer ring, with thin-ring inertias."""
     omega = SPEED_RPM * 2.0 * math.pi / 60.0
-    r_o = 1.15 * ring_radius_m
-    outer = builder.add_body("outer ring", outer_mass_kg, (0.5 * outer_mass_kg * r_o**2,) * 2 + (outer_mass_kg * r_o**2,),
+    outer = builder.add_body("outer ring", outer_mass_kg, _thin_ring_inertia(outer_mass_kg, 1.15 * inner_radius_m),
                              motion=Fixed())
-    inner = builder.add_body("inner ring", ring_mass_kg,
-                             (0.5 * ring_mass_kg * ring_radius_m**2,) * 2 + (ring_mass_kg * ring_radius_m**2,),
+    inner = builder.add_body("inner ring", inner_mass_kg, _thin_ring_inertia(inner_mass_kg, inner_radius_m),
                              motion=Driven(omega, translation_free=True, tilt_free=True))
     return inner, outer
 
@@ -177,19 +182,20 @@ def smallest_transition_speed(build: Callable, state: State) -> tuple[float, str
     return v, limit(v).reason
 
 
-def make_scene(name: str, build: Callable, row, load_N: np.ndarray, polish: bool) -> Scene:
-    model, state, ring, outer, rows = build(1e-3)
+def make_scene(name: str, build: Callable, row, load_N: np.ndarray, static_polish: bool) -> Scene:
+    model, state, ring, outer, rows = build(1e-3)  # friction plays no part in the start
     t0 = time.perf_counter()
     _place_ring(state, ring, row, load_N)
     (_centre_balls if isinstance(row, BallRow) else _centre_rollers)(model, state, rows)
-    if polish:
+    if static_polish:  # no exact equilibrium for the balls: a small budget, not the solver's limit
         state = static_equilibrium(model, state, max_evaluations=40).state
     t_static = time.perf_counter() - t0
     at_rest = State(state.t, state.q, np.zeros_like(state.v))
     w = evaluate_forces(model, at_rest)
     elements = np.array(rows.elements)
-    print(f"[{name}] start in {t_static:.1f} s: largest force left on an element {np.abs(w.body_f[elements]).max():.3g} N, "
-          f"on the ring {np.linalg.norm(w.body_f[ring]):.3g} N (load {np.linalg.norm(load_N):.3g} N)")
+    print(f"[{name}] start in {t_static:.1f} s: largest force left on an element "
+          f"{np.abs(w.body_f[elements]).max():.3g} N, on the ring {np.linalg.norm(w.body_f[ring]):.3g} N "
+          f"(load {np.linalg.norm(load_N):.3g} N)")
     v_s, reason = smallest_transition_speed(build, state)
     model, _, ring, outer, rows = build(v_s)
     state = State(state.t, state.q.copy(), state.v.copy())
@@ -274,14 +280,15 @@ def main() -> None:
     args = ap.parse_args()
     n_steps = 200 if args.quick else 2000
 
-    balls = make_scene("balls", build_balls, BALL_ROW, BALL_LOAD_N, polish=True)
+    balls = make_scene("balls", build_balls, BALL_ROW, BALL_LOAD_N, static_polish=True)
     wall, rec, k = run_steps(balls, n_steps)
     n_contacts = 2 * BALL_ROW.n_balls
     us_balls = report(balls, n_steps, wall, check_load(balls, rec, k), "contact", n_contacts)
     rt_balls = n_steps * TIMESTEP_S / wall
-    print(f"[balls] Exudyn 0.43 ms/step / this = {EXUDYN_US_PER_STEP / us_balls:.3g}")
+    print(f"[balls] Exudyn 0.43 ms/step / this = {EXUDYN_US_PER_STEP / us_balls:.3g} "
+          f"(its RK44 evaluates the forces 4 times per step, velocity Verlet once)")
 
-    rollers = make_scene("rollers", build_rollers, ROLLER_ROW, ROLLER_LOAD_N, polish=False)
+    rollers = make_scene("rollers", build_rollers, ROLLER_ROW, ROLLER_LOAD_N, static_polish=False)
     wall, rec, k = run_steps(rollers, n_steps)
     n_slices = 2 * ROLLER_ROW.n_rollers * ROLLER_ROW.n_slices
     us_rollers = report(rollers, n_steps, wall, check_load(rollers, rec, k), "slice", n_slices)

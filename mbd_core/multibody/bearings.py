@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..contact.hertz import ball_on_groove
+from ..kernels.ball_groove import groove_point
 from ..quasistatic.rows import BallRow, RollerRow
 from .builder import ContactLaw, ModelBuilder, quat_z_to
 from .model import Model, State
@@ -259,12 +260,12 @@ def _pair_normal(model: Model, state: State, c: int) -> np.ndarray:
     kind = model.pair_kinds[c]
     if kind == "ball_groove":
         g = a.pair_geom[c]
-        th = math.atan2(xl[1], xl[0])
-        centre = np.array([a.groove_rc[g] * math.cos(th), a.groove_rc[g] * math.sin(th), a.groove_zc[g]])
-        d = xl - centre
-        return _rotate(state.q[b, 3:], d / np.linalg.norm(d))
+        _, _, nx, ny, nz = groove_point(xl[0], xl[1], xl[2], a.groove_rc[g], a.groove_zc[g], 0.0,
+                                        a.groove_h[a.groove_h_off[g]:a.groove_h_off[g + 1]],
+                                        a.groove_dr[a.groove_dr_off[g]:a.groove_dr_off[g + 1]])
+        return _rotate(state.q[b, 3:], np.array([nx, ny, nz]))
     g = a.pair_geom[c]
-    kind_s, value = a.race_kind[g], a.race_value[g]
+    kind_s = a.race_kind[g]
     if kind_s <= 1:
         er = np.array([xl[0], xl[1], 0.0]) / math.hypot(xl[0], xl[1])
         n = -er if kind_s == 0 else er

@@ -13,7 +13,6 @@ cage, a ring's spin — are handled by the Levenberg–Marquardt damping of
 from __future__ import annotations
 
 import logging
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -47,15 +46,16 @@ def _spherical(inertia: np.ndarray) -> bool:
     return float(np.ptp(inertia)) <= 1e-9 * float(np.max(inertia))
 
 
-def _rotate_quat(q: np.ndarray, phi: np.ndarray) -> np.ndarray:
-    """q ⊗ exp(φ/2) for a body-frame rotation vector φ."""
-    angle = float(np.linalg.norm(phi))
-    if angle == 0.0:
-        return q.copy()
-    e = np.concatenate([[math.cos(angle / 2)], math.sin(angle / 2) * phi / angle])
-    w1, v1, w2, v2 = q[0], q[1:], e[0], e[1:]
-    out = np.concatenate([[w1 * w2 - v1 @ v2], w1 * v2 + w2 * v1 + np.cross(v1, v2)])
-    return out / np.linalg.norm(out)
+def _rotate_quats(q: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """q ⊗ exp(φ/2) row by row for body-frame rotation vectors φ (k, 3); q (k, 4)."""
+    angle = np.linalg.norm(phi, axis=1)
+    safe = np.where(angle > 0, angle, 1.0)
+    w2 = np.cos(angle / 2)
+    v2 = (np.sin(angle / 2) / safe)[:, None] * phi
+    w1, v1 = q[:, 0], q[:, 1:]
+    out = np.concatenate([(w1 * w2 - np.sum(v1 * v2, axis=1))[:, None],
+                          w1[:, None] * v2 + w2[:, None] * v1 + np.cross(v1, v2)], axis=1)
+    return out / np.linalg.norm(out, axis=1)[:, None]
 
 
 def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evaluations: int = 2000) -> StaticResult:
@@ -87,16 +87,18 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     trial = base.copy()
     count = [0]
 
+    trans = comp_idx < 3
+    rot = ~trans
+    rot_bodies = np.unique(body_idx[rot])
+    shift = np.zeros((model.n_bodies, 3))
+    phi = np.zeros((model.n_bodies, 3))
+
     def place(x):
-        trial.q[:] = base.q
-        for i in np.unique(body_idx):
-            sel = body_idx == i
-            comps, vals = comp_idx[sel], x[sel]
-            trial.q[i, :3] += np.bincount(comps[comps < 3], vals[comps < 3], minlength=3)[:3]
-            rot = np.zeros(3)
-            rot[comps[comps >= 3] - 3] = vals[comps >= 3]
-            if rot.any():
-                trial.q[i, 3:] = _rotate_quat(base.q[i, 3:], rot)
+        shift[body_idx[trans], comp_idx[trans]] = x[trans]
+        phi[body_idx[rot], comp_idx[rot] - 3] = x[rot]
+        trial.q[:, :3] = base.q[:, :3] + shift
+        if rot_bodies.size:
+            trial.q[rot_bodies, 3:] = _rotate_quats(base.q[rot_bodies, 3:], phi[rot_bodies])
 
     spring = [0.0]
 
@@ -107,13 +109,10 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
         if status != STATUS_OK:
             raise DivergenceError("static equilibrium: " + _failure_text(model, status, index, trial.t, work))
         r = np.empty(len(unknowns))
-        for n, (i, j) in enumerate(unknowns):
-            if j < 3:
-                r[n] = work.body_f[i, j] / force_scale
-            else:
-                q = trial.q[i, 3:]
-                tb = _rotate_back_vec(q, work.body_t[i])
-                r[n] = tb[j - 3] / (force_scale * length_scale)
+        r[trans] = work.body_f[body_idx[trans], comp_idx[trans]] / force_scale
+        if rot_bodies.size:
+            tb = _rotate_back_vecs(trial.q[body_idx[rot], 3:], work.body_t[body_idx[rot]])
+            r[rot] = tb[np.arange(tb.shape[0]), comp_idx[rot] - 3] / (force_scale * length_scale)
         return r - spring[0] * spring_k * x
 
     if not unknowns:
@@ -148,8 +147,8 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     return StaticResult(result, f_res, m_res, force_scale, count[0])
 
 
-def _rotate_back_vec(q: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """R(q)ᵀ x."""
-    w, v = q[0], -q[1:]
+def _rotate_back_vecs(q: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """R(q_k)ᵀ x_k row by row; q (k, 4), x (k, 3)."""
+    w, v = q[:, :1], -q[:, 1:]
     t = 2.0 * np.cross(v, x)
     return x + w * t + np.cross(v, t)
