@@ -25,12 +25,11 @@ a run resumed from (q, v, forces) continues bit for bit.
 
 from __future__ import annotations
 
-import math
 
 from numba import njit
 
 from .forces import STATUS_ENERGY, STATUS_OK, compute_forces, rotate_back
-from .rigid import free_rotation_step
+from .rigid import free_rotation_step, turn_quaternion
 
 
 @njit(cache=True)
@@ -63,19 +62,9 @@ def _kick(q, v, body_f, body_t, body_mass, body_inertia, body_free, hh):
 @njit(cache=True)
 def _spin(q, i, wx, wy, wz, h):
     """q_i ← q_i ⊗ exp(h ω / 2) for a constant body-frame ω."""
-    om = math.sqrt(wx * wx + wy * wy + wz * wz)
-    if om == 0.0:
+    if wx == 0.0 and wy == 0.0 and wz == 0.0:
         return
-    half = 0.5 * h * om
-    c, s = math.cos(half), math.sin(half) / om
-    ex, ey, ez = s * wx, s * wy, s * wz
-    qw, qx, qy, qz = q[i, 3], q[i, 4], q[i, 5], q[i, 6]
-    nw = qw * c - qx * ex - qy * ey - qz * ez
-    nx = qw * ex + qx * c + qy * ez - qz * ey
-    ny = qw * ey - qx * ez + qy * c + qz * ex
-    nz = qw * ez + qx * ey - qy * ex + qz * c
-    n = math.sqrt(nw * nw + nx * nx + ny * ny + nz * nz)
-    q[i, 3], q[i, 4], q[i, 5], q[i, 6] = nw / n, nx / n, ny / n, nz / n
+    q[i, 3], q[i, 4], q[i, 5], q[i, 6] = turn_quaternion(q[i, 3], q[i, 4], q[i, 5], q[i, 6], h * wx, h * wy, h * wz)
 
 
 @njit(cache=True)

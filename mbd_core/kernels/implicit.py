@@ -20,11 +20,11 @@ are :class:`mbd_core.multibody.implicit.GenAlphaCoefficients` (α_m, α_f, β, �
 
 from __future__ import annotations
 
-import math
 
 from numba import njit
 
 from .forces import STATUS_OK, compute_forces, rotate_back
+from .rigid import turn_quaternion
 
 SQRT_EPS = 1.4901161193847656e-08
 
@@ -61,19 +61,8 @@ def compose(q, dq, h, out):
     for i in range(q.shape[0]):
         for j in range(3):
             out[i, j] = q[i, j] + h * dq[i, j]
-        ox, oy, oz = h * dq[i, 3], h * dq[i, 4], h * dq[i, 5]
-        phi = math.sqrt(ox * ox + oy * oy + oz * oz)
-        c = math.cos(0.5 * phi)
-        # sin(φ/2)/φ, its Taylor series where the quotient loses digits
-        s = math.sin(0.5 * phi) / phi if phi > 1e-4 else 0.5 - phi * phi / 48.0
-        ex, ey, ez = s * ox, s * oy, s * oz
-        qw, qx, qy, qz = q[i, 3], q[i, 4], q[i, 5], q[i, 6]
-        nw = qw * c - qx * ex - qy * ey - qz * ez
-        nx = qw * ex + qx * c + qy * ez - qz * ey
-        ny = qw * ey - qx * ez + qy * c + qz * ex
-        nz = qw * ez + qx * ey - qy * ex + qz * c
-        n = math.sqrt(nw * nw + nx * nx + ny * ny + nz * nz)
-        out[i, 3], out[i, 4], out[i, 5], out[i, 6] = nw / n, nx / n, ny / n, nz / n
+        out[i, 3], out[i, 4], out[i, 5], out[i, 6] = turn_quaternion(
+            q[i, 3], q[i, 4], q[i, 5], q[i, 6], h * dq[i, 3], h * dq[i, 4], h * dq[i, 5])
 
 
 @njit(cache=True)

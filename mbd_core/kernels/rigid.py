@@ -67,3 +67,19 @@ def free_rotation_step(q, pi, inertia, h):
     q[1] /= n
     q[2] /= n
     q[3] /= n
+
+
+@njit(cache=True)
+def turn_quaternion(qw, qx, qy, qz, ox, oy, oz):
+    """q ⊗ (cos(φ/2), sin(φ/2) e) for the body-frame rotation vector φ e = (ox, oy, oz), renormalised."""
+    phi = math.sqrt(ox * ox + oy * oy + oz * oz)
+    c = math.cos(0.5 * phi)
+    # sin(φ/2)/φ, its Taylor series where the quotient loses digits
+    s = math.sin(0.5 * phi) / phi if phi > 1e-4 else 0.5 - phi * phi / 48.0
+    ex, ey, ez = s * ox, s * oy, s * oz
+    nw = qw * c - qx * ex - qy * ey - qz * ez
+    nx = qw * ex + qx * c + qy * ez - qz * ey
+    ny = qw * ey - qx * ez + qy * c + qz * ex
+    nz = qw * ez + qx * ey - qy * ex + qz * c
+    n = math.sqrt(nw * nw + nx * nx + ny * ny + nz * nz)
+    return nw / n, nx / n, ny / n, nz / n
