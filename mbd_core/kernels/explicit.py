@@ -25,7 +25,6 @@ a run resumed from (q, v, forces) continues bit for bit.
 
 from __future__ import annotations
 
-
 from numba import njit
 
 from .forces import STATUS_ENERGY, STATUS_OK, compute_forces, rotate_back

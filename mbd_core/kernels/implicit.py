@@ -20,7 +20,6 @@ are :class:`mbd_core.multibody.implicit.GenAlphaCoefficients` (α_m, α_f, β, �
 
 from __future__ import annotations
 
-
 from numba import njit
 
 from .forces import STATUS_OK, compute_forces, rotate_back
