@@ -11,6 +11,7 @@ import pytest
 from mbd_core.bearing import rolling_kinematics
 from mbd_core.contact.friction import Coulomb, DrebLinear
 from mbd_core.multibody import (
+    ContactLaw,
     DivergenceError,
     Driven,
     Fixed,
@@ -293,3 +294,26 @@ def test_rolling_velocities_leave_no_slip_at_the_raceways():
     kin = rolling_kinematics(row.ball_diameter_m, row.pitch_diameter_m, alpha, row.n_balls, omega_i, 0.0)
     x, v = eq.q[bodies.elements[0], :3], eq.v[bodies.elements[0], :3]
     assert np.cross(x, v)[2] / (x[0] ** 2 + x[1] ** 2) == pytest.approx(kin.cage_speed_rad_s, rel=1e-6)
+
+
+def test_bad_input_is_rejected_naming_the_field():
+    b = ModelBuilder()
+    with pytest.raises(ValueError, match="mass_kg"):
+        b.add_body("ring", -1.0, (1, 1, 1))
+    with pytest.raises(ValueError, match="inertia_kg_m2"):
+        b.add_body("ring", 1.0, (1, 0, 1))
+    ring = b.add_body("ring", 10.0, (1, 1, 2))
+    ball = b.add_body("ball", 0.1, (1e-6,) * 3)
+    with pytest.raises(ValueError, match="exists already"):
+        b.add_body("ring", 1.0, (1, 1, 1))
+    g = b.add_groove(ring, 0.5, 0.0, 0.0105)
+    with pytest.raises(ValueError, match="groove radius"):
+        b.add_ball_groove(ball, ring, g, 0.011, ContactLaw(1e10))
+    with pytest.raises(ValueError, match="no body named 'cage'"):
+        b.add_ball_groove(ball, "cage", g, 0.01, ContactLaw(1e10))
+    with pytest.raises(ValueError, match="stiffness"):
+        ContactLaw(-1e10)
+    with pytest.raises(ValueError, match="times_s"):
+        b.add_load_history(ring, [0.0, 0.2, 0.1], np.zeros((3, 6)))
+    with pytest.raises(ValueError, match="cannot touch itself"):
+        b.add_ball_ball(ball, ball, 0.01, 0.01, ContactLaw(1e10))
