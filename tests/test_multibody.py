@@ -318,3 +318,22 @@ def test_bad_input_is_rejected_naming_the_field():
         b.add_load_history(ring, [0.0, 0.2, 0.1], np.zeros((3, 6)))
     with pytest.raises(ValueError, match="cannot touch itself"):
         b.add_ball_ball(ball, ball, 0.01, 0.01, ContactLaw(1e10))
+
+
+def test_static_equilibrium_carries_a_caged_bearing_under_gravity():
+    b = ModelBuilder(gravity_m_s2=(0.0, 0.0, -9.81))
+    row = BallRow("balls", 12, 12e-3, 0.1, math.radians(30), 0.52, 0.52, "inner", axial_sign=1)
+    inner = b.add_body("inner ring", 1.0, (1e-3, 1e-3, 2e-3))
+    outer = b.add_body("outer ring", 1.0, (1e-3, 1e-3, 2e-3), motion=Fixed())
+    bodies = add_ball_row(b, row, inner, outer, cage_mass_kg=0.05, cage_stiffness_N_per_m=2e6)
+    b.add_force(inner, (0.0, 0.0, 2000.0))
+    model, state = b.finalize()
+    eq = static_equilibrium(model, state)
+    w = evaluate_forces(model, eq.state)
+    # the cage hangs in its pocket clearance (0.5 mm) on the balls: the pocket forces carry its weight
+    assert eq.state.q[bodies.cage, 2] < -0.4e-3
+    assert np.abs(w.body_f[bodies.cage]).max() < 1e-3 * 0.05 * 9.81  # residual < 0.1 % of its weight
+    # the outer ring carries the load on the inner ring less the weight of everything it holds
+    weight = 9.81 * (1.0 + 12 * model.arrays.body_mass[bodies.elements[0]] + 0.05)
+    axial = sum(w.contact_fn[c] * math.sin(w.contact_angle[c]) for c in bodies.fixed_pairs)
+    assert axial == pytest.approx(2000.0 - weight, rel=1e-6)

@@ -118,14 +118,15 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     if not unknowns:
         return StaticResult(base, 0.0, 0.0, force_scale, 0)
     x_scale = np.where(comp_idx < 3, 1e-4, 1e-4 / length_scale)
-    # Stage 1: a soft spring from each body to its start, so stiff that the body's own load
-    # moves it by 1 mm, gives the solver a gradient while contacts are
-    # still open (Hertz forces have zero slope at touch-down). Stage 2: the true equilibrium.
+    # A soft spring from each body to its start, so stiff that the body's own load moves it by
+    # 1 mm, gives the solver a gradient while contacts are still open (Hertz forces have zero slope
+    # at touch-down); it is relaxed in steps down to zero (continuation), so that bodies resting in
+    # a clearance (a cage on its balls) do not jump out of contact on the way.
     own = np.where(comp_idx < 3, np.abs(a.body_force[body_idx, comp_idx % 3]) / force_scale,
                    np.abs(a.body_force[body_idx, 3 + comp_idx % 3]) / (force_scale * length_scale))
     spring_k = np.maximum(own, 1e-6) / np.where(comp_idx < 3, 1e-3, 1e-3 / length_scale)
     x0 = np.zeros(len(unknowns))
-    for spring[0] in (1.0, 0.0):
+    for spring[0] in (1.0, 1e-2, 1e-4, 0.0):
         sol = least_squares(residual, x0, method="lm", x_scale=x_scale, xtol=tol, ftol=tol, gtol=tol,
                             max_nfev=max_evaluations)
         x0 = sol.x
