@@ -397,8 +397,6 @@ class ModelBuilder:
             knot_t.append(t)
             knot_coef.append(coef)
             load_off.append(load_off[-1] + t.size)
-        i64 = lambda x: np.asarray(x, dtype=np.int64)  # noqa: E731
-        f64 = lambda x, shape=None: np.asarray(x, dtype=np.float64).reshape(shape) if shape else np.asarray(x, dtype=np.float64)  # noqa: E731
         q0 = np.array([b.q for b in bodies])
         bq = []
         for bu in self._bushings:
@@ -410,39 +408,49 @@ class ModelBuilder:
         arrays = ModelArrays(
             body_mass=mass, body_inertia=np.array([b.inertia for b in bodies]),
             body_free=np.array([b.free for b in bodies], dtype=np.int64), body_force=force,
-            load_body=i64([l[0] for l in self._loads]), load_off=i64(load_off),
-            knot_t=f64(np.concatenate(knot_t) if knot_t else np.zeros(0)),
-            knot_coef=f64(np.concatenate(knot_coef) if knot_coef else np.zeros((0, 4, 6))),
-            bush_a=i64([b["a"] for b in self._bushings]), bush_b=i64([b["b"] for b in self._bushings]),
-            bush_p_a=f64(p_a, (-1, 3)), bush_p_b=f64(p_b, (-1, 3)), bush_q_ref=f64(bq, (-1, 4)),
-            bush_k=f64([b["k"] for b in self._bushings], (-1, 6)), bush_c=f64([b["c"] for b in self._bushings], (-1, 6)),
-            pair_type=i64([p["kind"] for p in pairs]), pair_a=i64([p["a"] for p in pairs]),
-            pair_b=i64([p["b"] for p in pairs]), pair_geom=i64([p["geom"] for p in pairs]),
-            pair_law=i64([NORMAL_IMPACT if l.model == "impact" else NORMAL_HUNT_CROSSLEY for l in laws]),
-            pair_k=f64([l.stiffness for l in laws]), pair_n=f64([l.exponent for l in laws]),
-            pair_c=f64([l.damping for l in laws]), pair_dmax=f64([l.d_max_m for l in laws]),
-            pair_fric=i64([f[0] for f in fric]), pair_fric_p=f64([f[1] for f in fric], (-1, 4)),
-            pair_radius=f64([p["radius"] for p in pairs]), pair_radius_b=f64([p["radius_b"] for p in pairs]),
-            pair_length=f64([p["length"] for p in pairs]), pair_aux=f64([p["aux"] for p in pairs], (-1, 2)),
-            pair_slice_off=i64(np.concatenate([[0], np.cumsum(slice_counts)])),
-            slice_drop=f64(np.concatenate([p["drop"] for p in pairs if p["kind"] == ROLLER_RACEWAY] or [np.zeros(0)])),
-            pair_delta_max=f64([l.max_penetration_m if l.max_penetration_m is not None else 0.02 * p["radius"]
+            load_body=_i64([l[0] for l in self._loads]), load_off=_i64(load_off),
+            knot_t=_f64(np.concatenate(knot_t) if knot_t else np.zeros(0)),
+            knot_coef=_f64(np.concatenate(knot_coef) if knot_coef else np.zeros((0, 4, 6))),
+            bush_a=_i64([b["a"] for b in self._bushings]), bush_b=_i64([b["b"] for b in self._bushings]),
+            bush_p_a=_f64(p_a, (-1, 3)), bush_p_b=_f64(p_b, (-1, 3)), bush_q_ref=_f64(bq, (-1, 4)),
+            bush_k=_f64([b["k"] for b in self._bushings], (-1, 6)), bush_c=_f64([b["c"] for b in self._bushings], (-1, 6)),
+            pair_type=_i64([p["kind"] for p in pairs]), pair_a=_i64([p["a"] for p in pairs]),
+            pair_b=_i64([p["b"] for p in pairs]), pair_geom=_i64([p["geom"] for p in pairs]),
+            pair_law=_i64([NORMAL_IMPACT if l.model == "impact" else NORMAL_HUNT_CROSSLEY for l in laws]),
+            pair_k=_f64([l.stiffness for l in laws]), pair_n=_f64([l.exponent for l in laws]),
+            pair_c=_f64([l.damping for l in laws]), pair_dmax=_f64([l.d_max_m for l in laws]),
+            pair_fric=_i64([f[0] for f in fric]), pair_fric_p=_f64([f[1] for f in fric], (-1, 4)),
+            pair_radius=_f64([p["radius"] for p in pairs]), pair_radius_b=_f64([p["radius_b"] for p in pairs]),
+            pair_length=_f64([p["length"] for p in pairs]), pair_aux=_f64([p["aux"] for p in pairs], (-1, 2)),
+            pair_slice_off=_i64(np.concatenate([[0], np.cumsum(slice_counts)])),
+            slice_drop=_f64(np.concatenate([p["drop"] for p in pairs if p["kind"] == ROLLER_RACEWAY] or [np.zeros(0)])),
+            pair_delta_max=_f64([l.max_penetration_m if l.max_penetration_m is not None else 0.02 * p["radius"]
                                 for l, p in zip(laws, pairs)]),
-            groove_rc=f64([g["rc"] for g in grooves]), groove_zc=f64([g["zc"] for g in grooves]),
-            groove_r=f64([g["r"] for g in grooves]),
-            groove_h_off=i64(np.concatenate([[0], np.cumsum([g["h"].size for g in grooves])])),
-            groove_h=f64(np.concatenate([g["h"] for g in grooves] or [np.zeros(0)])),
-            groove_dr_off=i64(np.concatenate([[0], np.cumsum([g["dr"].size for g in grooves])])),
-            groove_dr=f64(np.concatenate([g["dr"] for g in grooves] or [np.zeros(0)])),
-            race_kind=i64([s[0] for s in self._surfaces]), race_value=f64([s[1] for s in self._surfaces]),
-            pocket_kind=i64([p[0] for p in self._pockets]), pocket_angle=f64([p[1] for p in self._pockets]),
-            pocket_r=f64([p[2] for p in self._pockets]), pocket_z=f64([p[3] for p in self._pockets]),
-            pocket_clearance=f64([p[4] for p in self._pockets]),
+            groove_rc=_f64([g["rc"] for g in grooves]), groove_zc=_f64([g["zc"] for g in grooves]),
+            groove_r=_f64([g["r"] for g in grooves]),
+            groove_h_off=_i64(np.concatenate([[0], np.cumsum([g["h"].size for g in grooves])])),
+            groove_h=_f64(np.concatenate([g["h"] for g in grooves] or [np.zeros(0)])),
+            groove_dr_off=_i64(np.concatenate([[0], np.cumsum([g["dr"].size for g in grooves])])),
+            groove_dr=_f64(np.concatenate([g["dr"] for g in grooves] or [np.zeros(0)])),
+            race_kind=_i64([s[0] for s in self._surfaces]), race_value=_f64([s[1] for s in self._surfaces]),
+            pocket_kind=_i64([p[0] for p in self._pockets]), pocket_angle=_f64([p[1] for p in self._pockets]),
+            pocket_r=_f64([p[2] for p in self._pockets]), pocket_z=_f64([p[3] for p in self._pockets]),
+            pocket_clearance=_f64([p[4] for p in self._pockets]),
         )
         model = Model(arrays, tuple(b.name for b in bodies), tuple(p["name"] for p in pairs),
                       tuple(PAIR_KIND_NAMES[p["kind"]] for p in pairs), self.gravity_m_s2.copy())
         state = State(0.0, q0.copy(), np.array([b.v for b in bodies]).reshape(nb, 6))
         return model, state
+
+
+def _i64(x) -> np.ndarray:
+    return np.asarray(x, dtype=np.int64)
+
+
+def _f64(x, shape=None) -> np.ndarray:
+    """float64 array; ``shape`` (e.g. (-1, 3)) keeps empty tables two-dimensional for the kernels."""
+    a = np.asarray(x, dtype=np.float64)
+    return a.reshape(shape) if shape else a
 
 
 def _quat_conj(q):
