@@ -274,8 +274,8 @@ def test_an_interrupted_run_resumes_to_the_same_result(tmp_path):
     first = state.copy()
     simulate(model, first, 1400 * h, timestep_s=h, folder=tmp_path / "b", record_every=20, chunk_samples=10)
     assert read_run(tmp_path / "b")["status"] == "complete"
-    resumed = simulate(model, state.copy(), 3000 * h, timestep_s=h, folder=tmp_path / "b", record_every=20,
-                       chunk_samples=10, resume=True)
+    resumed = simulate(model, state.copy(), 3000 * h, folder=tmp_path / "b", record_every=20,
+                       chunk_samples=10, resume=True)  # the recorded step
     assert resumed["t"].shape == whole["t"].shape
     for key in ("t", "q", "v", "fn", "delta", "slip"):
         np.testing.assert_array_equal(resumed[key], whole[key])

@@ -33,7 +33,7 @@ from ..kernels.explicit import kinetic_energy, record_now, run_explicit
 from ..kernels.forces import STATUS_ENERGY, STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION, compute_forces
 from ..kernels.laws import friction_coefficient
 from .model import Model, State, make_record_buffers, make_work
-from .recorder import RunRecord, read_run
+from .recorder import RunRecord, read_run, recorded_timestep_s
 
 __all__ = ["StepLimit", "stable_timestep", "simulate", "SimulationError", "StepTooLargeError", "DivergenceError",
            "evaluate_forces"]
@@ -199,7 +199,8 @@ def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | Non
         Write the record there in chunks, with a checkpoint after each (see :mod:`.recorder`);
         None keeps the samples in memory only.
     resume : bool
-        Continue the run recorded in ``folder`` from its checkpoint (``state`` is then ignored).
+        Continue the run recorded in ``folder`` from its checkpoint (``state`` is then ignored; the
+        time step and ``record_every`` must be those of the record, None takes the recorded step).
 
     Returns
     -------
@@ -214,6 +215,8 @@ def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | Non
     if resume:
         if folder is None:
             raise ValueError("simulate: resume needs the record folder")
+        if timestep_s is None:
+            timestep_s = recorded_timestep_s(folder)
         rec_file = RunRecord(folder, model, timestep_s, record_every, t_end_s, resume=True)
         ck = rec_file.load_checkpoint()
         t_origin, step = float(ck["t_origin"]), int(ck["step"])

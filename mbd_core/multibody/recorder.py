@@ -103,6 +103,14 @@ class RunRecord:
         return ck
 
 
+def recorded_timestep_s(folder) -> float:
+    """The time step of the run recorded in ``folder``, s."""
+    path = Path(folder) / "layout.json"
+    if not path.exists():
+        raise FileNotFoundError(f"{folder}: not a run record (no layout.json)")
+    return float(json.loads(path.read_text())["timestep_s"])
+
+
 def read_run(folder) -> dict:
     """Read a run folder: a dict of the concatenated arrays (see the module docstring) plus
     ``body_names``, ``pair_names``, ``pair_kinds``, ``status``, ``timestep_s`` and ``every``."""
