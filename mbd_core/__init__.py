@@ -1,8 +1,10 @@
 """The multibody core and the bearing mechanics it needs.
 
-Subpackages: ``contact`` (Hertz point and line contact, subsurface stress), ``bearing``
-(kinematics, ISO 281 rating and life, case-depth factor), ``quasistatic`` (load distribution
-with rigid rings). Materials are in :mod:`mbd_core.materials`.
+Subpackages: ``contact`` (Hertz point and line contact, subsurface stress, friction laws),
+``bearing`` (kinematics, ISO 281 rating and life, case-depth factor), ``quasistatic`` (load
+distribution with rigid rings), ``multibody`` (rigid multibody dynamics of bearings: model,
+static equilibrium, explicit and generalized-α integration, record) and ``kernels`` (its compiled
+numba kernels, the only place numba is imported). Materials are in :mod:`mbd_core.materials`.
 """
 
 from .materials import BEARING_STEEL, ElasticMaterial
