@@ -7,7 +7,10 @@ be compiled.
 
 Modules: ``laws`` (normal force, friction), ``ball_groove`` (ball–groove geometry with race
 deviations), ``roller_slices`` (slice penetrations of tilted, skewed, crowned rollers),
-``rigid`` (quaternions, symplectic free rotation).
+``element_contacts`` (ball–ball, roller end–rib, element–pocket geometry), ``splines`` (load
+histories), ``forces`` (the force stage of a whole model), ``explicit`` (the compiled step loop),
+``implicit`` (generalized-α pieces), ``rigid`` (quaternions, symplectic free rotation),
+``raceway`` (flexible-raceway interpolation and its transpose, for modal rings).
 """
 
 from .laws import (
