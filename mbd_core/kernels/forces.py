@@ -30,7 +30,7 @@ from numba import njit
 
 from .ball_groove import groove_point_in
 from .element_contacts import POCKET_CYLINDER, ball_ball, pocket_cylinder, pocket_slot, roller_end
-from .laws import friction_coefficient, normal_force
+from .laws import friction_coefficient, normal_force_elastic
 from .roller_slices import roller_slices
 from .splines import spline_value
 
@@ -91,6 +91,29 @@ def _add_force(q, bf, bt, i, fx, fy, fz, px, py, pz):
 # array argument of a call costs reference counting (~10 ns), so the small helpers that take
 # arrays are inlined by numba (inline="always").
 @njit(cache=True, inline="always")
+def point_force(law, k, n_exp, damping, d_max, fric, p0, p1, p2, p3, delta, mx, my, mz, rx, ry, rz):
+    """Force on body a of one contact point with penetration δ > 0, unit normal m (on a) and
+    relative velocity r = v_a(p) − v_b(p) of the two surfaces there.
+
+    Returns (F_n N, |v_t| m/s, |F_t| N, elastic energy J, f_x, f_y, f_z N).
+    """
+    vn = rx * mx + ry * my + rz * mz
+    elastic = k * delta**n_exp
+    fn = normal_force_elastic(law, elastic, delta, -vn, damping, d_max)
+    tx, ty, tz = rx - vn * mx, ry - vn * my, rz - vn * mz
+    u = math.sqrt(tx * tx + ty * ty + tz * tz)
+    ft = 0.0
+    fx, fy, fz = fn * mx, fn * my, fn * mz
+    if u > 0.0 and fn > 0.0:
+        ft = friction_coefficient(fric, u, p0, p1, p2, p3) * fn
+        s = ft / u
+        fx -= s * tx
+        fy -= s * ty
+        fz -= s * tz
+    return fn, u, ft, elastic * delta / (n_exp + 1.0), fx, fy, fz
+
+
+@njit(cache=True, inline="always")
 def contact_force(q, v, bf, bt, fric_p, c, a, b, law, k, n_exp, damping, d_max, fric, delta,
                   mx, my, mz, px, py, pz):
     """Normal and friction force of contact point p of pair c between bodies a and b.
@@ -102,23 +125,12 @@ def contact_force(q, v, bf, bt, fric_p, c, a, b, law, k, n_exp, damping, d_max, 
         return 0.0, 0.0, 0.0, 0.0
     vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
     vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
-    rx, ry, rz = vax - vbx, vay - vby, vaz - vbz
-    vn = rx * mx + ry * my + rz * mz
-    fn = normal_force(law, delta, -vn, k, n_exp, damping, d_max)
-    tx, ty, tz = rx - vn * mx, ry - vn * my, rz - vn * mz
-    u = math.sqrt(tx * tx + ty * ty + tz * tz)
-    ft = 0.0
-    fx, fy, fz = fn * mx, fn * my, fn * mz
-    if u > 0.0 and fn > 0.0:
-        mu = friction_coefficient(fric, u, fric_p[c, 0], fric_p[c, 1], fric_p[c, 2], fric_p[c, 3])
-        ft = mu * fn
-        s = ft / u
-        fx -= s * tx
-        fy -= s * ty
-        fz -= s * tz
+    fn, u, ft, e, fx, fy, fz = point_force(law, k, n_exp, damping, d_max, fric, fric_p[c, 0], fric_p[c, 1],
+                                           fric_p[c, 2], fric_p[c, 3], delta, mx, my, mz,
+                                           vax - vbx, vay - vby, vaz - vbz)
     _add_force(q, bf, bt, a, fx, fy, fz, px, py, pz)
     _add_force(q, bf, bt, b, -fx, -fy, -fz, px, py, pz)
-    return fn, u, ft, k * delta ** (n_exp + 1.0) / (n_exp + 1.0)
+    return fn, u, ft, e
 
 
 @njit(cache=True, inline="always")
@@ -220,6 +232,12 @@ def _roller_raceway_pairs(m, q, v, w):
         roller_slices(center, axis, m.pair_length[c], m.pair_radius[c], m.slice_drop[s0:s1],
                       m.race_kind[g], m.race_value[g], sd, sp, sn)
         fn_sum, dmax, u_at_max, ft_sum, f_max, angle = 0.0, -math.inf, 0.0, 0.0, -1.0, 0.0
+        # the slices share both bodies: their angular velocities once, forces summed per pair
+        oax, oay, oaz = rotate(q, a, v[a, 3], v[a, 4], v[a, 5])
+        obx, oby, obz = rotate(q, b, v[b, 3], v[b, 4], v[b, 5])
+        law, k_s, n_exp, damp, d_mx, fric = m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c], m.pair_fric[c]
+        p0, p1, p2, p3 = fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3]
+        fxs = fys = fzs = tax = tay = taz = tbx = tby = tbz = 0.0
         for k in range(ns):
             delta = sd[k]
             if delta > dmax:
@@ -228,14 +246,40 @@ def _roller_raceway_pairs(m, q, v, w):
                 continue
             px, py, pz = _to_world(q, b, sp[k, 0], sp[k, 1], sp[k, 2])
             mx, my, mz = rotate(q, b, sn[k, 0], sn[k, 1], sn[k, 2])
-            fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
-                                         m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
+            rax, ray, raz = px - q[a, 0], py - q[a, 1], pz - q[a, 2]
+            rbx, rby, rbz = px - q[b, 0], py - q[b, 1], pz - q[b, 2]
+            fn, u, ft, e, fx, fy, fz = point_force(
+                law, k_s, n_exp, damp, d_mx, fric, p0, p1, p2, p3, delta, mx, my, mz,
+                v[a, 0] + oay * raz - oaz * ray - v[b, 0] - (oby * rbz - obz * rby),
+                v[a, 1] + oaz * rax - oax * raz - v[b, 1] - (obz * rbx - obx * rbz),
+                v[a, 2] + oax * ray - oay * rax - v[b, 2] - (obx * rby - oby * rbx))
+            fxs += fx
+            fys += fy
+            fzs += fz
+            tax += ray * fz - raz * fy
+            tay += raz * fx - rax * fz
+            taz += rax * fy - ray * fx
+            tbx += rby * fz - rbz * fy
+            tby += rbz * fx - rbx * fz
+            tbz += rbx * fy - rby * fx
             fn_sum += fn
             ft_sum += ft
             e_sum += e
             if fn > f_max:
                 f_max, u_at_max = fn, u
                 angle = _contact_angle(q, b, mx, my, mz, px, py, pz)
+        bf[a, 0] += fxs
+        bf[a, 1] += fys
+        bf[a, 2] += fzs
+        bf[b, 0] -= fxs
+        bf[b, 1] -= fys
+        bf[b, 2] -= fzs
+        bt[a, 0] += tax
+        bt[a, 1] += tay
+        bt[a, 2] += taz
+        bt[b, 0] -= tbx
+        bt[b, 1] -= tby
+        bt[b, 2] -= tbz
         _store(w, c, fn_sum, dmax, u_at_max, ft_sum)
         w.contact_angle[c] = angle
     return e_sum

@@ -56,7 +56,12 @@ def normal_force(law, delta, delta_dot, k, n, c, d_max):
     """Penalty normal force ≥ 0 (N) for penetration delta (m) and its rate delta_dot (m/s)."""
     if delta <= 0.0:
         return 0.0
-    elastic = k * delta**n
+    return normal_force_elastic(law, k * delta**n, delta, delta_dot, c, d_max)
+
+
+@njit(cache=True)
+def normal_force_elastic(law, elastic, delta, delta_dot, c, d_max):
+    """:func:`normal_force` from its elastic part k δⁿ (N), computed once by the caller (δ > 0)."""
     if law == NORMAL_IMPACT:
         f = elastic + step(delta, 0.0, 0.0, d_max, c) * delta_dot
     else:
