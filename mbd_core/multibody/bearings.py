@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..contact.hertz import ball_on_groove
+from ..materials import effective_modulus_Pa
 from ..kernels.ball_groove import groove_point
 from ..quasistatic.rows import BallRow, RollerRow
 from .builder import ContactLaw, ModelBuilder, quat_z_to
@@ -198,18 +199,16 @@ def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_rin
 def _rib_law(edge_radius_m, row: RollerRow, damping, d_max_m, friction) -> ContactLaw:
     """Sphere of the edge radius on a flat rib (Hertz, circular contact): K = (4/3) E* √r, E* = E'/2
     (Johnson, *Contact Mechanics*, eq. 4.23)."""
-    from ..materials import effective_modulus_Pa
-
     e_eff = effective_modulus_Pa(row.roller_material, row.race_material)
     return _law(2.0 / 3.0 * e_eff * math.sqrt(edge_radius_m), 1.5, damping, d_max_m, friction)
 
 
-def set_rolling_velocities(model: Model, state: State, elements, ring, axis_omega_rad_s: float | None = None,
-                           other_ring=None) -> None:
+def set_rolling_velocities(model: Model, state: State, elements, ring, other_ring=None) -> None:
     """Give rolling elements (and nothing else) the no-slip velocities between two rings.
 
-    Each element's centre orbits at the speed and its angular velocity makes the slip zero at
-    its contact points with both rings in the least-squares sense (minimum-norm spin): for
+    The rings turn about the world z axis at the speeds they have in ``state``. Each element's
+    orbit speed (its centre moving about z) and angular velocity are those that make the slip zero
+    at its contact points with both rings, in the least-squares sense (minimum-norm spin): for
     elements touching ``ring`` and ``other_ring`` along the line through their centres this is
     the classical rolling kinematics (Harris & Kotzalas, *Essential Concepts*, ch. 8).
     The contact points are the element's surface points along its contact normals at ``state``.
