@@ -10,7 +10,8 @@ deviations), ``roller_slices`` (slice penetrations of tilted, skewed, crowned ro
 ``element_contacts`` (ball–ball, roller end–rib, element–pocket geometry), ``splines`` (load
 histories), ``forces`` (the force stage of a whole model), ``explicit`` (the compiled step loop),
 ``implicit`` (generalized-α pieces), ``rigid`` (quaternions, symplectic free rotation),
-``raceway`` (flexible-raceway interpolation and its transpose, for modal rings).
+``raceway`` (flexible-raceway interpolation and its transpose, for modal rings), ``modal``
+(generalized mass matrix and quadratic-velocity vector of a modal body from its invariants).
 """
 
 from .laws import (
