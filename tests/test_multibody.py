@@ -110,7 +110,7 @@ def _angular_contact_bearing(friction, omega_i):
     return row, model, state, bodies, inner
 
 
-def _mean_spin_relative_to_cage(out, model, balls, cage, normals_axis):
+def _mean_spin_relative_to_cage(out, balls, cage, normals_axis):
     """Mean |ω_ball − ω_cage| component normal to the contact line, over the last half of the run."""
     from scipy.spatial.transform import Rotation
 
@@ -119,7 +119,7 @@ def _mean_spin_relative_to_cage(out, model, balls, cage, normals_axis):
     for k in range(half, len(out["t"])):
         qc = out["q"][k, cage, 3:]
         wc = Rotation.from_quat(qc[[1, 2, 3, 0]]).apply(out["v"][k, cage, 3:])
-        for i, e in enumerate(balls):
+        for e in balls:
             r = Rotation.from_quat(out["q"][k, e, [4, 5, 6, 3]])
             w = r.apply(out["v"][k, e, 3:]) - wc
             u = normals_axis(out["q"][k, e, :3])
@@ -148,7 +148,7 @@ def test_ball_bearing_kinematics_match_no_slip_formulas():
         e_r = np.array([x[0], x[1], 0.0]) / math.hypot(x[0], x[1])
         return math.cos(alpha) * e_r + math.sin(alpha) * np.array([0.0, 0.0, 1.0])
 
-    spin = _mean_spin_relative_to_cage(out, model, bodies.elements, bodies.cage, contact_line)
+    spin = _mean_spin_relative_to_cage(out, bodies.elements, bodies.cage, contact_line)
     # ω_R = (d_m / 2D)(1 − γ²) ω_i relative to the cage (eq. 8.31), for the component normal to the
     # contact line (the spin about the line itself is free with point contacts)
     assert spin == pytest.approx(kin.element_speed_magnitude_rad_s, rel=0.01)
