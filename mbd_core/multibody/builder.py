@@ -23,6 +23,7 @@ from ..kernels.roller_slices import (
     RACEWAY_PLANE_DOWN,
     RACEWAY_PLANE_UP,
 )
+from ..validation import check_positive
 from .model import Model, ModelArrays, State
 
 __all__ = ["ModelBuilder", "ContactLaw", "Free", "Fixed", "Driven", "quat_from_axis_angle", "quat_z_to"]
@@ -151,12 +152,6 @@ def _vec(owner: str, name: str, value, n: int) -> np.ndarray:
     return a
 
 
-def _positive(owner: str, **values) -> None:
-    for k, v in values.items():
-        if not (isinstance(v, (int, float, np.floating)) and math.isfinite(v) and v > 0):
-            raise ValueError(f"{owner}: {k} must be a positive number, got {v!r}")
-
-
 class ModelBuilder:
     """Edit freely, then :meth:`finalize` into a frozen :class:`Model` and its initial :class:`State`."""
 
@@ -182,7 +177,7 @@ class ModelBuilder:
         owner = f"body {name!r}"
         if any(b.name == name for b in self._bodies):
             raise ValueError(f"{owner}: a body of this name exists already")
-        _positive(owner, mass_kg=mass_kg)
+        check_positive(owner, mass_kg=mass_kg)
         inertia = _vec(owner, "inertia_kg_m2", inertia_kg_m2, 3)
         if np.any(inertia <= 0):
             raise ValueError(f"{owner}: inertia_kg_m2 must be positive, got {inertia.tolist()}")
@@ -264,7 +259,7 @@ class ModelBuilder:
         """
         owner = "groove"
         r = self._body_index(ring, owner)
-        _positive(owner, centre_radius_m=centre_radius_m, groove_radius_m=groove_radius_m)
+        check_positive(owner, centre_radius_m=centre_radius_m, groove_radius_m=groove_radius_m)
         if not math.isfinite(centre_height_m):
             raise ValueError(f"{owner}: centre_height_m must be finite")
         tables = []
@@ -293,7 +288,7 @@ class ModelBuilder:
         self._body_index(cage, "pocket")
         if kind not in POCKET_KINDS:
             raise ValueError(f"pocket: kind must be one of {sorted(POCKET_KINDS)}, got {kind!r}")
-        _positive("pocket", radius_m=radius_m)
+        check_positive("pocket", radius_m=radius_m)
         if not (math.isfinite(clearance_m) and clearance_m >= 0):
             raise ValueError(f"pocket: clearance_m must be ≥ 0, got {clearance_m!r}")
         self._pockets.append((POCKET_KINDS[kind], float(angle_rad), float(radius_m), float(height_m), float(clearance_m)))
@@ -308,7 +303,7 @@ class ModelBuilder:
             raise ValueError(f"{owner}: a body cannot touch itself ({self._bodies[a].name!r})")
         if not isinstance(law, ContactLaw):
             raise TypeError(f"{owner}: law must be a ContactLaw")
-        _positive(owner, element_radius_m=radius)
+        check_positive(owner, element_radius_m=radius)
         name = name or f"{self._bodies[a].name}–{self._bodies[b].name}"
         self._pairs.append(dict(kind=kind, a=a, b=b, geom=geom, law=law, radius=float(radius), radius_b=float(radius_b),
                                 length=float(length), aux=np.asarray(aux, float), drop=np.asarray(drop, float), name=name))
@@ -328,7 +323,7 @@ class ModelBuilder:
 
     def add_ball_ball(self, ball_a, ball_b, radius_a_m: float, radius_b_m: float, law: ContactLaw, name=None) -> int:
         """Sphere–sphere contact (load ball against spacer ball)."""
-        _positive("ball–ball contact", radius_b_m=radius_b_m)
+        check_positive("ball–ball contact", radius_b_m=radius_b_m)
         return self._add_pair(BALL_BALL, ball_a, ball_b, -1, law, radius_a_m, name, radius_b=radius_b_m)
 
     def add_roller_raceway(self, roller, ring, surface: int, radius_m: float, length_m: float, law: ContactLaw,
@@ -343,7 +338,7 @@ class ModelBuilder:
             raise ValueError(f"{owner}: no surface {surface}")
         if not (isinstance(n_slices, (int, np.integer)) and n_slices >= 1):
             raise ValueError(f"{owner}: n_slices must be an integer ≥ 1, got {n_slices!r}")
-        _positive(owner, length_m=length_m)
+        check_positive(owner, length_m=length_m)
         drop = np.zeros(n_slices) if drop_m is None else np.asarray(drop_m, float).reshape(-1)
         if drop.shape != (n_slices,) or not np.all(np.isfinite(drop)) or np.any(drop < 0) or np.any(drop >= radius_m):
             raise ValueError(f"{owner}: drop_m must be {n_slices} values in [0, radius)")
@@ -357,7 +352,7 @@ class ModelBuilder:
             raise ValueError(f"{owner}: no surface {surface}")
         if end_sign not in (1, -1):
             raise ValueError(f"{owner}: end_sign must be +1 or -1, got {end_sign!r}")
-        _positive(owner, length_m=length_m, edge_radius_m=edge_radius_m)
+        check_positive(owner, length_m=length_m, edge_radius_m=edge_radius_m)
         if edge_radius_m >= min(radius_m, length_m / 2):
             raise ValueError(f"{owner}: edge_radius_m must be smaller than the roller radius and half length")
         return self._add_pair(ROLLER_RIB, roller, ring, surface, law, radius_m, name, length=length_m,
@@ -370,7 +365,7 @@ class ModelBuilder:
         if not 0 <= pocket < len(self._pockets):
             raise ValueError(f"{owner}: no pocket {pocket}")
         if self._pockets[pocket][0] == POCKET_SLOT:
-            _positive(owner, length_m=length_m)
+            check_positive(owner, length_m=length_m)
         return self._add_pair(ELEMENT_POCKET, element, cage, pocket, law, radius_m, name, length=length_m)
 
     # -- finalize -------------------------------------------------------------------------------
