@@ -212,18 +212,18 @@ def run_steps(scene: Scene, n_steps: int):
     warm = scene.state.copy()
     w = make_work(scene.model)
     rec = make_record_buffers(scene.model, 2)
-    compute_forces(a, warm.t, warm.q, warm.v, w)
-    run_explicit(a, warm.q, warm.v, w, warm.t, 0, 2, TIMESTEP_S, 1, rec, math.inf)  # load or compile
+    compute_forces(a, warm.t, warm.q, warm.v, warm.eta, warm.eta_dot, w)
+    run_explicit(a, warm.q, warm.v, warm.eta, warm.eta_dot, w, warm.t, 0, 2, TIMESTEP_S, 1, rec, math.inf)  # load or compile
 
     q, v = scene.state.q.copy(), scene.state.v.copy()
     w = make_work(scene.model)
     rec = make_record_buffers(scene.model, n_steps // RECORD_EVERY)
     e_limit = 1e3 * max(kinetic_energy(a.body_mass, a.body_inertia, v), 10.0)
-    status, index = compute_forces(a, scene.state.t, q, v, w)
+    status, index = compute_forces(a, scene.state.t, q, v, scene.state.eta, scene.state.eta_dot, w)
     if status != STATUS_OK:
         raise SystemExit(f"[{scene.name}] start state: {STATUS_TEXT.get(status, status)} at {index}")
     t0 = time.perf_counter()
-    status, index, done, k = run_explicit(a, q, v, w, scene.state.t, 0, n_steps, TIMESTEP_S, RECORD_EVERY, rec, e_limit)
+    status, index, done, k = run_explicit(a, q, v, scene.state.eta.copy(), scene.state.eta_dot.copy(), w, scene.state.t, 0, n_steps, TIMESTEP_S, RECORD_EVERY, rec, e_limit)
     wall = time.perf_counter() - t0
     if status != STATUS_OK:
         where = scene.model.pair_names[index] if 0 <= index < scene.model.n_pairs else f"index {index}"

@@ -82,7 +82,7 @@ def test_accelerations_match_newton_euler_twin_on_random_states():
         out = np.full((4, 6), np.nan)
         assert accelerations(a, 0.0, q, v, w, out) == (0, -1)
         w_ref = make_work(model)
-        compute_forces(a, 0.0, q, v, w_ref)
+        compute_forces(a, 0.0, q, v, np.zeros(0), np.zeros(0), w_ref)
         for i in range(4):
             inertia, om = a.body_inertia[i], v[i, 3:]
             tau_b = quat_to_matrix(q[i, 3:]).T @ w_ref.body_t[i]

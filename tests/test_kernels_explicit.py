@@ -109,9 +109,9 @@ def _kernel_run(model, state, h, step0=0, n_steps=N_STEPS, q=None, v=None, work=
     m = model.arrays
     if work is None:
         q, v, work = state.q.copy(), state.v.copy(), make_work(model)
-        assert FK.compute_forces(m, state.t, q, v, work) == (FK.STATUS_OK, -1)
+        assert FK.compute_forces(m, state.t, q, v, state.eta, state.eta_dot, work) == (FK.STATUS_OK, -1)
     rec = make_record_buffers(model, N_STEPS // EVERY + 1)
-    out = EX.run_explicit(m, q, v, work, state.t, step0, n_steps, h, EVERY, rec, energy_limit)
+    out = EX.run_explicit(m, q, v, state.eta.copy(), state.eta_dot.copy(), work, state.t, step0, n_steps, h, EVERY, rec, energy_limit)
     return out, q, v, work, rec
 
 
@@ -213,7 +213,7 @@ def test_resumed_run_continues_bit_for_bit_and_records_global_steps(case):
         joined = np.concatenate([getattr(rec1, f)[:2], getattr(rec2, f)[:5]])
         assert np.array_equal(joined, getattr(rec_all, f)[:n_all]), f
     # record_now stores the present state and contact outputs as a sample
-    EX.record_now(m, q, v, work, state.t + N_STEPS * h, 3, rec1)
+    EX.record_now(m, q, v, state.eta, state.eta_dot, work, state.t + N_STEPS * h, 3, rec1)
     assert rec1.t[3] == state.t + N_STEPS * h and np.array_equal(rec1.q[3], q) and np.array_equal(rec1.v[3], v)
     for f, values in _work_contacts(work).items():
         assert np.array_equal(getattr(rec1, f)[3], values), f

@@ -424,7 +424,7 @@ def _perturbed(model, state, rng, dx, dphi, v_scale, keep_orientation=(), slow=F
 
 def _forces(model, state):
     w = make_work(model)
-    status, index = FK.compute_forces(model.arrays, state.t, state.q, state.v, w)
+    status, index = FK.compute_forces(model.arrays, state.t, state.q, state.v, state.eta, state.eta_dot, w)
     assert (status, index) == (FK.STATUS_OK, -1)
     return w
 

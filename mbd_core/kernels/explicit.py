@@ -10,6 +10,9 @@ One step of size h (velocity Verlet in kick–drift–kick form; DESIGN §5.4):
     force  F, τ at (t + h, q, v)
     kick   as above.
 
+Modal bodies follow the same kick–drift–kick with their own kick and drift (:mod:`.modal_step`;
+first kick and drift after the rigid ones, which do not depend on them).
+
 Bodies whose rotation is only partly free (a ring driven about its axis but free to tilt) get the
 gyroscopic term −ω × Iω explicitly in the kick of their free components, evaluated at the current
 ω: that part is first order and lets a tilt rate grow by about (1 + h²Ω²/4) per step at spin Ω —
@@ -27,7 +30,8 @@ from __future__ import annotations
 
 from numba import njit
 
-from .forces import STATUS_ENERGY, STATUS_OK, compute_forces, rotate_back
+from .forces import STATUS_ENERGY, STATUS_MODAL, STATUS_OK, compute_forces, rotate_back
+from .modal_step import modal_drift, modal_energy, modal_kick
 from .rigid import free_rotation_step, turn_quaternion
 
 
@@ -67,8 +71,10 @@ def _spin(q, i, wx, wy, wz, h):
 
 
 @njit(cache=True)
-def _drift(q, v, body_inertia, body_free, pi, h):
+def _drift(q, v, body_inertia, body_free, body_modal, pi, h):
     for i in range(body_inertia.shape[0]):
+        if body_modal[i] >= 0:  # drifted by modal_drift
+            continue
         for j in range(3):
             q[i, j] += h * v[i, j]
         free = body_free[i]
@@ -96,10 +102,12 @@ def kinetic_energy(body_mass, body_inertia, v):
 
 
 @njit(cache=True)
-def _record(m, q, v, w, t, k, rec):
+def _record(m, q, v, eta, eta_dot, w, t, k, rec):
     rec.t[k] = t
     rec.q[k] = q
     rec.v[k] = v
+    rec.eta[k] = eta
+    rec.eta_dot[k] = eta_dot
     rec.fn[k] = w.contact_fn
     rec.delta[k] = w.contact_delta
     rec.slip[k] = w.contact_slip
@@ -109,39 +117,61 @@ def _record(m, q, v, w, t, k, rec):
 
 
 @njit(cache=True)
-def record_now(m, q, v, w, t, k, rec):
+def record_now(m, q, v, eta, eta_dot, w, t, k, rec):
     """Store the current state and contact outputs as sample k of the record buffers."""
-    _record(m, q, v, w, t, k, rec)
+    _record(m, q, v, eta, eta_dot, w, t, k, rec)
 
 
 @njit(cache=True)
-def run_explicit(m, q, v, w, t_origin, step0, n_steps, h, every, rec, energy_limit):
+def total_kinetic_energy(m, q, v, eta, eta_dot, w):
+    """Kinetic energy of the rigid bodies plus ½uᵀM(η)u of the modal bodies, J."""
+    e = kinetic_energy(m.body_mass, m.body_inertia, v)
+    if m.modal_body.shape[0] == 0:
+        return e
+    for j in range(m.modal_body.shape[0]):  # their rigid-body estimate is replaced
+        i = m.modal_body[j]
+        e -= 0.5 * m.body_mass[i] * (v[i, 0] ** 2 + v[i, 1] ** 2 + v[i, 2] ** 2)
+        for c in range(3):
+            e -= 0.5 * m.body_inertia[i, c] * v[i, 3 + c] ** 2
+    return e + modal_energy(m, q, v, eta, eta_dot, w)[0]
+
+
+@njit(cache=True)
+def run_explicit(m, q, v, eta, eta_dot, w, t_origin, step0, n_steps, h, every, rec, energy_limit):
     """Advance n_steps steps from global step ``step0`` (t = t_origin + step·h), in place.
 
-    ``w.body_f``/``w.body_t`` must hold the forces at the current state. After every global step
+    ``w.body_f``/``w.body_t``/``w.modal_f`` must hold the forces at the current state. After every global step
     that is a multiple of ``every`` the state is stored in the record buffers ``rec`` (sample index
     counted from 0 within this call). Every 16th global step the kinetic energy is compared with
     ``energy_limit`` (J); above it the run stops with ``STATUS_ENERGY``. Returns (status, index,
     steps done, samples stored): status 0 when all steps were done; otherwise the stage that failed
-    (see :mod:`.forces`) with the contact or body index (−1 for the energy check), and the state is
-    that of the failed step (not recorded).
+    (see :mod:`.forces`) with the contact or body index (−1 for the energy check; the modal index
+    for ``STATUS_MODAL``), and the state is that of the failed step (not recorded). Modal bodies
+    are stepped by :mod:`.modal_step` inside the same kick–drift–kick.
     """
     k = 0
     mass, inertia, free, f, tau = m.body_mass, m.body_inertia, m.body_free, w.body_f, w.body_t
+    modal = m.modal_body.shape[0] > 0
     for s in range(n_steps):
         step = step0 + s + 1
         t = t_origin + step * h
         _kick(q, v, f, tau, mass, inertia, free, 0.5 * h)
-        _drift(q, v, inertia, free, w.pi, h)
-        status, index = compute_forces(m, t, q, v, w)
+        _drift(q, v, inertia, free, m.body_modal, w.pi, h)
+        if modal:
+            if not (modal_kick(m, q, v, eta, eta_dot, w, 0.5 * h, False)
+                    and modal_drift(m, q, v, eta, eta_dot, w, h)):
+                return STATUS_MODAL, -1, s, k
+        status, index = compute_forces(m, t, q, v, eta, eta_dot, w)
         if status != STATUS_OK:
             return status, index, s, k
         _kick(q, v, f, tau, mass, inertia, free, 0.5 * h)
+        if modal and not modal_kick(m, q, v, eta, eta_dot, w, 0.5 * h, True):
+            return STATUS_MODAL, -1, s, k
         if step % 16 == 0:
-            e = kinetic_energy(mass, inertia, v)
+            e = total_kinetic_energy(m, q, v, eta, eta_dot, w) if modal else kinetic_energy(mass, inertia, v)
             if not (e <= energy_limit):
                 return STATUS_ENERGY, -1, s, k
         if step % every == 0:
-            _record(m, q, v, w, t, k, rec)
+            _record(m, q, v, eta, eta_dot, w, t, k, rec)
             k += 1
     return STATUS_OK, -1, n_steps, k

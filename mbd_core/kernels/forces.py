@@ -19,7 +19,8 @@ F_n m + F_t at p, body b the opposite. Results: ``w.body_f`` (n_b, 3) N and ``w.
 Returns (status, index): 0 ok; ``STATUS_NONFINITE`` (non-finite force at contact ``index``, or at
 body ``index`` − n_contacts when ``index`` ≥ n_contacts; messages in :mod:`mbd_core.multibody.explicit`);
 ``STATUS_PENETRATION`` (penetration beyond the pair's bound at contact ``index``).
-``STATUS_ENERGY`` is set by the step loop (:mod:`.explicit`) on a kinetic-energy runaway.
+``STATUS_ENERGY`` is set by the step loop (:mod:`.explicit`) on a kinetic-energy runaway,
+``STATUS_MODAL`` when the mass matrix of a modal body is no longer positive definite.
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from numba import njit
 from .ball_groove import groove_point_in
 from .element_contacts import POCKET_CYLINDER, ball_ball, pocket_cylinder, pocket_slot, roller_end
 from .laws import friction_coefficient, normal_force_elastic
+from .raceway import add_modal_force, interp_index, raceway_field
 from .roller_slices import roller_slices
 from .splines import spline_value
 
@@ -44,6 +46,7 @@ STATUS_OK = 0
 STATUS_NONFINITE = 1
 STATUS_PENETRATION = 2
 STATUS_ENERGY = 3
+STATUS_MODAL = 4
 
 
 @njit(cache=True, inline="always")
@@ -173,7 +176,7 @@ def _store(w, c, fn, delta, u, ft):
 
 
 @njit(cache=True)
-def _ball_groove_pairs(m, q, v, w):
+def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
     for c in range(m.pair_type.shape[0]):
@@ -187,15 +190,75 @@ def _ball_groove_pairs(m, q, v, w):
             m.groove_h, m.groove_h_off[g], m.groove_h_off[g + 1],
             m.groove_dr, m.groove_dr_off[g], m.groove_dr_off[g + 1],
         )
-        mx, my, mz = rotate(q, b, -nx, -ny, -nz)
-        px, py, pz = q[a, 0] - ra * mx, q[a, 1] - ra * my, q[a, 2] - ra * mz
-        fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
-                                     m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
+        if m.groove_modal[g] >= 0:
+            fn, delta, u, ft, e, nx, ny, nz = _flexible_ball_groove(m, q, v, eta, eta_dot, w, c, a, b, g, ra, th,
+                                                                    delta, lx, ly, lz, nx, ny, nz)
+        else:
+            mx, my, mz = rotate(q, b, -nx, -ny, -nz)
+            px, py, pz = q[a, 0] - ra * mx, q[a, 1] - ra * my, q[a, 2] - ra * mz
+            fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
+                                         m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
+                                         px, py, pz)
         _store(w, c, fn, delta, u, ft)
         w.contact_theta[c] = th
         w.contact_angle[c] = math.atan2(abs(nz), abs(nx * math.cos(th) + ny * math.sin(th)))
         e_sum += e
     return e_sum
+
+
+@njit(cache=True, inline="always")
+def _flexible_ball_groove(m, q, v, eta, eta_dot, w, c, a, b, g, ra, th, delta0, lx, ly, lz, nx, ny, nz):
+    """Ball–groove contact on a modal ring (:mod:`.raceway`): the groove section at θ moves with the
+    raceway point's displacement u = Dη and small rotation ψ = Ωη, so its curvature centre c goes to
+    c + u + ψ × (c − p_s) (p_s the sampled raceway point); the force returns to the modes through the
+    transpose of the same interpolation, Q += Dᵀf + Ωᵀ((p − p_s) × f) for the force f on the ring at
+    the contact point p (work-consistent). Returns (F_n, δ, |v_t|, |F_t|, energy, n) with n the
+    deformed normal in the ring frame."""
+    jm, s0, s1 = m.groove_modal[g], m.groove_samp_off[g], m.groove_samp_off[g + 1]
+    o0, o1 = m.modal_off[jm], m.modal_off[jm + 1]
+    disp, rot, pts = m.samp_disp[s0:s1], m.samp_rot[s0:s1], m.samp_point[s0:s1]
+    i0, i1, w0, w1 = interp_index(m.samp_theta[s0:s1], th, m.groove_periodic[g] == 1)
+    e_j = eta[o0:o1]
+    clear = m.groove_r[g] - ra
+    d = delta0 + clear
+    # undeformed curvature centre, lever from the sampled raceway point, deformed centre
+    cx, cy, cz = lx - d * nx, ly - d * ny, lz - d * nz
+    ax = cx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
+    ay = cy - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
+    az = cz - (w0 * pts[i0, 2] + w1 * pts[i1, 2])
+    ux, uy, uz = raceway_field(disp, i0, i1, w0, w1, e_j)
+    rx, ry, rz = raceway_field(rot, i0, i1, w0, w1, e_j)
+    dx = lx - (cx + ux + ry * az - rz * ay)
+    dy = ly - (cy + uy + rz * ax - rx * az)
+    dz = lz - (cz + uz + rx * ay - ry * ax)
+    dist = math.sqrt(dx * dx + dy * dy + dz * dz)
+    if dist > 0.0:
+        nx, ny, nz = dx / dist, dy / dist, dz / dist
+    delta = dist - clear
+    if delta <= 0.0:
+        return 0.0, delta, 0.0, 0.0, 0.0, nx, ny, nz
+    # contact point (ring frame), its lever about the raceway point, the raceway's modal velocity there
+    plx, ply, plz = lx + ra * nx, ly + ra * ny, lz + ra * nz
+    bx, by, bz = ax + plx - cx, ay + ply - cy, az + plz - cz
+    e_d = eta_dot[o0:o1]
+    vx, vy, vz = raceway_field(disp, i0, i1, w0, w1, e_d)
+    sx, sy, sz = raceway_field(rot, i0, i1, w0, w1, e_d)
+    vx, vy, vz = rotate(q, b, vx + sy * bz - sz * by, vy + sz * bx - sx * bz, vz + sx * by - sy * bx)
+    px, py, pz = _to_world(q, b, plx, ply, plz)
+    mx, my, mz = rotate(q, b, -nx, -ny, -nz)
+    vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
+    vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
+    fp = m.pair_fric_p
+    fn, u, ft, e, fx, fy, fz = point_force(m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c],
+                                           m.pair_fric[c], fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3], delta,
+                                           mx, my, mz, vax - vbx - vx, vay - vby - vy, vaz - vbz - vz)
+    _add_force(q, w.body_f, w.body_t, a, fx, fy, fz, px, py, pz)
+    _add_force(q, w.body_f, w.body_t, b, -fx, -fy, -fz, px, py, pz)
+    gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
+    qf = w.modal_f[o0:o1]
+    add_modal_force(disp, i0, i1, w0, w1, gx, gy, gz, qf)
+    add_modal_force(rot, i0, i1, w0, w1, by * gz - bz * gy, bz * gx - bx * gz, bx * gy - by * gx, qf)
+    return fn, delta, u, ft, e, nx, ny, nz
 
 
 @njit(cache=True)
@@ -421,14 +484,17 @@ def _bushings(m, q, v, w):
 
 
 @njit(cache=True)
-def compute_forces(m, t, q, v, w):
-    """Fill ``w.body_f``, ``w.body_t`` and the contact outputs at (t, q, v); returns (status, index)."""
+def compute_forces(m, t, q, v, eta, eta_dot, w):
+    """Fill ``w.body_f``, ``w.body_t``, ``w.modal_f`` and the contact outputs at (t, q, v, η, η̇);
+    returns (status, index)."""
     _external_loads(m, q, w, t)
+    for k in range(w.modal_f.shape[0]):
+        w.modal_f[k] = 0.0
     w.energy[1] = _bushings(m, q, v, w) if m.bush_a.shape[0] > 0 else 0.0
     e = 0.0
     n_of = w.type_count
     if n_of[BALL_GROOVE] > 0:
-        e += _ball_groove_pairs(m, q, v, w)
+        e += _ball_groove_pairs(m, q, v, eta, eta_dot, w)
     if n_of[BALL_BALL] > 0:
         e += _ball_ball_pairs(m, q, v, w)
     if n_of[ROLLER_RACEWAY] > 0:

@@ -35,7 +35,7 @@ def accelerations(m, t, q, v, w, out):
     Translations in world axes (m/s²), rotations in body axes (rad/s²). Fills the work arrays ``w``
     like :func:`.forces.compute_forces` and returns its (status, index).
     """
-    status, index = compute_forces(m, t, q, v, w)
+    status, index = compute_forces(m, t, q, v, w.modal_f[:0], w.modal_f[:0], w)  # rigid models only
     for i in range(m.body_mass.shape[0]):
         free = m.body_free[i]
         for j in range(3):

@@ -143,6 +143,8 @@ class _Body:
     v: np.ndarray
     free: np.ndarray
     force: np.ndarray = field(default_factory=lambda: np.zeros(6))
+    modal: dict | None = None
+    frame_z_m: float = 0.0  # ring-frame height of the reference point (a free modal body's centre of mass)
 
 
 def _vec(owner: str, name: str, value, n: int) -> np.ndarray:
@@ -202,6 +204,72 @@ class ModelBuilder:
         self._bodies.append(_Body(name, float(mass_kg), inertia, np.concatenate([_vec(owner, "position_m", position_m, 3), q]), v, free))
         return len(self._bodies) - 1
 
+    def add_modal_body(self, name: str, body, position_m=(0, 0, 0), orientation=(1, 0, 0, 0),
+                       velocity_m_s=(0, 0, 0), omega_rad_s=(0, 0, 0), motion=Fixed(), eta=None, eta_dot=None,
+                       implicit_modes: bool = False) -> int:
+        """Add a modal (flexible) body from a :class:`cms_reduction.ReducedBody`; returns its index.
+
+        ``position_m``/``orientation`` place the body's FE frame (ring axis = z); ``motion`` as for
+        :meth:`add_body`. A :class:`Free` body needs free–free modes (a floating reduction: modes
+        that do not move the centre of mass); its reference point is moved to its centre of mass on
+        the axis, and geometry given later in its ring frame (grooves, surfaces, pockets) is shifted
+        to match. ``eta``/``eta_dot`` (m,) are the initial modal coordinates (√kg) and rates;
+        ``implicit_modes`` integrates the linear modal part by the trapezoidal rule so that the
+        stiffest mode does not limit the step (frames without free components only).
+        """
+        from cms_reduction.invariants import Invariants
+
+        owner = f"modal body {name!r}"
+        try:
+            inv = Invariants.from_arrays(body.extras)
+        except KeyError as exc:
+            raise ValueError(f"{owner}: the reduced body has no inertia invariants ({exc})") from None
+        m = body.n_modes
+        I2, I3, I4, I7, I8 = (np.array(x, float) for x in (inv.I2, inv.I3, inv.I4, inv.I7, inv.I8))
+        shift = np.zeros(3)
+        if isinstance(motion, Free):
+            scale = math.sqrt(inv.mass_kg)
+            if np.abs(I3).max(initial=0.0) > 1e-6 * scale:
+                raise ValueError(f"{owner}: a free modal body needs free–free modes that leave the centre of mass "
+                                 f"in place; |∫ρΦ dV| = {np.abs(I3).max():.3g} √kg·m (reduce it without grounded "
+                                 "interfaces)")
+            shift = I2 / inv.mass_kg
+            radius = math.sqrt(np.trace(I7) / inv.mass_kg)
+            if math.hypot(shift[0], shift[1]) > 1e-9 * radius:
+                raise ValueError(f"{owner}: the centre of mass {shift.tolist()} m is off the ring axis; a free "
+                                 "modal body needs it on its frame's z axis")
+            shift[:2] = 0.0
+            # invariants about the centre of mass: x̄ → x̄ − c (Steiner for I7; I4, I8 by their definitions)
+            c, s2 = _skew(shift), _skew(I2)
+            I7 = I7 - s2.T @ c - c.T @ s2 + inv.mass_kg * c.T @ c
+            I4 = I4 - c @ I3
+            I8 = I8 - np.einsum("ab,bck->ack", c.T, np.stack([_skew(I3[:, k]) for k in range(m)], axis=2))
+            I2 = I2 - inv.mass_kg * shift
+            I3 = np.zeros_like(I3)
+        elif not isinstance(motion, (Fixed, Driven)):
+            raise TypeError(f"{owner}: motion must be Free(), Fixed() or Driven(...), got {motion!r}")
+        if implicit_modes and not isinstance(motion, Fixed) and not (
+                isinstance(motion, Driven) and not motion.translation_free and not motion.tilt_free):
+            raise ValueError(f"{owner}: implicit_modes needs a frame without free components (Fixed, or Driven "
+                             "with translation and tilt held)")
+        q = _vec(owner, "orientation", orientation, 4)
+        q = q / np.linalg.norm(q)
+        pos = _vec(owner, "position_m", position_m, 3) + _rotate(q, shift)
+        i = self.add_body(name, inv.mass_kg, np.maximum(np.diag(I7), 1e-30), pos, q, velocity_m_s, omega_rad_s,
+                          motion)
+        b = self._bodies[i]
+        frame_free, b.free = b.free.copy(), np.zeros(6, dtype=np.int64)
+        eta0 = np.zeros(m) if eta is None else _vec(owner, "eta", eta, m)
+        eta_dot0 = np.zeros(m) if eta_dot is None else _vec(owner, "eta_dot", eta_dot, m)
+        omega = 2.0 * np.pi * np.asarray(body.frequencies_Hz, float)
+        b.frame_z_m = float(shift[2])
+        b.modal = dict(reduced=body, frame_free=frame_free, implicit=int(bool(implicit_modes)), mass=inv.mass_kg,
+                       I2=I2, I3=I3, I4=I4, I5=np.array(inv.I5), I6=np.array(inv.I6), I7=I7, I8=I8,
+                       I9=np.array(inv.I9), omega2=omega**2,
+                       damp=2.0 * np.asarray(body.damping_ratio, float) * omega, eta=eta0, eta_dot=eta_dot0,
+                       shift=shift)
+        return i
+
     def _body_index(self, body, owner: str) -> int:
         if isinstance(body, str):
             for i, b in enumerate(self._bodies):
@@ -251,11 +319,13 @@ class ModelBuilder:
 
     # -- contact geometry -----------------------------------------------------------------------
     def add_groove(self, ring, centre_radius_m: float, centre_height_m: float, groove_radius_m: float,
-                   undulation_m=None, radial_offset_m=None) -> int:
+                   undulation_m=None, radial_offset_m=None, raceway=None) -> int:
         """A groove on ``ring``: circle of curvature centres (radius, height in the ring frame) and f·D.
 
         ``undulation_m`` h(θ) and ``radial_offset_m`` Δr(θ): tables on a uniform grid over
         [0, 2π) (ring frame angle), interpolated linearly and periodically; None = 0.
+        ``raceway``: on a modal ring, the sampled raceway the groove deforms with — a
+        :class:`cms_reduction.sampling.RacewaySample` or the name of one stored with the body.
         """
         owner = "groove"
         r = self._body_index(ring, owner)
@@ -268,9 +338,40 @@ class ModelBuilder:
             if a.size == 0 or not np.all(np.isfinite(a)):
                 raise ValueError(f"{owner}: {name} must be a non-empty table of finite values")
             tables.append(a)
-        self._grooves.append(dict(ring=r, rc=float(centre_radius_m), zc=float(centre_height_m),
-                                  r=float(groove_radius_m), h=tables[0], dr=tables[1]))
+        body = self._bodies[r]
+        sample = self._raceway_sample(body, raceway, owner)
+        self._grooves.append(dict(ring=r, rc=float(centre_radius_m), zc=float(centre_height_m) - body.frame_z_m,
+                                  r=float(groove_radius_m), h=tables[0], dr=tables[1], sample=sample))
         return len(self._grooves) - 1
+
+    @staticmethod
+    def _raceway_sample(body: _Body, raceway, owner: str):
+        """The raceway sample of a groove on a modal body (None on a rigid one), in the body's frame."""
+        if body.modal is None:
+            if raceway is not None:
+                raise ValueError(f"{owner}: body {body.name!r} is rigid; a raceway sample needs a modal body")
+            return None
+        from cms_reduction.sampling import RacewaySample, samples_from_arrays
+
+        reduced = body.modal["reduced"]
+        if isinstance(raceway, str):
+            samples = samples_from_arrays(reduced.extras)
+            if raceway not in samples:
+                raise ValueError(f"{owner}: modal body {body.name!r} has no raceway sample {raceway!r} "
+                                 f"(has {sorted(samples)})")
+            raceway = samples[raceway]
+        if not isinstance(raceway, RacewaySample):
+            raise ValueError(f"{owner}: a groove on modal body {body.name!r} needs raceway= (the sampled raceway "
+                             "it deforms with, a RacewaySample or its name)")
+        if raceway.displacement.shape[2] != reduced.n_modes:
+            raise ValueError(f"{owner}: raceway sample {raceway.name!r} has {raceway.displacement.shape[2]} modes, "
+                             f"the body {reduced.n_modes}")
+        th = np.asarray(raceway.theta_rad, float)
+        if raceway.periodic and th.size > 1 and not np.allclose(np.diff(th), 2 * np.pi / th.size, rtol=1e-6):
+            raise ValueError(f"{owner}: raceway sample {raceway.name!r} must be uniform in θ over the full circle")
+        return dict(theta=th, points=np.asarray(raceway.points_m, float) - body.modal["shift"],
+                    disp=np.asarray(raceway.displacement, float), rot=np.asarray(raceway.rotation, float),
+                    periodic=int(raceway.periodic))
 
     def add_surface(self, ring, kind: str, value_m: float) -> int:
         """A raceway or rib surface on ``ring``: kind in {inner_cylinder, outer_cylinder, plane_up,
@@ -280,6 +381,8 @@ class ModelBuilder:
             raise ValueError(f"surface: kind must be one of {sorted(SURFACE_KINDS)}, got {kind!r}")
         if not math.isfinite(value_m) or (kind.endswith("cylinder") and value_m <= 0):
             raise ValueError(f"surface: value_m must be finite (and > 0 for a cylinder), got {value_m!r}")
+        if kind.startswith("plane"):
+            value_m -= self._bodies[self._body_index(ring, "surface")].frame_z_m
         self._surfaces.append((SURFACE_KINDS[kind], float(value_m)))
         return len(self._surfaces) - 1
 
@@ -291,6 +394,7 @@ class ModelBuilder:
         check_positive("pocket", radius_m=radius_m)
         if not (math.isfinite(clearance_m) and clearance_m >= 0):
             raise ValueError(f"pocket: clearance_m must be ≥ 0, got {clearance_m!r}")
+        height_m -= self._bodies[self._body_index(cage, "pocket")].frame_z_m
         self._pockets.append((POCKET_KINDS[kind], float(angle_rad), float(radius_m), float(height_m), float(clearance_m)))
         return len(self._pockets) - 1
 
@@ -377,7 +481,8 @@ class ModelBuilder:
         nb = len(bodies)
         mass = np.array([b.mass for b in bodies])
         force = np.array([b.force for b in bodies]).reshape(nb, 6)
-        force[:, :3] += mass[:, None] * self.gravity_m_s2
+        rigid = np.array([b.modal is None for b in bodies])
+        force[rigid, :3] += mass[rigid, None] * self.gravity_m_s2  # modal bodies: from their invariants
         for name in {p["name"] for p in pairs}:
             if sum(p["name"] == name for p in pairs) > 1:
                 raise ValueError(f"model: contact name {name!r} is used twice")
@@ -400,6 +505,12 @@ class ModelBuilder:
         p_a = [_rotate_back(q0[bu["a"]], bu["point"]) for bu in self._bushings]
         p_b = [_rotate_back(q0[bu["b"]], bu["point"]) for bu in self._bushings]
         grooves = self._grooves
+        modal_arrays = self._modal_arrays()
+        for p in pairs:
+            if p["kind"] not in (BALL_GROOVE, BALL_BALL) and bodies[p["b"]].modal is not None:
+                raise ValueError(f"model: contact {p['name']!r}: {PAIR_KIND_NAMES[p['kind']]} contacts on a modal body "
+                                 f"({bodies[p['b']].name!r}) are not supported; only ball–groove contacts deform "
+                                 "a modal ring")
         arrays = ModelArrays(
             body_mass=mass, body_inertia=np.array([b.inertia for b in bodies]),
             body_free=np.array([b.free for b in bodies], dtype=np.int64), body_force=force,
@@ -431,11 +542,67 @@ class ModelBuilder:
             pocket_kind=_i64([p[0] for p in self._pockets]), pocket_angle=_f64([p[1] for p in self._pockets]),
             pocket_r=_f64([p[2] for p in self._pockets]), pocket_z=_f64([p[3] for p in self._pockets]),
             pocket_clearance=_f64([p[4] for p in self._pockets]),
+            gravity=self.gravity_m_s2.copy(), **modal_arrays,
         )
         model = Model(arrays, tuple(b.name for b in bodies), tuple(p["name"] for p in pairs),
                       tuple(PAIR_KIND_NAMES[p["kind"]] for p in pairs), self.gravity_m_s2.copy())
-        state = State(0.0, q0.copy(), np.array([b.v for b in bodies]).reshape(nb, 6))
+        modal = [b.modal for b in bodies if b.modal is not None]
+        state = State(0.0, q0.copy(), np.array([b.v for b in bodies]).reshape(nb, 6),
+                      np.concatenate([d["eta"] for d in modal] or [np.zeros(0)]),
+                      np.concatenate([d["eta_dot"] for d in modal] or [np.zeros(0)]))
         return model, state
+
+    def _modal_arrays(self) -> dict:
+        """The modal-body and flexible-groove arrays of :class:`ModelArrays` (zero-padded to M modes)."""
+        bodies = self._bodies
+        modal = [b.modal for b in bodies if b.modal is not None]
+        n_mb = len(modal)
+        M = max([d["I6"].shape[0] for d in modal] or [0])
+        counts = [d["I6"].shape[0] for d in modal]
+
+        def pad(key, shape):
+            out = np.zeros((n_mb, *shape))
+            for j, d in enumerate(modal):
+                a = d[key]
+                out[(j, *tuple(slice(0, n) for n in a.shape))] = a
+            return out
+
+        body_modal = np.full(len(bodies), -1, dtype=np.int64)
+        j = 0
+        for i, b in enumerate(bodies):
+            if b.modal is not None:
+                body_modal[i] = j
+                j += 1
+        samples = [g["sample"] for g in self._grooves]
+        n_s = [0 if smp is None else smp["theta"].size for smp in samples]
+        s_theta, s_point, s_disp, s_rot = [np.zeros(0)], [np.zeros((0, 3))], [np.zeros((0, 3, M))], [np.zeros((0, 3, M))]
+        for smp in samples:
+            if smp is None:
+                continue
+            s_theta.append(smp["theta"])
+            s_point.append(smp["points"])
+            for key, lst in (("disp", s_disp), ("rot", s_rot)):
+                a = np.zeros((smp["theta"].size, 3, M))
+                a[:, :, :smp[key].shape[2]] = smp[key]
+                lst.append(a)
+        I6 = pad("I6", (M, M))
+        unit = [int(np.allclose(d["I6"], np.eye(d["I6"].shape[0]), rtol=0.0, atol=1e-12)) for d in modal]
+        return dict(
+            body_modal=body_modal, modal_body=_i64([i for i, b in enumerate(bodies) if b.modal is not None]),
+            modal_off=_i64(np.concatenate([[0], np.cumsum(counts)])),
+            modal_frame_free=_i64([d["frame_free"] for d in modal]).reshape(-1, 6),
+            modal_implicit=_i64([d["implicit"] for d in modal]), modal_unit=_i64(unit),
+            modal_omega2=_f64(np.concatenate([d["omega2"] for d in modal] or [np.zeros(0)])),
+            modal_damp=_f64(np.concatenate([d["damp"] for d in modal] or [np.zeros(0)])),
+            modal_mass=_f64([d["mass"] for d in modal]), modal_I2=pad("I2", (3,)), modal_I3=pad("I3", (3, M)),
+            modal_I4=pad("I4", (3, M)), modal_I5=pad("I5", (3, M, M)), modal_I6=I6, modal_I7=pad("I7", (3, 3)),
+            modal_I8=pad("I8", (3, 3, M)), modal_I9=pad("I9", (3, 3, M, M)),
+            groove_modal=_i64([-1 if smp is None else body_modal[g["ring"]] for g, smp in zip(self._grooves, samples)]),
+            groove_periodic=_i64([0 if smp is None else smp["periodic"] for smp in samples]),
+            groove_samp_off=_i64(np.concatenate([[0], np.cumsum(n_s)])),
+            samp_theta=_f64(np.concatenate(s_theta)), samp_point=_f64(np.concatenate(s_point)),
+            samp_disp=_f64(np.concatenate(s_disp)), samp_rot=_f64(np.concatenate(s_rot)),
+        )
 
 
 def _i64(x) -> np.ndarray:
@@ -446,6 +613,16 @@ def _f64(x, shape=None) -> np.ndarray:
     """float64 array; ``shape`` (e.g. (-1, 3)) keeps empty tables two-dimensional for the kernels."""
     a = np.asarray(x, dtype=np.float64)
     return a.reshape(shape) if shape else a
+
+
+def _skew(a) -> np.ndarray:
+    """ã with ã b = a × b."""
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+def _rotate(q, x) -> np.ndarray:
+    """R(q) x for a unit quaternion (w, x, y, z)."""
+    return _quat_mul(_quat_mul(q, np.concatenate([[0.0], x])), _quat_conj(q))[1:]
 
 
 def _quat_conj(q):

@@ -29,11 +29,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kernels.explicit import kinetic_energy, record_now, run_explicit
-from ..kernels.forces import STATUS_ENERGY, STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION, compute_forces
+from ..kernels.explicit import record_now, run_explicit, total_kinetic_energy
+from ..kernels.forces import (STATUS_ENERGY, STATUS_MODAL, STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION,
+                              compute_forces)
 from ..kernels.laws import friction_coefficient
 from .model import Model, State, make_record_buffers, make_work
-from .recorder import RunRecord, read_run, recorded_timestep_s
+from .recorder import RunRecord, _modal_ranges, read_run, recorded_timestep_s
 
 __all__ = ["StepLimit", "stable_timestep", "simulate", "SimulationError", "StepTooLargeError", "DivergenceError",
            "evaluate_forces"]
@@ -65,7 +66,7 @@ class StepLimit:
 def evaluate_forces(model: Model, state: State, work=None):
     """Forces and contact outputs at a state (raises on a non-finite force); returns the work arrays."""
     work = make_work(model) if work is None else work
-    status, index = compute_forces(model.arrays, state.t, state.q, state.v, work)
+    status, index = compute_forces(model.arrays, state.t, state.q, state.v, state.eta, state.eta_dot, work)
     if status != STATUS_OK:
         raise DivergenceError(_failure_text(model, status, index, state.t, work))
     return work
@@ -163,7 +164,45 @@ def stable_timestep(model: Model, state: State, load_factor: float = 3.0, safety
         h = 2.0 / omega * (math.sqrt(1.0 + zeta * zeta) - zeta)
         if h < best[0]:
             best = (h, f"bushing {j} (stiffness {k:.3g} N/m)")
+    h_modal, why = _modal_limit(model, work, k_lin_of)
+    if h_modal < best[0]:
+        best = (h_modal, why)
     return StepLimit(best[0], safety * best[0], best[1])
+
+
+def _modal_limit(model: Model, work, k_lin_of: np.ndarray) -> tuple[float, str]:
+    """Step limit of each modal body: largest eigenvalue of K_η + 2 Σ_c k_c D_cᵀD_c (explicit modes;
+    the contact part only for implicit ones), D_c the raceway displacement table at contact c's angle
+    (balls on both sides free: factor 2, as the Gershgorin bound of the contacts)."""
+    a = model.arrays
+    best = (math.inf, "")
+    for j, i in enumerate(a.modal_body):
+        o0, o1 = int(a.modal_off[j]), int(a.modal_off[j + 1])
+        mj = o1 - o0
+        K = np.zeros((mj, mj)) if a.modal_implicit[j] else np.diag(a.modal_omega2[o0:o1])
+        for c in np.flatnonzero((a.pair_type == 0) & (a.pair_b == i)):
+            g = a.pair_geom[c]
+            if a.groove_modal[g] != j:
+                continue
+            s0, s1 = a.groove_samp_off[g], a.groove_samp_off[g + 1]
+            th = a.samp_theta[s0:s1]
+            k = int(np.argmin(np.abs(np.angle(np.exp(1j * (th - work.contact_theta[c]))))))
+            D = a.samp_disp[s0 + k, :, :mj]
+            K += 2.0 * k_lin_of[c] * D.T @ D
+        if mj == 0:
+            continue
+        lam = float(np.linalg.eigvalsh(K)[-1])
+        if lam <= 0.0:
+            continue
+        zeta = float(np.max(a.modal_damp[o0:o1] / (2.0 * np.sqrt(np.maximum(a.modal_omega2[o0:o1], 1e-300)))))
+        zeta = 0.0 if a.modal_implicit[j] else min(zeta, 1.0)
+        h = 2.0 / math.sqrt(lam) * (math.sqrt(1.0 + zeta * zeta) - zeta)
+        if h < best[0]:
+            f_max = math.sqrt(a.modal_omega2[o1 - 1]) / (2 * math.pi) if not a.modal_implicit[j] else 0.0
+            best = (h, f"the modes of modal body {model.body_names[i]!r} (highest kept mode {f_max:.4g} Hz, with the "
+                       f"contacts on its raceway: {math.sqrt(lam) / (2 * math.pi):.4g} Hz"
+                       + ("; implicit modes: contacts only" if a.modal_implicit[j] else "") + ")")
+    return best
 
 
 def _failure_text(model: Model, status: int, index: int, t: float, work) -> str:
@@ -178,6 +217,9 @@ def _failure_text(model: Model, status: int, index: int, t: float, work) -> str:
         return f"non-finite force on body {model.body_names[index - model.n_pairs]!r} at t = {t:.6g} s"
     if status == STATUS_ENERGY:
         return f"kinetic energy ran away (beyond the limit) at t ≈ {t:.6g} s: the run is unstable"
+    if status == STATUS_MODAL:
+        return (f"the mass matrix of a modal body is no longer positive definite at t ≈ {t:.6g} s (modal "
+                "coordinates beyond the small-deformation range): the run is unstable")
     return f"run failed with status {status} at t = {t:.6g} s"
 
 
@@ -221,7 +263,8 @@ def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | Non
         ck = rec_file.load_checkpoint()
         t_origin, step = float(ck["t_origin"]), int(ck["step"])
         state.q[:], state.v[:] = ck["q"], ck["v"]
-        work.body_f[:], work.body_t[:] = ck["body_f"], ck["body_t"]
+        state.eta, state.eta_dot = ck["eta"].copy(), ck["eta_dot"].copy()
+        work.body_f[:], work.body_t[:], work.modal_f[:] = ck["body_f"], ck["body_t"], ck["modal_f"]
         for f in ("fn", "delta", "slip", "ft", "angle", "theta"):
             getattr(work, f"contact_{f}")[:] = ck[f]
         h = timestep_s
@@ -237,12 +280,14 @@ def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | Non
                 f"{limit.reason}; use at most {limit.timestep_s:.3g} s")
         log.info("explicit step %.3g s (limit %.3g s from %s)", h, limit.limit_s, limit.reason)
         t_origin, step = float(state.t), 0
-        status, index = compute_forces(a, state.t, state.q, state.v, work)
+        _check_modal_state(model, state)
+        status, index = compute_forces(a, state.t, state.q, state.v, state.eta, state.eta_dot, work)
         if status != STATUS_OK:
             raise DivergenceError(_failure_text(model, status, index, state.t, work))
         rec_file = RunRecord(folder, model, h, record_every, t_end_s) if folder is not None else None
     n_total = int(round((t_end_s - t_origin) / h))
-    e_limit = energy_limit_J if energy_limit_J is not None else 1e3 * max(kinetic_energy(a.body_mass, a.body_inertia, state.v), 10.0)
+    e_limit = energy_limit_J if energy_limit_J is not None else 1e3 * max(
+        total_kinetic_energy(a, state.q, state.v, state.eta, state.eta_dot, work), 10.0)
     rec = make_record_buffers(model, chunk_samples)
     in_memory: list[dict] = []
 
@@ -255,12 +300,12 @@ def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | Non
             in_memory.append({f: getattr(rec, f)[:k].copy() for f in rec._fields})
 
     if step == 0:
-        record_now(a, state.q, state.v, work, state.t, 0, rec)
+        record_now(a, state.q, state.v, state.eta, state.eta_dot, work, state.t, 0, rec)
         store(1)
     while step < n_total:
         n_run = min(chunk_samples * record_every, n_total - step)
-        status, index, done, k = run_explicit(a, state.q, state.v, work, t_origin, step, n_run, h, record_every,
-                                              rec, e_limit)
+        status, index, done, k = run_explicit(a, state.q, state.v, state.eta, state.eta_dot, work, t_origin, step,
+                                              n_run, h, record_every, rec, e_limit)
         step += done
         state.t = t_origin + step * h
         store(k)
@@ -270,11 +315,20 @@ def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | Non
                 rec_file.finish(f"failed: {text}")
             raise DivergenceError(text)
         if rec_file is not None:
-            rec_file.write_checkpoint(t_origin, step, state.q, state.v, work)
+            rec_file.write_checkpoint(t_origin, step, state, work)
     if rec_file is not None:
         rec_file.finish("complete")
         return read_run(folder)
     out = {f: np.concatenate([c[f] for c in in_memory]) for f in rec._fields}
     out.update(body_names=list(model.body_names), pair_names=list(model.pair_names),
-               pair_kinds=list(model.pair_kinds), status="complete", timestep_s=h, every=record_every)
+               pair_kinds=list(model.pair_kinds), status="complete", timestep_s=h, every=record_every,
+               modal_ranges={n: [int(i), int(j)] for n, i, j in _modal_ranges(model)})
     return out
+
+
+def _check_modal_state(model: Model, state: State) -> None:
+    n = model.n_modal
+    for name in ("eta", "eta_dot"):
+        x = np.asarray(getattr(state, name), float)
+        if x.shape != (n,) or not np.all(np.isfinite(x)):
+            raise ValueError(f"simulate: state.{name} must be {n} finite modal coordinates, got shape {x.shape}")

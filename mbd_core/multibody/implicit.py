@@ -205,6 +205,8 @@ def simulate_implicit(model: Model, state: State, t_end_s: float, timestep_s: fl
         raise ValueError(f"simulate_implicit: max_iter must be an integer ≥ 1, got {max_iter!r}")
     if not (math.isfinite(tol) and tol > 0):
         raise ValueError(f"simulate_implicit: tol must be positive, got {tol!r}")
+    if model.n_modal:
+        raise ValueError("simulate_implicit: modal bodies are integrated by the explicit scheme only (simulate)")
     c = gen_alpha_coefficients(rho_inf)
     h = float(timestep_s)
     a = model.arrays
@@ -217,7 +219,7 @@ def simulate_implicit(model: Model, state: State, t_end_s: float, timestep_s: fl
         raise DivergenceError(_failure_text(model, status, index, t0, work))
     s.a0[:] = s.vd0
     rec = make_record_buffers(model, n_total // record_every + 1)
-    record_now(a, s.q0, s.v0, work, t0, 0, rec)
+    record_now(a, s.q0, s.v0, state.eta, state.eta_dot, work, t0, 0, rec)
     k = 1
     gain = _config_gain(h, c)
     mat = _IterationMatrix(gain=gain, eps_floor=CONFIG_STEP_REF / gain)
@@ -229,7 +231,7 @@ def simulate_implicit(model: Model, state: State, t_end_s: float, timestep_s: fl
                 getattr(s, name + "0")[:] = getattr(s, name + "1")
             state.t = t1
             if step % record_every == 0:
-                record_now(a, s.q0, s.v0, work, t1, k, rec)
+                record_now(a, s.q0, s.v0, state.eta, state.eta_dot, work, t1, k, rec)
                 k += 1
     finally:
         state.q[:], state.v[:] = s.q0, s.v0

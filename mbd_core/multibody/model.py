@@ -27,6 +27,22 @@ Grooves (ball–groove)
 Raceways and ribs of rollers: race_kind (n_r,) int64, race_value (n_r,) m.
 Cage pockets: pocket_kind (n_p,) int64, pocket_angle rad, pocket_r m, pocket_z m,
     pocket_clearance m.
+Gravity: gravity (3,) m/s², world (already in body_force for rigid bodies; modal bodies get their
+    weight from their invariants, :mod:`mbd_core.kernels.modal_step`).
+Modal bodies (n_mb of them, n_η modal coordinates in all, M the largest number of modes of one body;
+    :mod:`mbd_core.kernels.modal_step`)
+    body_modal (n_b,) int64, the modal index of a body or −1; modal_body (n_mb,) its body index;
+    modal_off (n_mb + 1,) into η; modal_frame_free (n_mb, 6) int64 as body_free for the reference
+    frame (the rigid arrays hold such a body with body_free = 0); modal_implicit (n_mb,) int64, 1 to
+    integrate −Kη − Dη̇ by the trapezoidal rule; modal_unit (n_mb,) int64, 1 when I6 is the identity;
+    modal_omega2 (n_η,) 1/s², modal_damp (n_η,) 2ζω 1/s; invariants zero-padded to M modes:
+    modal_mass (n_mb,) kg, modal_I2 (n_mb, 3), modal_I3/modal_I4 (n_mb, 3, M), modal_I5 (n_mb, 3, M, M),
+    modal_I6 (n_mb, M, M), modal_I7 (n_mb, 3, 3), modal_I8 (n_mb, 3, 3, M), modal_I9 (n_mb, 3, 3, M, M)
+    (units of :class:`cms_reduction.invariants.Invariants`).
+Flexible grooves: groove_modal (n_g,) int64 modal index of the groove's ring or −1; groove_periodic
+    (n_g,) int64; groove_samp_off (n_g + 1,) into the raceway samples samp_theta (n_s,) rad,
+    samp_point (n_s, 3) m (ring frame), samp_disp and samp_rot (n_s, 3, M) m/√kg and rad/√kg
+    (:class:`cms_reduction.sampling.RacewaySample`).
 """
 
 from __future__ import annotations
@@ -44,7 +60,10 @@ MODEL_FIELDS = (
     "pair_radius pair_radius_b pair_length pair_aux pair_slice_off slice_drop pair_delta_max "
     "groove_rc groove_zc groove_r groove_h_off groove_h groove_dr_off groove_dr "
     "race_kind race_value "
-    "pocket_kind pocket_angle pocket_r pocket_z pocket_clearance"
+    "pocket_kind pocket_angle pocket_r pocket_z pocket_clearance "
+    "gravity body_modal modal_body modal_off modal_frame_free modal_implicit modal_unit modal_omega2 modal_damp "
+    "modal_mass modal_I2 modal_I3 modal_I4 modal_I5 modal_I6 modal_I7 modal_I8 modal_I9 "
+    "groove_modal groove_periodic groove_samp_off samp_theta samp_point samp_disp samp_rot"
 )
 ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 
@@ -52,15 +71,20 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: contact_* (n_c,) outputs: fn N (sum over slices/points), delta m (largest), slip m/s (at the
 #: most loaded point), ft N (sum of friction magnitudes), angle rad (atan2(n_axial, n_radial) of
 #: the normal in the ring's frame), theta rad (ball angle on its groove); energy (2,) J: contact
-#: and bushing potential; type_count (5,) the number of pairs of each kind; the rest is scratch.
+#: and bushing potential; type_count (5,) the number of pairs of each kind; modal_f (n_η,) the
+#: contacts' modal forces, √kg·m/s²; the modal_* rest is scratch of the modal step (M the largest
+#: number of modes of a body): modal_M, modal_L (6 + M, 6 + M), modal_u, modal_u0, modal_rhs,
+#: modal_h, modal_b (6 + M,), modal_sel (6 + M,) int64, modal_vec (4, 3), modal_eta (M,).
 WorkArrays = namedtuple(
     "WorkArrays",
     "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta energy "
-    "load pi center axis point slice_delta slice_point slice_normal type_count",
+    "load pi center axis point slice_delta slice_point slice_normal type_count "
+    "modal_f modal_M modal_L modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta",
 )
 
-#: Buffers for k samples: t (k,), q (k, n_b, 7), v (k, n_b, 6), contact outputs (k, n_c).
-RecordBuffers = namedtuple("RecordBuffers", "t q v fn delta slip ft angle theta")
+#: Buffers for k samples: t (k,), q (k, n_b, 7), v (k, n_b, 6), eta and eta_dot (k, n_η), contact
+#: outputs (k, n_c).
+RecordBuffers = namedtuple("RecordBuffers", "t q v eta eta_dot fn delta slip ft angle theta")
 RECORDED_CONTACT_FIELDS = ("fn", "delta", "slip", "ft", "angle", "theta")
 
 
@@ -94,6 +118,19 @@ class Model:
     def n_pairs(self) -> int:
         return len(self.pair_names)
 
+    @property
+    def n_modal(self) -> int:
+        """Number of modal coordinates of all modal bodies."""
+        return int(self.arrays.modal_off[-1])
+
+    def modal_slice(self, name: str) -> slice:
+        """The modal coordinates of the modal body called ``name`` within η."""
+        i = self.body(name)
+        j = int(self.arrays.body_modal[i])
+        if j < 0:
+            raise KeyError(f"body {name!r} is rigid: it has no modal coordinates")
+        return slice(int(self.arrays.modal_off[j]), int(self.arrays.modal_off[j + 1]))
+
     def body(self, name: str) -> int:
         """Index of the body called ``name``."""
         try:
@@ -112,14 +149,17 @@ class Model:
 
 @dataclass
 class State:
-    """Restartable state: time t (s), q (n_b, 7) positions m and quaternions, v (n_b, 6) m/s, rad/s."""
+    """Restartable state: time t (s), q (n_b, 7) positions m and quaternions, v (n_b, 6) m/s, rad/s,
+    modal coordinates eta (n_η,) √kg and rates eta_dot (n_η,) √kg/s of the modal bodies."""
 
     t: float
     q: np.ndarray
     v: np.ndarray
+    eta: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    eta_dot: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def copy(self) -> "State":
-        return State(float(self.t), self.q.copy(), self.v.copy())
+        return State(float(self.t), self.q.copy(), self.v.copy(), self.eta.copy(), self.eta_dot.copy())
 
 
 def make_work(model: Model) -> WorkArrays:
@@ -128,6 +168,7 @@ def make_work(model: Model) -> WorkArrays:
     nb, nc = model.n_bodies, model.n_pairs
     ns = int(np.max(np.diff(a.pair_slice_off))) if nc else 0
     ns = max(ns, 1)
+    n6 = 6 + a.modal_I6.shape[1]
     return WorkArrays(
         body_f=np.zeros((nb, 3)), body_t=np.zeros((nb, 3)),
         contact_fn=np.zeros(nc), contact_delta=np.zeros(nc), contact_slip=np.zeros(nc),
@@ -136,6 +177,10 @@ def make_work(model: Model) -> WorkArrays:
         point=np.zeros(3), slice_delta=np.zeros(ns), slice_point=np.zeros((ns, 3)),
         slice_normal=np.zeros((ns, 3)),
         type_count=np.bincount(a.pair_type, minlength=5).astype(np.int64),
+        modal_f=np.zeros(model.n_modal), modal_M=np.zeros((n6, n6)), modal_L=np.zeros((n6, n6)),
+        modal_u=np.zeros(n6), modal_u0=np.zeros(n6), modal_rhs=np.zeros(n6), modal_h=np.zeros(n6),
+        modal_b=np.zeros(n6), modal_sel=np.zeros(n6, dtype=np.int64), modal_vec=np.zeros((4, 3)),
+        modal_eta=np.zeros(n6 - 6),
     )
 
 
@@ -145,5 +190,6 @@ def make_record_buffers(model: Model, n_samples: int) -> RecordBuffers:
     k = max(int(n_samples), 1)
     return RecordBuffers(
         t=np.zeros(k), q=np.zeros((k, nb, 7)), v=np.zeros((k, nb, 6)),
+        eta=np.zeros((k, model.n_modal)), eta_dot=np.zeros((k, model.n_modal)),
         **{name: np.zeros((k, nc)) for name in RECORDED_CONTACT_FIELDS},
     )

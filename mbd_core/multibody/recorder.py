@@ -7,12 +7,14 @@ Layout of a run folder (one place, DESIGN §5.5)::
     chunk_000000.npz    one chunk of samples, each array with the sample axis first:
                         t (k,) s; q (k, n_b, 7) positions m + quaternions (w, x, y, z);
                         v (k, n_b, 6) velocity m/s (world) + angular velocity rad/s (body);
+                        eta, eta_dot (k, n_η) modal coordinates √kg and rates √kg/s (the modal
+                        bodies' ranges in ``modal_ranges`` of layout.json);
                         fn, delta, slip, ft, angle, theta (k, n_c): normal force N, penetration m,
                         slip speed m/s, friction force N, contact angle rad, ball angle on its
                         groove rad (0 for other contacts)
-    checkpoint.npz      the integrator state after the last chunk: t_origin, step, q, v, body_f,
-                        body_t, the contact outputs and n_chunks, from which a run resumes bit
-                        for bit
+    checkpoint.npz      the integrator state after the last chunk: t_origin, step, q, v, eta,
+                        eta_dot, body_f, body_t, modal_f, the contact outputs and n_chunks, from
+                        which a run resumes bit for bit
 
 Chunks and the checkpoint are written atomically (temporary file, then rename), so an interrupted
 run leaves complete chunks only; ``layout.json`` says whether the run finished.
@@ -31,7 +33,7 @@ from .model import RECORDED_CONTACT_FIELDS, Model
 __all__ = ["RunRecord", "read_run", "FORMAT_VERSION"]
 
 FORMAT_VERSION = 1
-UNITS = {"t": "s", "q": "m | quaternion", "v": "m/s | rad/s (body)", "fn": "N", "delta": "m", "slip": "m/s",
+UNITS = {"t": "s", "q": "m | quaternion", "v": "m/s | rad/s (body)", "eta": "√kg", "eta_dot": "√kg/s", "fn": "N", "delta": "m", "slip": "m/s",
          "ft": "N", "angle": "rad", "theta": "rad"}
 
 
@@ -70,6 +72,7 @@ class RunRecord:
                 "pair_names": list(model.pair_names), "pair_kinds": list(model.pair_kinds),
                 "timestep_s": timestep_s, "every": every, "t_end_s": t_end_s, "n_chunks": 0,
                 "status": "running", "units": UNITS,
+                "modal_ranges": {name: [int(a), int(b)] for name, a, b in _modal_ranges(model)},
             }
         self.layout["t_end_s"] = t_end_s
         self.layout["status"] = "running"
@@ -82,10 +85,10 @@ class RunRecord:
             _atomic_save(self.folder / f"chunk_{n:06d}.npz", **{f: getattr(rec, f)[:k] for f in rec._fields})
             self.layout["n_chunks"] = n + 1
 
-    def write_checkpoint(self, t_origin: float, step: int, q, v, work) -> None:
-        _atomic_save(self.folder / "checkpoint.npz", t_origin=t_origin, step=step, q=q, v=v,
-                     n_chunks=self.layout["n_chunks"],
-                     body_f=work.body_f, body_t=work.body_t,
+    def write_checkpoint(self, t_origin: float, step: int, state, work) -> None:
+        _atomic_save(self.folder / "checkpoint.npz", t_origin=t_origin, step=step, q=state.q, v=state.v,
+                     eta=state.eta, eta_dot=state.eta_dot, n_chunks=self.layout["n_chunks"],
+                     body_f=work.body_f, body_t=work.body_t, modal_f=work.modal_f,
                      **{f: getattr(work, f"contact_{f}") for f in RECORDED_CONTACT_FIELDS})
         _atomic_json(self.layout_path, self.layout)
 
@@ -101,6 +104,12 @@ class RunRecord:
             ck = {k: d[k] for k in d.files}
         self.layout["n_chunks"] = int(ck["n_chunks"])  # chunks written after the checkpoint are dropped
         return ck
+
+
+def _modal_ranges(model: Model):
+    """(body name, first, stop) of every modal body's coordinates within η."""
+    a = model.arrays
+    return [(model.body_names[int(i)], a.modal_off[j], a.modal_off[j + 1]) for j, i in enumerate(a.modal_body)]
 
 
 def recorded_timestep_s(folder) -> float:
@@ -129,4 +138,5 @@ def read_run(folder) -> dict:
     out = {k: np.concatenate(v) for k, v in parts.items()}
     for key in ("body_names", "pair_names", "pair_kinds", "status", "timestep_s", "every"):
         out[key] = layout[key]
+    out["modal_ranges"] = layout.get("modal_ranges", {})
     return out

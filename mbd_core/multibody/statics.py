@@ -8,6 +8,10 @@ returned state has the new positions and the velocities of the given state (set 
 velocities there, e.g. with :func:`mbd_core.multibody.bearings.set_rolling_velocities`). Neutral directions — a ball's place along its groove when there is no
 cage, a ring's spin — are handled by the Levenberg–Marquardt damping of
 ``scipy.optimize.least_squares``, which leaves them where they are.
+
+The modal coordinates of modal bodies are unknowns too, with the residual of their modal equations
+Q + I3ᵀRᵀg − Kη = 0 (contact modal forces Q, weight, modal stiffness; the frames of modal bodies are
+held where they are, and a driven frame's centrifugal load is not included: velocities are zero).
 """
 
 from __future__ import annotations
@@ -78,9 +82,12 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
                     unknowns.append((i, j))
     body_idx = np.array([u[0] for u in unknowns], dtype=int)
     comp_idx = np.array([u[1] for u in unknowns], dtype=int)
+    n_r = len(unknowns)
     work = make_work(model)
     base = state.copy()
     base.v[:] = 0.0
+    base.eta_dot[:] = 0.0
+    d_ref = _modal_displacement_scale(model)
     force_scale = max(float(np.abs(a.body_force[free[:, :3].any(axis=1), :3]).max(initial=0.0)), 1.0)
     lengths = [r for r in a.pair_radius if r > 0]
     length_scale = max(lengths) if lengths else 1.0
@@ -94,6 +101,8 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     phi = np.zeros((model.n_bodies, 3))
 
     def place(x):
+        trial.eta[:] = x[n_r:]
+        x = x[:n_r]
         shift[body_idx[trans], comp_idx[trans]] = x[trans]
         phi[body_idx[rot], comp_idx[rot] - 3] = x[rot]
         trial.q[:, :3] = base.q[:, :3] + shift
@@ -105,19 +114,20 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     def residual(x):
         place(x)
         count[0] += 1
-        status, index = compute_forces(a, trial.t, trial.q, trial.v, work)
+        status, index = compute_forces(a, trial.t, trial.q, trial.v, trial.eta, trial.eta_dot, work)
         if status != STATUS_OK:
             raise DivergenceError("static equilibrium: " + _failure_text(model, status, index, trial.t, work))
-        r = np.empty(len(unknowns))
+        r = np.empty(n_r)
         r[trans] = work.body_f[body_idx[trans], comp_idx[trans]] / force_scale
         if rot_bodies.size:
             tb = _rotate_back_vecs(trial.q[body_idx[rot], 3:], work.body_t[body_idx[rot]])
             r[rot] = tb[np.arange(tb.shape[0]), comp_idx[rot] - 3] / (force_scale * length_scale)
-        return r - spring[0] * spring_k * x
+        r_modal = _modal_residual(model, trial, work) / (d_ref * force_scale)
+        return np.concatenate([r - spring[0] * spring_k * x[:n_r], r_modal])
 
-    if not unknowns:
+    if not unknowns and model.n_modal == 0:
         return StaticResult(base, 0.0, 0.0, force_scale, 0)
-    x_scale = np.where(comp_idx < 3, 1e-4, 1e-4 / length_scale)
+    x_scale = np.concatenate([np.where(comp_idx < 3, 1e-4, 1e-4 / length_scale), 1e-4 / d_ref])
     # A soft spring from each body to its start, so stiff that the body's own load moves it by
     # 1 mm, gives the solver a gradient while contacts are still open (Hertz forces have zero slope
     # at touch-down); it is relaxed in steps down to zero (continuation), so that bodies resting in
@@ -125,16 +135,21 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     own = np.where(comp_idx < 3, np.abs(a.body_force[body_idx, comp_idx % 3]) / force_scale,
                    np.abs(a.body_force[body_idx, 3 + comp_idx % 3]) / (force_scale * length_scale))
     spring_k = np.maximum(own, 1e-6) / np.where(comp_idx < 3, 1e-3, 1e-3 / length_scale)
-    x0 = np.zeros(len(unknowns))
+    x0 = np.concatenate([np.zeros(n_r), base.eta])
     for spring[0] in (1.0, 1e-2, 1e-4, 0.0):
         sol = least_squares(residual, x0, method="lm", x_scale=x_scale, xtol=tol, ftol=tol, gtol=tol,
                             max_nfev=max_evaluations)
         x0 = sol.x
     spring[0] = 0.0
     place(sol.x)
-    r = residual(sol.x)
+    r_all = residual(sol.x)
+    r, r_modal = r_all[:n_r], r_all[n_r:]
     f_res = float(np.abs(r[comp_idx < 3]).max(initial=0.0)) * force_scale
     m_res = float(np.abs(r[comp_idx >= 3]).max(initial=0.0)) * force_scale * length_scale
+    q_res = float(np.abs(r_modal).max(initial=0.0)) * force_scale
+    if q_res > 1e-4 * force_scale:
+        raise RuntimeError(f"static equilibrium not found: modal residual {q_res:.3g} N (as a raceway force; load "
+                           f"scale {force_scale:.3g} N) after {count[0]} evaluations")
     if max(f_res, m_res / length_scale) > 1e-4 * force_scale:
         worst = int(np.argmax(np.abs(r)))
         raise RuntimeError(
@@ -144,8 +159,35 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
             f"{count[0]} evaluations — can the bearing carry the load?")
     result = trial.copy()
     result.v[:] = state.v
+    result.eta_dot[:] = state.eta_dot
     log.info("static equilibrium: residual %.3g N, %.3g N·m after %d evaluations", f_res, m_res, count[0])
     return StaticResult(result, f_res, m_res, force_scale, count[0])
+
+
+def _modal_displacement_scale(model: Model) -> np.ndarray:
+    """Per modal coordinate, the largest raceway displacement per unit η (m/√kg) of its body's sampled
+    grooves, or 1/√m of the body without any: the yardstick of the modal residual and unknowns."""
+    a = model.arrays
+    d = np.zeros(model.n_modal)
+    for j in range(a.modal_body.shape[0]):
+        o0, o1 = a.modal_off[j], a.modal_off[j + 1]
+        d[o0:o1] = 1.0 / np.sqrt(a.modal_mass[j])
+        for g in np.flatnonzero(a.groove_modal == j):
+            tab = a.samp_disp[a.groove_samp_off[g]:a.groove_samp_off[g + 1], :, :o1 - o0]
+            d[o0:o1] = np.maximum(d[o0:o1], np.linalg.norm(tab, axis=1).max(axis=0))
+    return d
+
+
+def _modal_residual(model: Model, state: State, work) -> np.ndarray:
+    """Q + I3ᵀRᵀg − Kη of every modal coordinate, √kg·m/s²."""
+    a = model.arrays
+    r = np.empty(model.n_modal)
+    for j, i in enumerate(a.modal_body):
+        o0, o1 = a.modal_off[j], a.modal_off[j + 1]
+        g_b = _rotate_back_vecs(state.q[i:i + 1, 3:], a.gravity[None])[0]
+        r[o0:o1] = (work.modal_f[o0:o1] + a.modal_I3[j, :, :o1 - o0].T @ g_b
+                    - a.modal_omega2[o0:o1] * state.eta[o0:o1])
+    return r
 
 
 def _rotate_back_vecs(q: np.ndarray, x: np.ndarray) -> np.ndarray:

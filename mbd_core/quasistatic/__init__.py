@@ -1,5 +1,14 @@
-"""Quasi-static load distribution of bearings with rigid rings (Newton, analytic Jacobian)."""
+"""Quasi-static load distribution of bearings with rigid or flexible (modal) rings (Newton, analytic Jacobian)."""
 
+from .flexible import (
+    FlexibleBearingModel,
+    FlexibleLoadDistribution,
+    FlexibleRing,
+    GrooveOffset,
+    RacewayDeflection,
+    build_flexible_model,
+    solve_flexible_load_distribution,
+)
 from .rows import BallRow, Bearing, RollerRow
 from .solver import LoadDistribution, LoadDistributionError, RingLoad, solve_load_distribution
 
@@ -11,4 +20,11 @@ __all__ = [
     "LoadDistribution",
     "LoadDistributionError",
     "solve_load_distribution",
+    "FlexibleRing",
+    "GrooveOffset",
+    "FlexibleBearingModel",
+    "build_flexible_model",
+    "RacewayDeflection",
+    "FlexibleLoadDistribution",
+    "solve_flexible_load_distribution",
 ]

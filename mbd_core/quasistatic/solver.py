@@ -254,6 +254,77 @@ def _scaling(bearing: Bearing) -> np.ndarray:
     return np.array([1.0, 1.0, 1.0, L, L])
 
 
+def supported_dofs(prob: _Problem, bearing_name: str, f_ext: np.ndarray, S: np.ndarray):
+    """Degrees of freedom of the moving ring in which the rows have stiffness.
+
+    Returns the mask (5,) of supported DOFs and the scaled secant stiffness (5, 5) of
+    :meth:`_Problem.linear_stiffness`. A load on an unsupported DOF is a
+    :class:`LoadDistributionError` naming the load component.
+    """
+    scale = max(float(np.linalg.norm(f_ext / S)), 1.0)
+    K_lin = prob.linear_stiffness(float(np.linalg.norm(f_ext / S))) / S[:, None] / S[None, :]
+    diag = np.diag(K_lin)
+    supported = diag > 1e-12 * diag.max()
+    for i in np.flatnonzero(~supported):
+        if abs(f_ext[i] / S[i]) > 1e-12 * scale:
+            raise LoadDistributionError(
+                f"load: {LOAD_NAMES[i]} = {f_ext[i]:.6g} acts on a degree of freedom ({DOF_NAMES[i]}) "
+                f"in which bearing {bearing_name!r} has no stiffness"
+            )
+    return supported, K_lin
+
+
+def damped_newton(residual, y: np.ndarray, free: np.ndarray, tolerance_abs: float, max_iterations: int,
+                  fallback_stiffness: np.ndarray):
+    """Newton's method on the ``free`` unknowns with backtracking on the residual norm.
+
+    ``residual(y, jac)`` returns the scaled residual R(y) and its Jacobian dR/dy; the rest of y is
+    held. A step is halved until |R| decreases (Armijo factor 1e-4). Where the Jacobian is singular
+    (every element has lost contact) ``1e-3·fallback_stiffness`` is added to −J.
+
+    Returns
+    -------
+    y, R, |R_free|, iterations — converged when |R_free| ≤ ``tolerance_abs``.
+    """
+    y = np.array(y, dtype=float)
+    r, J = residual(y)
+    norm = np.linalg.norm(r[free])
+    it = 0
+    while norm > tolerance_abs and it < max_iterations:
+        it += 1
+        Kf = -J[np.ix_(free, free)]
+        if not np.all(np.isfinite(Kf)) or np.linalg.cond(Kf) > 1e12:
+            Kf = Kf + 1e-3 * fallback_stiffness[np.ix_(free, free)]  # all elements lost contact: lean on the springs
+        step = np.zeros_like(y)
+        step[free] = np.linalg.solve(Kf, r[free])
+        lam, accepted = 1.0, False
+        while lam > 1e-8:
+            y_try = y + lam * step
+            r_try, J_try = residual(y_try)
+            n_try = np.linalg.norm(r_try[free])
+            if n_try < (1.0 - 1e-4 * lam) * norm:
+                accepted = True
+                break
+            lam *= 0.5
+        if not accepted:
+            break
+        y, r, J, norm = y_try, r_try, J_try, n_try
+        log.debug("iteration %d: |residual| = %.3e (step %.3g)", it, norm, lam)
+    return y, r, float(norm), it
+
+
+def no_equilibrium_error(bearing_name: str, iterations: int, r: np.ndarray, S: np.ndarray,
+                         f_ext: np.ndarray) -> LoadDistributionError:
+    """The error of an unconverged solve, naming the worst unbalanced load component."""
+    worst = int(np.argmax(np.abs(r[:5])))
+    return LoadDistributionError(
+        f"no converged equilibrium for bearing {bearing_name!r} after {iterations} iterations: "
+        f"unbalanced {LOAD_NAMES[worst]} = {r[worst] * S[worst]:.6g} of the applied "
+        f"{f_ext[worst]:.6g}; the rows cannot carry this load (does it lift the moving ring "
+        "off every element, or exceed what the contact angles allow?)"
+    )
+
+
 def solve_load_distribution(
     bearing: Bearing,
     load: RingLoad,
@@ -293,16 +364,7 @@ def solve_load_distribution(
     f_ext = load.as_array()
     load_scale = float(np.linalg.norm(f_ext / S))
     scale = max(load_scale, 1.0)
-
-    K_lin = prob.linear_stiffness(load_scale) / S[:, None] / S[None, :]
-    diag = np.diag(K_lin)
-    supported = diag > 1e-12 * diag.max()
-    for i in np.flatnonzero(~supported):
-        if abs(f_ext[i] / S[i]) > 1e-12 * scale:
-            raise LoadDistributionError(
-                f"load: {LOAD_NAMES[i]} = {f_ext[i]:.6g} acts on a degree of freedom ({DOF_NAMES[i]}) "
-                f"in which bearing {bearing.name!r} has no stiffness"
-            )
+    supported, K_lin = supported_dofs(prob, bearing.name, f_ext, S)
     free = np.flatnonzero(supported)
     held = tuple(DOF_NAMES[i] for i in np.flatnonzero(~supported))
 
@@ -319,50 +381,26 @@ def solve_load_distribution(
         J_s = None if J is None else J / S[:, None] / S[None, :]
         return r_s, J_s
 
-    r, J = residual(y)
-    norm = np.linalg.norm(r[free])
-    it = 0
-    while norm > tolerance * scale:
-        if it >= max_iterations:
-            break
-        it += 1
-        Kf = -J[np.ix_(free, free)]
-        if not np.all(np.isfinite(Kf)) or np.linalg.cond(Kf) > 1e12:
-            Kf = Kf + 1e-3 * K_lin[np.ix_(free, free)]  # all elements lost contact: lean on the springs
-        step = np.zeros(5)
-        step[free] = np.linalg.solve(Kf, r[free])
-        lam, accepted = 1.0, False
-        while lam > 1e-8:
-            y_try = y + lam * step
-            r_try, J_try = residual(y_try)
-            n_try = np.linalg.norm(r_try[free])
-            if n_try < (1.0 - 1e-4 * lam) * norm:
-                accepted = True
-                break
-            lam *= 0.5
-        if not accepted:
-            break
-        y, r, J, norm = y_try, r_try, J_try, n_try
-        log.debug("iteration %d: |residual| = %.3e (step %.3g)", it, norm / scale, lam)
-
+    y, r, norm, it = damped_newton(residual, y, free, tolerance * scale, max_iterations, K_lin)
     if not norm <= tolerance * scale:
-        worst = int(np.argmax(np.abs(r)))
-        raise LoadDistributionError(
-            f"no converged equilibrium for bearing {bearing.name!r} after {it} iterations: "
-            f"unbalanced {LOAD_NAMES[worst]} = {r[worst] * S[worst]:.6g} of the applied "
-            f"{f_ext[worst]:.6g}; the rows cannot carry this load (does it lift the moving ring "
-            "off every element, or exceed what the contact angles allow?)"
-        )
+        raise no_equilibrium_error(bearing.name, it, r, S, f_ext)
     q = y / S
     return _collect(prob, bearing, load, q, it, float(norm / scale), held)
 
 
 def _collect(prob: _Problem, bearing: Bearing, load: RingLoad, q: np.ndarray, iterations: int,
              error: float, held: tuple[str, ...]) -> LoadDistribution:
-    bg, sg = prob.balls, prob.slices
-    Qb, db, s, rb, _ = ball_forces(bg, prob.B_balls, q, jacobian=False)
-    Qs, ds, rs, _ = slice_forces(sg, prob.w_slices, q, jacobian=False)
-    reaction = rb + rs
+    Qb, db, s, rb, _ = ball_forces(prob.balls, prob.B_balls, q, jacobian=False)
+    Qs, ds, rs, _ = slice_forces(prob.slices, prob.w_slices, q, jacobian=False)
+    rows = row_loads(bearing, prob.balls, prob.slices, (Qb, db, s), (Qs, ds))
+    return LoadDistribution(bearing.name, load.as_array(), q, rb + rs, rows, iterations, error, held)
+
+
+def row_loads(bearing: Bearing, bg: BallGroup, sg: SliceGroup, balls, slices) -> tuple[RowLoads, ...]:
+    """Per-row loads from the element results ``balls`` = (Q, δ, s) of :func:`ball_forces` and
+    ``slices`` = (Q, δ) of :func:`slice_forces`."""
+    Qb, db, s = balls
+    Qs, ds = slices
     rows = []
     for i, row in enumerate(bearing.rows):
         psi = row.first_azimuth_rad + 2.0 * np.pi * np.arange(row.n_elements) / row.n_elements
@@ -380,4 +418,4 @@ def _collect(prob: _Problem, bearing: Bearing, load: RingLoad, q: np.ndarray, it
             total = q_sl.sum(axis=1)
             rows.append(RowLoads(row.name, "roller", psi, total, d_sl.max(axis=1),
                                  np.full(row.n_rollers, angle), total <= 0.0, q_sl))
-    return LoadDistribution(bearing.name, load.as_array(), q, reaction, tuple(rows), iterations, error, held)
+    return tuple(rows)

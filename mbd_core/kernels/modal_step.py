@@ -1,0 +1,419 @@
+"""Time stepping of modal (flexible) bodies in a floating frame of reference (DESIGN §5.2, §5.4).
+
+A modal body is a body of the model (frame origin r, orientation R, world velocity ṙ, body-frame ω)
+plus modal coordinates η (√kg) and rates η̇. With u = (v = Rᵀṙ, ω, η̇) its equations of motion are
+
+    M(η) u̇ + h(η, u) = (F, N, Q − Kη − Dη̇)
+
+(:mod:`.modal`, :mod:`cms_reduction.invariants`), F and N the resultant force and moment about the
+frame origin in body axes, Q the modal forces of the contacts on the body, K = diag(ω_k²),
+D = diag(2ζ_k ω_k). Gravity g enters as F += m Rᵀg, N += S × Rᵀg, Q += I3ᵀ Rᵀg (the weight of every
+material point, with S = I2 + I3 η its first moment). Two schemes, both in the kick–drift–kick form
+of :mod:`.explicit`:
+
+**Free frame** (all six frame velocities integrated): momentum form. The frame origin is the centre
+of mass and the modes do not move it (I2 = 0, I3 = 0; the builder ensures both), so the translation
+decouples, p = m ṙ. The rotational and modal momenta (π, p_η) = M_r(η)(ω, η̇), M_r the (ω, η) block
+of M, are kicked: π += (h/2) Rᵀ N_W, p_η += (h/2)(Q − Kη − Dη̇ + ∂T/∂η) with
+∂T/∂η_k = ωᵀG_kω + Σ_l ω·I5[:, k, l] η̇_l (Boltzmann–Hamel / Lagrange: the η-derivative of the kinetic
+energy at fixed velocities). The drift turns the frame by the body rotation vector θ = h ω_mid and
+turns π back by the same rotation, so that the world angular momentum R π and the linear momentum
+are conserved to round-off by construction for any θ; ω_mid and η̇_mid are taken at the explicit
+midpoint (π turned by θ/2, η advanced by h/2), which makes the drift second order. Velocities are
+recovered as u = M_r(η)⁻¹ (π, p_η).
+
+**Constrained frame** (fixed, or driven: some frame velocities prescribed): acceleration form. The
+integrated components f of u get u_f += (h/2) M_ff⁻¹ (rhs − h)_f (prescribed accelerations are
+zero: prescribed velocities are constant); the frame drifts by its velocity, η += h η̇. With
+``implicit`` set the linear modal part −Kη − Dη̇ is left out of the kicks and integrated in the
+drift by the trapezoidal rule per mode (Newmark average acceleration), which is unconditionally
+stable, so the stiffest kept mode does not limit the step; exact for frames without free
+components (then M_ηη = I6 = 1 and the modes decouple from the frame).
+
+The second kick of both forms depends on the new velocities through the quadratic-velocity terms and
+the modal damping; one fixed-point correction (predict, re-evaluate those terms, kick again) keeps
+the scheme second order. The contact forces stay at the half-step velocity as for rigid bodies.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .modal import modal_mass_matrix, modal_velocity_terms
+from .rigid import turn_quaternion
+
+
+@njit(cache=True, inline="always")
+def _rot(qw, qx, qy, qz, x, y, z):
+    """R(q) (x, y, z) for a unit quaternion given by its components."""
+    tx = 2.0 * (qy * z - qz * y)
+    ty = 2.0 * (qz * x - qx * z)
+    tz = 2.0 * (qx * y - qy * x)
+    return x + qw * tx + (qy * tz - qz * ty), y + qw * ty + (qz * tx - qx * tz), z + qw * tz + (qx * ty - qy * tx)
+
+
+@njit(cache=True, inline="always")
+def _turn_back(px, py, pz, ox, oy, oz):
+    """Exp(θ)ᵀ p for the rotation vector θ = (ox, oy, oz): a fixed world vector seen from axes turned by θ."""
+    phi = math.sqrt(ox * ox + oy * oy + oz * oz)
+    if phi == 0.0:
+        return px, py, pz
+    ex, ey, ez = ox / phi, oy / phi, oz / phi
+    c, s = math.cos(phi), -math.sin(phi)
+    d = (1.0 - c) * (ex * px + ey * py + ez * pz)
+    return (c * px + s * (ey * pz - ez * py) + d * ex, c * py + s * (ez * px - ex * pz) + d * ey,
+            c * pz + s * (ex * py - ey * px) + d * ez)
+
+
+@njit(cache=True)
+def cholesky_in_place(A, n):
+    """Lower Cholesky factor of the leading n × n block of the symmetric positive definite A, in place.
+
+    Returns False when a pivot is not positive (A not positive definite).
+    """
+    for j in range(n):
+        s = A[j, j]
+        for k in range(j):
+            s -= A[j, k] * A[j, k]
+        if not s > 0.0:
+            return False
+        d = math.sqrt(s)
+        A[j, j] = d
+        for i in range(j + 1, n):
+            t = A[i, j]
+            for k in range(j):
+                t -= A[i, k] * A[j, k]
+            A[i, j] = t / d
+    return True
+
+
+@njit(cache=True)
+def cholesky_solve(L, n, b):
+    """Solve (L Lᵀ) x = b in place on b[:n] with the factor from :func:`cholesky_in_place`."""
+    for i in range(n):
+        s = b[i]
+        for k in range(i):
+            s -= L[i, k] * b[k]
+        b[i] = s / L[i, i]
+    for i in range(n - 1, -1, -1):
+        s = b[i]
+        for k in range(i + 1, n):
+            s -= L[k, i] * b[k]
+        b[i] = s / L[i, i]
+
+
+@njit(cache=True)
+def inertia_force(I5, I8, I9, eta, omega, eta_dot, out):
+    """∂T/∂η at fixed velocities into out (m,): ωᵀG_kω + Σ_l ω·I5[:, k, l] η̇_l, √kg·m/s² (module doc)."""
+    m = eta.shape[0]
+    for k in range(m):
+        s = 0.0
+        for i in range(3):
+            for j in range(3):
+                g = I8[i, j, k]
+                for l in range(m):
+                    g += I9[i, j, l, k] * eta[l]
+                s += omega[i] * g * omega[j]
+        for l in range(m):
+            s += (omega[0] * I5[0, k, l] + omega[1] * I5[1, k, l] + omega[2] * I5[2, k, l]) * eta_dot[l]
+        out[k] = s
+
+
+@njit(cache=True)
+def _reduced_block(Mfull, n, sel, A):
+    """A[:k, :k] = Mfull[sel, sel] for the k = n selected rows (sel (≥ n,) int indices)."""
+    for i in range(n):
+        for j in range(n):
+            A[i, j] = Mfull[sel[i], sel[j]]
+
+
+@njit(cache=True)
+def _gravity_body(q, i, gx, gy, gz):
+    w, x, y, z = q[i, 3], -q[i, 4], -q[i, 5], -q[i, 6]
+    return _rot(w, x, y, z, gx, gy, gz)
+
+
+@njit(cache=True)
+def constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, eta_dot, v_b, omega, f_b, n_b, g_b,
+                    modal_f, omega2, damp, elastic, hvec, rhs):
+    """Right-hand side (F, N, Q − Kη − Dη̇ + gravity) − h of a modal body into rhs (6 + m,).
+
+    ``elastic`` False leaves −Kη − Dη̇ out (integrated in the drift). f_b, n_b body-frame force and
+    moment about the frame origin (N, N·m); g_b gravity in body axes (m/s²); modal_f (m,) contact
+    modal forces.
+    """
+    m = eta.shape[0]
+    modal_velocity_terms(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, v_b, omega, eta_dot, hvec)
+    sx, sy, sz = I2[0], I2[1], I2[2]
+    for k in range(m):
+        sx += I3[0, k] * eta[k]
+        sy += I3[1, k] * eta[k]
+        sz += I3[2, k] * eta[k]
+    rhs[0] = f_b[0] + mass * g_b[0] - hvec[0]
+    rhs[1] = f_b[1] + mass * g_b[1] - hvec[1]
+    rhs[2] = f_b[2] + mass * g_b[2] - hvec[2]
+    rhs[3] = n_b[0] + sy * g_b[2] - sz * g_b[1] - hvec[3]
+    rhs[4] = n_b[1] + sz * g_b[0] - sx * g_b[2] - hvec[4]
+    rhs[5] = n_b[2] + sx * g_b[1] - sy * g_b[0] - hvec[5]
+    for k in range(m):
+        r = modal_f[k] + I3[0, k] * g_b[0] + I3[1, k] * g_b[1] + I3[2, k] * g_b[2] - hvec[6 + k]
+        if elastic:
+            r -= omega2[k] * eta[k] + damp[k] * eta_dot[k]
+        rhs[6 + k] = r
+
+
+@njit(cache=True, inline="always")
+def _invariants(m, j):
+    return (m.modal_mass[j], m.modal_I2[j], m.modal_I3[j], m.modal_I4[j], m.modal_I5[j], m.modal_I6[j],
+            m.modal_I7[j], m.modal_I8[j], m.modal_I9[j])
+
+
+@njit(cache=True, inline="always")
+def _frame_free(m, j):
+    """True when all six frame velocities of modal body j are integrated (momentum form)."""
+    f = m.modal_frame_free[j]
+    return f[0] + f[1] + f[2] + f[3] + f[4] + f[5] == 6
+
+
+@njit(cache=True, inline="always")
+def _select(m, j, mj, sel):
+    """Indices of the integrated components of u = (v, ω, η̇) of modal body j into sel; returns their count."""
+    n = 0
+    for c in range(6):
+        if m.modal_frame_free[j, c]:
+            sel[n] = c
+            n += 1
+    for k in range(mj):
+        sel[n] = 6 + k
+        n += 1
+    return n
+
+
+@njit(cache=True, inline="always")
+def _body_vectors(m, q, v, w, i):
+    """Body-frame velocity, force, moment and gravity of body i into w.modal_vec rows 0…3."""
+    qw, qx, qy, qz = q[i, 3], -q[i, 4], -q[i, 5], -q[i, 6]
+    vec = w.modal_vec
+    vec[0, 0], vec[0, 1], vec[0, 2] = _rot(qw, qx, qy, qz, v[i, 0], v[i, 1], v[i, 2])
+    vec[1, 0], vec[1, 1], vec[1, 2] = _rot(qw, qx, qy, qz, w.body_f[i, 0], w.body_f[i, 1], w.body_f[i, 2])
+    vec[2, 0], vec[2, 1], vec[2, 2] = _rot(qw, qx, qy, qz, w.body_t[i, 0], w.body_t[i, 1], w.body_t[i, 2])
+    vec[3, 0], vec[3, 1], vec[3, 2] = _rot(qw, qx, qy, qz, m.gravity[0], m.gravity[1], m.gravity[2])
+
+
+@njit(cache=True, inline="always")
+def _constrained_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
+    i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
+    mj = o1 - o0
+    e, qf = eta[o0:o1], w.modal_f[o0:o1]
+    om2, dmp = m.modal_omega2[o0:o1], m.modal_damp[o0:o1]
+    mass, I2, I3, I4, I5, I6, I7, I8, I9 = _invariants(m, j)
+    elastic = m.modal_implicit[j] == 0
+    _body_vectors(m, q, v, w, i)
+    vec, u, u0, rhs, hv, sel, L = w.modal_vec, w.modal_u, w.modal_u0, w.modal_rhs, w.modal_h, w.modal_sel, w.modal_L
+    for c in range(3):
+        u[c] = vec[0, c]
+        u[3 + c] = v[i, 3 + c]
+    for k in range(mj):
+        u[6 + k] = eta_dot[o0 + k]
+    for c in range(6 + mj):
+        u0[c] = u[c]
+    n = _select(m, j, mj, sel)
+    unit = n == mj and m.modal_unit[j] == 1
+    if not unit:
+        modal_mass_matrix(mass, I2, I3, I4, I5, I6, I7, I8, I9, e, w.modal_M)
+        _reduced_block(w.modal_M, n, sel, L)
+        if not cholesky_in_place(L, n):
+            return False
+    for it in range(2 if correct else 1):
+        constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, e, u[6:6 + mj], u[0:3], u[3:6], vec[1], vec[2],
+                        vec[3], qf, om2, dmp, elastic, hv, rhs)
+        b = w.modal_b
+        for r in range(n):
+            b[r] = rhs[sel[r]]
+        if not unit:
+            cholesky_solve(L, n, b)
+        for r in range(n):
+            u[sel[r]] = u0[sel[r]] + hh * b[r]
+    qw, qx, qy, qz = q[i, 3], q[i, 4], q[i, 5], q[i, 6]
+    if m.modal_frame_free[j, 0]:
+        v[i, 0], v[i, 1], v[i, 2] = _rot(qw, qx, qy, qz, u[0], u[1], u[2])
+    for c in range(3):
+        if m.modal_frame_free[j, 3 + c]:
+            v[i, 3 + c] = u[3 + c]
+    for k in range(mj):
+        eta_dot[o0 + k] = u[6 + k]
+    return True
+
+
+@njit(cache=True, inline="always")
+def _momenta(m, j, e, w, n, sel):
+    """Factor M_r(η) into w.modal_L and return False if it is not positive definite."""
+    mass, I2, I3, I4, I5, I6, I7, I8, I9 = _invariants(m, j)
+    modal_mass_matrix(mass, I2, I3, I4, I5, I6, I7, I8, I9, e, w.modal_M)
+    _reduced_block(w.modal_M, n, sel, w.modal_L)
+    return cholesky_in_place(w.modal_L, n)
+
+
+@njit(cache=True, inline="always")
+def _free_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
+    i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
+    mj = o1 - o0
+    n = 3 + mj
+    e, qf = eta[o0:o1], w.modal_f[o0:o1]
+    om2, dmp = m.modal_omega2[o0:o1], m.modal_damp[o0:o1]
+    mass, I5, I8, I9 = m.modal_mass[j], m.modal_I5[j], m.modal_I8[j], m.modal_I9[j]
+    inv_m = hh / mass
+    for c in range(3):
+        v[i, c] += inv_m * (w.body_f[i, c] + mass * m.gravity[c])
+    _body_vectors(m, q, v, w, i)
+    u, p0, b, sel, dT = w.modal_u, w.modal_u0, w.modal_b, w.modal_sel, w.modal_h
+    for c in range(3):
+        sel[c] = 3 + c
+        u[c] = v[i, 3 + c]
+    for k in range(mj):
+        sel[3 + k] = 6 + k
+        u[3 + k] = eta_dot[o0 + k]
+    if not _momenta(m, j, e, w, n, sel):
+        return False
+    M = w.modal_M
+    for r in range(n):  # p = M_r u
+        s = 0.0
+        for c in range(n):
+            s += M[sel[r], sel[c]] * u[c]
+        p0[r] = s
+    for c in range(3):
+        p0[c] += hh * w.modal_vec[2, c]
+    for it in range(2 if correct else 1):
+        inertia_force(I5, I8, I9, e, u[0:3], u[3:n], dT)
+        for c in range(3):
+            b[c] = p0[c]
+        for k in range(mj):
+            b[3 + k] = p0[3 + k] + hh * (qf[k] - om2[k] * e[k] - dmp[k] * u[3 + k] + dT[k])
+        cholesky_solve(w.modal_L, n, b)
+        for c in range(n):
+            u[c] = b[c]
+    for c in range(3):
+        v[i, 3 + c] = u[c]
+    for k in range(mj):
+        eta_dot[o0 + k] = u[3 + k]
+    return True
+
+
+@njit(cache=True)
+def modal_kick(m, q, v, eta, eta_dot, w, hh, correct):
+    """Half-step velocity kick (h/2 = hh) of every modal body from the forces in w; False on a
+    mass matrix that is not positive definite. ``correct``: the second kick of a step (module doc)."""
+    for j in range(m.modal_body.shape[0]):
+        ok = _free_kick(m, q, v, eta, eta_dot, w, j, hh, correct) if _frame_free(m, j) else \
+            _constrained_kick(m, q, v, eta, eta_dot, w, j, hh, correct)
+        if not ok:
+            return False
+    return True
+
+
+@njit(cache=True, inline="always")
+def _free_drift(m, q, v, eta, eta_dot, w, j, h):
+    i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
+    mj = o1 - o0
+    n = 3 + mj
+    e, e_mid = eta[o0:o1], w.modal_eta[:mj]
+    u, p, b, sel = w.modal_u, w.modal_u0, w.modal_b, w.modal_sel
+    for c in range(3):
+        sel[c] = 3 + c
+        u[c] = v[i, 3 + c]
+    for k in range(mj):
+        sel[3 + k] = 6 + k
+        u[3 + k] = eta_dot[o0 + k]
+    if not _momenta(m, j, e, w, n, sel):
+        return False
+    M = w.modal_M
+    for r in range(n):
+        s = 0.0
+        for c in range(n):
+            s += M[sel[r], sel[c]] * u[c]
+        p[r] = s
+    # explicit midpoint: velocities at (π turned by hω/2, η + hη̇/2)
+    b[0], b[1], b[2] = _turn_back(p[0], p[1], p[2], 0.5 * h * u[0], 0.5 * h * u[1], 0.5 * h * u[2])
+    for k in range(mj):
+        b[3 + k] = p[3 + k]
+        e_mid[k] = e[k] + 0.5 * h * u[3 + k]
+    if not _momenta(m, j, e_mid, w, n, sel):
+        return False
+    cholesky_solve(w.modal_L, n, b)
+    ox, oy, oz = h * b[0], h * b[1], h * b[2]
+    q[i, 3], q[i, 4], q[i, 5], q[i, 6] = turn_quaternion(q[i, 3], q[i, 4], q[i, 5], q[i, 6], ox, oy, oz)
+    p[0], p[1], p[2] = _turn_back(p[0], p[1], p[2], ox, oy, oz)
+    for k in range(mj):
+        e[k] += h * b[3 + k]
+    if not _momenta(m, j, e, w, n, sel):
+        return False
+    for c in range(n):
+        b[c] = p[c]
+    cholesky_solve(w.modal_L, n, b)
+    for c in range(3):
+        v[i, 3 + c] = b[c]
+    for k in range(mj):
+        eta_dot[o0 + k] = b[3 + k]
+    return True
+
+
+@njit(cache=True, inline="always")
+def _constrained_drift(m, q, v, eta, eta_dot, j, h):
+    i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
+    wx, wy, wz = v[i, 3], v[i, 4], v[i, 5]
+    if wx != 0.0 or wy != 0.0 or wz != 0.0:
+        q[i, 3], q[i, 4], q[i, 5], q[i, 6] = turn_quaternion(q[i, 3], q[i, 4], q[i, 5], q[i, 6],
+                                                             h * wx, h * wy, h * wz)
+    if m.modal_implicit[j] == 0:
+        for k in range(o0, o1):
+            eta[k] += h * eta_dot[k]
+        return
+    hh = 0.5 * h
+    for k in range(o0, o1):  # trapezoidal rule on η̈ = −ω²η − cη̇
+        w2, c = m.modal_omega2[k], m.modal_damp[k]
+        r1 = eta[k] + hh * eta_dot[k]
+        r2 = eta_dot[k] - hh * (w2 * eta[k] + c * eta_dot[k])
+        ed = (r2 - hh * w2 * r1) / (1.0 + hh * c + hh * hh * w2)
+        eta_dot[k] = ed
+        eta[k] = r1 + hh * ed
+
+
+@njit(cache=True)
+def modal_drift(m, q, v, eta, eta_dot, w, h):
+    """Drift of every modal body over h (frame pose and η); False on a singular mass matrix."""
+    for j in range(m.modal_body.shape[0]):
+        i = m.modal_body[j]
+        for c in range(3):
+            q[i, c] += h * v[i, c]
+        if _frame_free(m, j):
+            if not _free_drift(m, q, v, eta, eta_dot, w, j, h):
+                return False
+        else:
+            _constrained_drift(m, q, v, eta, eta_dot, j, h)
+    return True
+
+
+@njit(cache=True)
+def modal_energy(m, q, v, eta, eta_dot, w):
+    """Kinetic energy ½uᵀM(η)u and elastic energy ½Σω_k²η_k² of all modal bodies, J (a tuple)."""
+    kin = 0.0
+    pot = 0.0
+    for j in range(m.modal_body.shape[0]):
+        i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
+        mj = o1 - o0
+        mass, I2, I3, I4, I5, I6, I7, I8, I9 = _invariants(m, j)
+        modal_mass_matrix(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta[o0:o1], w.modal_M)
+        _body_vectors(m, q, v, w, i)
+        u = w.modal_u
+        for c in range(3):
+            u[c] = w.modal_vec[0, c]
+            u[3 + c] = v[i, 3 + c]
+        for k in range(mj):
+            u[6 + k] = eta_dot[o0 + k]
+            pot += 0.5 * m.modal_omega2[o0 + k] * eta[o0 + k] ** 2
+        for r in range(6 + mj):
+            for c in range(6 + mj):
+                kin += 0.5 * u[r] * w.modal_M[r, c] * u[c]
+    return kin, pot

@@ -1,0 +1,552 @@
+"""Quasi-static load distribution of a bearing whose rings bend (modal coordinates as unknowns).
+
+Unknowns x = (q, η_1, …, η_k): the rigid displacement q = (x, y, z, θx, θy) of the moving ring
+(m, rad) and the modal coordinates η of every flexible ring (√kg). Balls follow the rigid-ring
+model of :mod:`.rows` (groove curvature centres on a line through the ball, Q = K·δ^1.5,
+δ = |s| − A − gap with s the vector from the fixed to the moving ring's groove centre, its
+component along the rolling direction e_t removed since the ball rolls freely).
+
+Flexible ring. A ring reduced by Craig–Bampton and grounded at its interfaces (a bolted face:
+:func:`cms_reduction.reduced_body`), mass-normalised modes with the modal stiffness
+K_η = diag(ω²), its raceway sampled at angles θ_j (:mod:`cms_reduction.sampling`): p_j the
+raceway point, D_j (3, m) its displacement and Ω_j (3, m) its small rotation per unit η. A ball
+at azimuth ψ_i takes D_i, Ω_i and p_i by linear interpolation in θ with the same weights
+(:func:`cms_reduction.sampling.interp_index`). The groove section is taken to move rigidly with
+its raceway point, so the ring's groove curvature centre c_i moves by
+
+    u_i = D_i η + (Ω_i η) × (c_i − p_i) = T_i η,        T_i = D_i − [c_i − p_i]ₓ Ω_i.
+
+A flexible moving ring rides on q (its grounded interfaces are attached to the rigid moving
+structure): its groove centre moves by B(c_i) q + T_i η, B of :func:`.elements.displacement_matrix`.
+Groove offsets of either ring — an axial undulation h(θ) and a radial offset Δr(θ), in the
+ring's own angle θ — add Δc_i = Δr·e_r + h·e_z to that ring's curvature centre. Hence
+
+    s_i = s0_i + Δc_m,i − Δc_f,i + P_i G_i x,      P_i = I − e_t e_tᵀ,
+    G_i = [B(c_m,i) | +T_i of a flexible moving ring | −T_i of a flexible fixed ring].
+
+Equilibrium by virtual work. Ball i pushes the moving ring with F_i = −Q_i ŝ_i and the fixed
+ring with −F_i, at points of the line through both groove centres (the contact normal), so a
+force f_i on a flexible ring does the virtual work f_i·δu_i = (T_iᵀ f_i)·δη:
+
+    R(x) = Σ_i G_iᵀ F_i + (f_ext, −K_η,1 η_1, …, −K_η,k η_k) = 0,
+
+i.e. for each flexible ring K_η η = Σ_i [D_iᵀ f_i + Ω_iᵀ ((c_i − p_i) × f_i)]. Since F_i lies
+in the meridian plane (P_i F_i = F_i), the Jacobian is the symmetric
+
+    dR/dx = −Σ_i (P_i G_i)ᵀ [Q_i' ŝ_i ŝ_iᵀ + (Q_i/|s_i|)(I − ŝ_i ŝ_iᵀ)] (P_i G_i) − diag(0, K_η),
+
+Q' = 1.5·K·δ^0.5 (the chain rule through s_i, as in the rigid solver). Roller rows act on q only
+(rigid raceways).
+
+Solution: Newton with backtracking (:func:`.solver.damped_newton`), first on q with η = 0 (the
+rigid-ring solution with the offsets), then on (q, η) from there. Each η_j is scaled by the
+largest raceway displacement of its mode, so that every scaled unknown is a length (m) and every
+scaled residual a force (N), like the moments and rotations of the rigid solver.
+
+References: Harris & Kotzalas, *Rolling Bearing Analysis*, 5th ed. (2007), ch. 7 (ball loads);
+Craig & Bampton, AIAA J. 6(7), 1313–1319 (1968) (reduced ring).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from .elements import BallGroup, SliceGroup, build_groups, displacement_matrix
+from .rows import BallRow, Bearing
+from .solver import (
+    DOF_NAMES,
+    LoadDistribution,
+    RingLoad,
+    _Problem,
+    _scaling,
+    ball_forces,
+    damped_newton,
+    no_equilibrium_error,
+    row_loads,
+    slice_forces,
+    supported_dofs,
+)
+
+__all__ = ["FlexibleRing", "GrooveOffset", "FlexibleBearingModel", "build_flexible_model", "RacewayDeflection",
+           "FlexibleLoadDistribution", "solve_flexible_load_distribution"]
+
+RING_SIDES = ("fixed", "moving")
+#: Relative tolerance on |c − p| = f·D between a ring's groove centre and its raceway samples.
+GEOMETRY_RTOL = 0.01
+
+
+def _side(owner: str, side: str) -> None:
+    if side not in RING_SIDES:
+        raise ValueError(f"{owner}: ring must be 'fixed' or 'moving', got {side!r}")
+
+
+def _samples(body) -> dict:
+    # imported here: cms_reduction imports mbd_core, so a module-level import would be circular
+    from cms_reduction.sampling import samples_from_arrays
+
+    return samples_from_arrays(body.extras)
+
+
+@dataclass(frozen=True)
+class FlexibleRing:
+    """A ring of the bearing that bends: a reduced body grounded at its interfaces.
+
+    Parameters
+    ----------
+    name : str
+        Label (names the ring's modal coordinates in the result).
+    body : cms_reduction.ReducedBody
+        Grounded (``floating=False``) body with raceway samples in its extras.
+    ring : {"fixed", "moving"}
+        Which ring of the rows it is. A moving ring's interfaces ride on the rigid displacement q.
+    raceways : mapping row name → raceway sample name
+        The ball rows whose grooves this ring carries, e.g. ``{"load balls": "groove"}``.
+    rotation_rad : float
+        Angle of the body's frame from the bearing frame about the axis: a ball at azimuth ψ
+        sits at body angle ψ − rotation_rad.
+    """
+
+    name: str
+    body: Any
+    ring: str
+    raceways: Any
+    rotation_rad: float = 0.0
+
+    def __post_init__(self) -> None:
+        from cms_reduction.body import ReducedBody
+
+        who = f"flexible ring {self.name!r}"
+        if not isinstance(self.name, str) or not self.name:
+            raise ValueError(f"flexible ring: name must be a non-empty string, got {self.name!r}")
+        if not isinstance(self.body, ReducedBody):
+            raise ValueError(f"{who}: body must be a ReducedBody, got {type(self.body).__name__}")
+        if self.body.floating:
+            raise ValueError(f"{who}: body {self.body.name!r} is floating (free–free modes); a grounded body "
+                             "is expected (reduce it with grounded interfaces, InterfaceSpec(grounded=True))")
+        _side(who, self.ring)
+        pairs = tuple(self.raceways.items()) if isinstance(self.raceways, Mapping) else tuple(self.raceways)
+        if not pairs or not all(isinstance(p, tuple) and len(p) == 2 and all(isinstance(v, str) for v in p)
+                                for p in pairs):
+            raise ValueError(f"{who}: raceways must map row names to raceway sample names, got {self.raceways!r}")
+        object.__setattr__(self, "raceways", pairs)
+        if not (isinstance(self.rotation_rad, (int, float)) and math.isfinite(self.rotation_rad)):
+            raise ValueError(f"{who}: rotation_rad must be a finite number, got {self.rotation_rad!r}")
+        samples = _samples(self.body)
+        for row, name in pairs:
+            if name not in samples:
+                raise ValueError(f"{who}: raceways[{row!r}] = {name!r} is not a raceway sample of body "
+                                 f"{self.body.name!r}; it has {sorted(samples)}")
+            if samples[name].displacement.shape[2] != self.body.n_modes:
+                raise ValueError(f"{who}: raceway sample {name!r} has {samples[name].displacement.shape[2]} "
+                                 f"modes, body {self.body.name!r} {self.body.n_modes}")
+
+
+@dataclass(frozen=True)
+class GrooveOffset:
+    """Offsets of one ring's groove curvature centre as functions of the ring's own angle θ.
+
+    Parameters
+    ----------
+    row : str
+        Ball row whose groove is offset.
+    ring : {"fixed", "moving"}
+    axial_m : callable θ (n,) rad → (n,) m, optional
+        Axial undulation h(θ), along +z.
+    radial_m : callable θ (n,) rad → (n,) m, optional
+        Radial offset Δr(θ), outwards (e.g. differential thermal expansion).
+    rotation_rad : float
+        Angle of the ring's frame from the bearing frame: the ball at azimuth ψ sees θ = ψ − rotation_rad.
+    """
+
+    row: str
+    ring: str
+    axial_m: Callable | None = None
+    radial_m: Callable | None = None
+    rotation_rad: float = 0.0
+
+    def __post_init__(self) -> None:
+        who = f"groove offset of row {self.row!r}"
+        _side(who, self.ring)
+        if self.axial_m is None and self.radial_m is None:
+            raise ValueError(f"{who}: give axial_m, radial_m or both")
+        for name in ("axial_m", "radial_m"):
+            f = getattr(self, name)
+            if f is not None and not callable(f):
+                raise ValueError(f"{who}: {name} must be a function of the angle θ (rad), got {f!r}")
+        if not (isinstance(self.rotation_rad, (int, float)) and math.isfinite(self.rotation_rad)):
+            raise ValueError(f"{who}: rotation_rad must be a finite number, got {self.rotation_rad!r}")
+
+    def centre_offset_m(self, psi_rad: np.ndarray) -> np.ndarray:
+        """Δc = Δr·e_r + h·e_z (n, 3), m, at ball azimuths ψ (n,) rad."""
+        theta = np.asarray(psi_rad, dtype=float) - self.rotation_rad
+        out = {}
+        for name in ("axial_m", "radial_m"):
+            f = getattr(self, name)
+            v = np.zeros_like(theta) if f is None else np.broadcast_to(np.asarray(f(theta), dtype=float),
+                                                                         theta.shape)
+            if not np.all(np.isfinite(v)):
+                raise ValueError(f"groove offset of row {self.row!r}: {name} returned non-finite values")
+            out[name] = v
+        c, s = np.cos(psi_rad), np.sin(psi_rad)
+        return np.column_stack((out["radial_m"] * c, out["radial_m"] * s, out["axial_m"]))
+
+
+@dataclass(frozen=True)
+class _Coupling:
+    """The balls of one row on one flexible ring (Z balls, m modes)."""
+
+    ring: str
+    row: str
+    balls: np.ndarray        # (Z,) indices into the ball group
+    theta_rad: np.ndarray    # (Z,) ball azimuths
+    points_m: np.ndarray     # (Z, 3) interpolated raceway points p_i
+    D: np.ndarray            # (Z, 3, m) displacement per unit η
+    Omega: np.ndarray        # (Z, 3, m) rotation per unit η
+    T: np.ndarray            # (Z, 3, m) groove-centre displacement per unit η
+
+
+@dataclass(frozen=True, eq=False)
+class FlexibleBearingModel:
+    """A bearing with flexible rings, flattened for the solver (build with :func:`build_flexible_model`).
+
+    Attributes (N = 5 + Σ modes of the flexible rings, n = balls, n_s = slices)
+    ----------
+    bearing : Bearing
+    rings : tuple of FlexibleRing
+    offsets : tuple of GrooveOffset
+    balls : BallGroup
+        With s0_m including the groove offsets.
+    slices : SliceGroup
+    ball_dofs : (n, 3, N) G_i, groove-centre distance change per unknown
+    slice_dofs : (n_s, N) approach of each slice per unknown
+    stiffness_diag : (N,) 0 for q, ω² for each η, 1/s²
+    ring_dofs : tuple of slice, the columns of each ring's η
+    dof_scale : (N,) scaled unknown = dof_scale·x (m)
+    couplings : tuple of _Coupling
+    """
+
+    bearing: Bearing
+    rings: tuple
+    offsets: tuple
+    balls: BallGroup
+    slices: SliceGroup
+    ball_dofs: np.ndarray
+    slice_dofs: np.ndarray
+    stiffness_diag: np.ndarray
+    ring_dofs: tuple
+    dof_scale: np.ndarray
+    couplings: tuple
+
+    @property
+    def n_unknowns(self) -> int:
+        return len(self.stiffness_diag)
+
+    def load_vector(self, load: RingLoad) -> np.ndarray:
+        """External generalised force (N,): the ring load on q, nothing on η."""
+        f = np.zeros(self.n_unknowns)
+        f[:5] = load.as_array()
+        return f
+
+    def residual(self, x: np.ndarray, load: RingLoad, jacobian: bool = True):
+        """R(x) (N,) and dR/dx (N, N) (or None) of the module docstring, unscaled (N, N·m, N·√kg⁻¹·m)."""
+        _, _, _, rb, Jb = ball_forces(self.balls, self.ball_dofs, x, jacobian)
+        _, _, rs, Js = slice_forces(self.slices, self.slice_dofs, x, jacobian)
+        R = rb + rs + self.load_vector(load) - self.stiffness_diag * x
+        return R, (None if not jacobian else Jb + Js - np.diag(self.stiffness_diag))
+
+
+def _row_index(bearing: Bearing, row: str, who: str) -> int:
+    names = [r.name for r in bearing.rows]
+    if row not in names:
+        raise ValueError(f"{who}: bearing {bearing.name!r} has no row {row!r}; rows: {names}")
+    i = names.index(row)
+    if not isinstance(bearing.rows[i], BallRow):
+        raise ValueError(f"{who}: row {row!r} is a roller row; flexible rings and groove offsets act on ball rows")
+    return i
+
+
+def _azimuths(bearing: Bearing, balls: BallGroup, mask: np.ndarray) -> np.ndarray:
+    rows = balls.row[mask]
+    n = np.array([bearing.rows[i].n_balls for i in rows])
+    first = np.array([bearing.rows[i].first_azimuth_rad for i in rows])
+    return first + 2.0 * np.pi * balls.element[mask] / n
+
+
+def _rotate_z(v: np.ndarray, angle_rad: float) -> np.ndarray:
+    """Rotate vectors (…, 3, …) with the components on axis 1 about z."""
+    c, s = math.cos(angle_rad), math.sin(angle_rad)
+    out = v.copy()
+    out[:, 0] = c * v[:, 0] - s * v[:, 1]
+    out[:, 1] = s * v[:, 0] + c * v[:, 1]
+    return out
+
+
+def _interpolate(sample, theta_body: np.ndarray, who: str):
+    """p (Z, 3), D (Z, 3, m), Ω (Z, 3, m) at body angles θ, linear in θ (same weights for all three)."""
+    from cms_reduction.sampling import interp_index
+
+    grid = sample.theta_rad
+    idx = np.zeros((len(theta_body), 2), dtype=int)
+    w = np.zeros((len(theta_body), 2))
+    for k, th in enumerate(theta_body):
+        if not sample.periodic:
+            th = grid[0] + (th - grid[0]) % (2.0 * np.pi)
+            if th > grid[-1] + 1e-9:
+                raise ValueError(f"{who}: a ball at body angle {math.degrees(th):.6g}° lies outside raceway "
+                                 f"sample {sample.name!r} ({math.degrees(grid[0]):.6g}°–"
+                                 f"{math.degrees(grid[-1]):.6g}°, not periodic)")
+        i0, i1, w0, w1 = interp_index(grid, float(th), sample.periodic)
+        idx[k], w[k] = (i0, i1), (w0, w1)
+
+    def lerp(a):
+        shape = (-1,) + (1,) * (a.ndim - 1)
+        return w[:, 0].reshape(shape) * a[idx[:, 0]] + w[:, 1].reshape(shape) * a[idx[:, 1]]
+
+    return lerp(sample.points_m), lerp(sample.displacement), lerp(sample.rotation), idx[:, 0]
+
+
+def _check_groove_geometry(c: np.ndarray, p_nearest: np.ndarray, radius_m: float, who: str) -> None:
+    """The raceway samples must lie on the groove of radius f·D about the ring's curvature centre."""
+    rz_c = np.column_stack((np.hypot(c[:, 0], c[:, 1]), c[:, 2]))
+    rz_p = np.column_stack((np.hypot(p_nearest[:, 0], p_nearest[:, 1]), p_nearest[:, 2]))
+    dist = np.linalg.norm(rz_p - rz_c, axis=1)
+    worst = int(np.argmax(np.abs(dist - radius_m)))
+    if abs(dist[worst] - radius_m) > GEOMETRY_RTOL * radius_m:
+        raise ValueError(f"{who}: the raceway samples lie {dist[worst] * 1e3:.4g} mm from the ring's groove "
+                         f"curvature centre, expected the groove radius f·D = {radius_m * 1e3:.4g} mm: does the "
+                         "body belong to this ring and row (section, pitch diameter, which ring)?")
+
+
+def _coupling(bearing: Bearing, balls: BallGroup, ring: FlexibleRing, row: str, sample_name: str,
+              centre_offset_m: np.ndarray) -> _Coupling:
+    who = f"flexible ring {ring.name!r}"
+    i_row = _row_index(bearing, row, who)
+    mask = balls.row == i_row
+    psi = _azimuths(bearing, balls, mask)
+    sample = _samples(ring.body)[sample_name]
+    p, D, W, i_near = _interpolate(sample, psi - ring.rotation_rad, f"{who}, row {row!r}")
+    p, D, W = _rotate_z(p, ring.rotation_rad), _rotate_z(D, ring.rotation_rad), _rotate_z(W, ring.rotation_rad)
+    moving = ring.ring == "moving"
+    c = balls.p_m[mask] if moving else balls.p_m[mask] - balls.s0_m[mask]
+    r = bearing.rows[i_row]
+    radius = (r.conformity_moving if moving else r.conformity_fixed) * r.ball_diameter_m
+    _check_groove_geometry(c, _rotate_z(sample.points_m[i_near], ring.rotation_rad), radius, f"{who}, row {row!r}")
+    d = c + centre_offset_m[mask] - p
+    T = D - np.swapaxes(np.cross(d[:, None, :], np.swapaxes(W, 1, 2)), 1, 2)
+    return _Coupling(ring.name, row, np.flatnonzero(mask), psi, p, D, W, T)
+
+
+def build_flexible_model(bearing: Bearing, rings=(), offsets=()) -> FlexibleBearingModel:
+    """Flatten a bearing, its flexible rings and groove offsets for :func:`solve_flexible_load_distribution`.
+
+    Raises ValueError naming the field for a ring or offset that does not fit the bearing.
+    """
+    if not isinstance(bearing, Bearing):
+        raise TypeError(f"bearing must be a Bearing, got {type(bearing).__name__}")
+    rings, offsets = tuple(rings), tuple(offsets)
+    for k, r in enumerate(rings):
+        if not isinstance(r, FlexibleRing):
+            raise TypeError(f"rings[{k}] must be a FlexibleRing, got {type(r).__name__}")
+    for k, o in enumerate(offsets):
+        if not isinstance(o, GrooveOffset):
+            raise TypeError(f"offsets[{k}] must be a GrooveOffset, got {type(o).__name__}")
+    names = [r.name for r in rings]
+    if len(set(names)) != len(names):
+        raise ValueError(f"flexible rings: names must be unique, got {names}")
+    taken = {}
+    for r in rings:
+        for row, _ in r.raceways:
+            _row_index(bearing, row, f"flexible ring {r.name!r}")
+            if (row, r.ring) in taken:
+                raise ValueError(f"flexible ring {r.name!r}: the {r.ring} ring of row {row!r} is already "
+                                 f"flexible ring {taken[row, r.ring]!r}")
+            taken[row, r.ring] = r.name
+
+    balls, slices = build_groups(bearing)
+    # groove offsets: fixed-ring centre up by Δc shortens s, moving-ring centre up lengthens it
+    delta = {side: np.zeros_like(balls.s0_m) for side in RING_SIDES}
+    for o in offsets:
+        mask = balls.row == _row_index(bearing, o.row, f"groove offset of row {o.row!r}")
+        delta[o.ring][mask] += o.centre_offset_m(_azimuths(bearing, balls, mask))
+
+    n_modes = [r.body.n_modes for r in rings]
+    starts = 5 + np.concatenate(([0], np.cumsum(n_modes))).astype(int)
+    N = int(starts[-1])
+    G = np.zeros((len(balls.K), 3, N))
+    G[:, :, :5] = displacement_matrix(balls.p_m)
+    w = np.zeros((len(slices.K), N))
+    w[:, :5] = np.einsum("nji,nj->ni", displacement_matrix(slices.p_m), slices.normal)
+    stiffness = np.zeros(N)
+    scale = np.zeros(N)
+    scale[:5] = _scaling(bearing)
+    couplings = []
+    for k, ring in enumerate(rings):
+        cols = slice(int(starts[k]), int(starts[k + 1]))
+        stiffness[cols] = ring.body.omega_rad_s**2
+        sign = 1.0 if ring.ring == "moving" else -1.0
+        amplitude = np.zeros(ring.body.n_modes)
+        for row, sample_name in ring.raceways:
+            c = _coupling(bearing, balls, ring, row, sample_name, delta[ring.ring])
+            G[c.balls, :, cols] += sign * c.T
+            couplings.append(c)
+            disp = _samples(ring.body)[sample_name].displacement
+            amplitude = np.maximum(amplitude, np.linalg.norm(disp, axis=1).max(axis=0))
+        scale[cols] = np.maximum(amplitude, 1e-6 * max(amplitude.max(), 1e-300))
+    balls = replace(balls, s0_m=balls.s0_m + delta["moving"] - delta["fixed"])
+    ring_dofs = tuple(slice(int(starts[k]), int(starts[k + 1])) for k in range(len(rings)))
+    return FlexibleBearingModel(bearing, rings, offsets, balls, slices, G, w, stiffness, ring_dofs, scale,
+                                tuple(couplings))
+
+
+@dataclass(frozen=True)
+class RacewayDeflection:
+    """Elastic deflection of a flexible ring's raceway at the balls of one row (Z balls).
+
+    Attributes
+    ----------
+    ring, row : str
+    azimuth_rad : (Z,) ball azimuths, rad
+    points_m : (Z, 3) undeformed raceway points at the balls (interpolated samples), m
+    displacement_m : (Z, 3) raceway displacement D_i η, m (without the rigid motion q of a moving ring)
+    rotation_rad : (Z, 3) raceway small rotation Ω_i η, rad
+    groove_centre_displacement_m : (Z, 3) T_i η, the groove curvature centre's displacement, m
+    """
+
+    ring: str
+    row: str
+    azimuth_rad: np.ndarray
+    points_m: np.ndarray
+    displacement_m: np.ndarray
+    rotation_rad: np.ndarray
+    groove_centre_displacement_m: np.ndarray
+
+    def to_dict(self) -> dict:
+        return {"ring": self.ring, "row": self.row, "azimuth_deg": np.degrees(self.azimuth_rad).tolist(),
+                "displacement_m": self.displacement_m.tolist(), "rotation_rad": self.rotation_rad.tolist()}
+
+
+@dataclass(frozen=True)
+class FlexibleLoadDistribution(LoadDistribution):
+    """:class:`LoadDistribution` with the modal coordinates of the flexible rings.
+
+    Extra attributes
+    ----------------
+    ring_names : tuple of str
+    modal_coordinates : tuple of (m_k,) arrays, √kg, in the order of ``ring_names``
+    deflections : tuple of RacewayDeflection, one per (ring, row)
+
+    ``equilibrium_error`` covers the modal equations too (scaled residual of all unknowns).
+    """
+
+    ring_names: tuple[str, ...] = ()
+    modal_coordinates: tuple[np.ndarray, ...] = ()
+    deflections: tuple[RacewayDeflection, ...] = ()
+
+    def modal(self, ring: str) -> np.ndarray:
+        """η of a flexible ring, (m,) √kg."""
+        if ring not in self.ring_names:
+            raise KeyError(f"no flexible ring named {ring!r}; rings: {list(self.ring_names)}")
+        return self.modal_coordinates[self.ring_names.index(ring)]
+
+    def raceway_deflection(self, ring: str, row: str) -> RacewayDeflection:
+        """Deflection of ``ring``'s raceway at the balls of ``row``."""
+        for d in self.deflections:
+            if d.ring == ring and d.row == row:
+                return d
+        raise KeyError(f"no raceway of flexible ring {ring!r} at row {row!r}; "
+                       f"have {[(d.ring, d.row) for d in self.deflections]}")
+
+    def to_dict(self) -> dict:
+        d = super().to_dict()
+        d["modal_coordinates"] = {n: e.tolist() for n, e in zip(self.ring_names, self.modal_coordinates)}
+        d["raceway_deflections"] = [x.to_dict() for x in self.deflections]
+        return d
+
+
+def solve_flexible_load_distribution(
+    model: FlexibleBearingModel,
+    load: RingLoad,
+    *,
+    tolerance: float = 1e-10,
+    max_iterations: int = 100,
+    initial_displacement: np.ndarray | None = None,
+) -> FlexibleLoadDistribution:
+    """Equilibrium of the moving ring and of the flexible rings' modes under ``load``.
+
+    Parameters
+    ----------
+    model : FlexibleBearingModel
+        From :func:`build_flexible_model`.
+    load : RingLoad
+        External load on the moving ring, N and N·m.
+    tolerance : float
+        Convergence when |scaled residual| ≤ tolerance·max(|load|, Σ element loads, 1 N) (moments
+        over the largest pitch radius, modal forces over their mode's largest raceway displacement).
+    max_iterations : int
+        Newton iterations per stage before giving up.
+    initial_displacement : (5,) array, optional
+        Starting q (m, rad); default from a linear spring estimate.
+
+    Raises
+    ------
+    LoadDistributionError
+        Load on a degree of freedom without stiffness, or no converged equilibrium.
+    """
+    if not isinstance(model, FlexibleBearingModel):
+        raise TypeError(f"model must be a FlexibleBearingModel (build_flexible_model), got {type(model).__name__}")
+    if not isinstance(load, RingLoad):
+        raise TypeError(f"load must be a RingLoad, got {type(load).__name__}")
+    bearing = model.bearing
+    S = model.dof_scale
+    f_ext = load.as_array()
+    supported, K_lin = supported_dofs(_Problem(bearing), bearing.name, f_ext, S[:5])
+    free_q = np.flatnonzero(supported)
+    held = tuple(DOF_NAMES[i] for i in np.flatnonzero(~supported))
+    N = model.n_unknowns
+    fallback = np.zeros((N, N))
+    fallback[:5, :5] = K_lin
+    fallback[5:, 5:] = np.diag(model.stiffness_diag[5:] / S[5:] ** 2)
+
+    y = np.zeros(N)
+    if initial_displacement is None:
+        y[free_q] = np.linalg.solve(K_lin[np.ix_(free_q, free_q)], f_ext[free_q] / S[free_q])
+    else:
+        y[:5] = np.asarray(initial_displacement, dtype=float).reshape(5) * S[:5]
+        y[:5][~supported] = 0.0
+
+    def residual(y_scaled, jac=True):
+        R, J = model.residual(y_scaled / S, load, jac)
+        return R / S, (None if J is None else J / S[:, None] / S[None, :])
+
+    scale = max(float(np.linalg.norm(f_ext / S[:5])), 1.0)
+    # stage 1: rigid rings (η = 0) with the offsets; stage 2: all unknowns from there
+    y, _, _, it1 = damped_newton(residual, y, free_q, tolerance * scale, max_iterations, fallback)
+    Qb = ball_forces(model.balls, model.ball_dofs, y / S, jacobian=False)[0]
+    Qs = slice_forces(model.slices, model.slice_dofs, y / S, jacobian=False)[0]
+    scale = max(scale, float(Qb.sum() + Qs.sum()))
+    free = np.concatenate((free_q, np.arange(5, N)))
+    y, R, norm, it2 = damped_newton(residual, y, free, tolerance * scale, max_iterations, fallback)
+    if not norm <= tolerance * scale:
+        raise no_equilibrium_error(bearing.name, it1 + it2, R, S, f_ext)
+    return _collect(model, load, y / S, it1 + it2, norm / scale, held)
+
+
+def _collect(model: FlexibleBearingModel, load: RingLoad, x: np.ndarray, iterations: int, error: float,
+             held: tuple[str, ...]) -> FlexibleLoadDistribution:
+    Qb, db, s, rb, _ = ball_forces(model.balls, model.ball_dofs, x, jacobian=False)
+    Qs, ds, rs, _ = slice_forces(model.slices, model.slice_dofs, x, jacobian=False)
+    rows = row_loads(model.bearing, model.balls, model.slices, (Qb, db, s), (Qs, ds))
+    etas = tuple(x[cols].copy() for cols in model.ring_dofs)
+    names = tuple(r.name for r in model.rings)
+    deflections = []
+    for c in model.couplings:
+        eta = etas[names.index(c.ring)]
+        deflections.append(RacewayDeflection(c.ring, c.row, c.theta_rad, c.points_m, c.D @ eta, c.Omega @ eta,
+                                             c.T @ eta))
+    return FlexibleLoadDistribution(model.bearing.name, load.as_array(), x[:5].copy(), (rb + rs)[:5], rows,
+                                    iterations, float(error), held, names, etas, tuple(deflections))
