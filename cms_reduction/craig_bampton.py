@@ -140,6 +140,21 @@ class Augmentation:
         return np.column_stack(out)
 
 
+@dataclass(frozen=True)
+class CentrifugalAugmentation:
+    """Static load shape of the centrifugal body force of a spin about the body's z axis.
+
+    The load per unit Ω² is ρ (x, y, 0) per unit volume; its consistent nodal vector is M (x, y, 0)
+    (M the FE mass matrix, nodal positions interleaved). Its static response is the stretch of a ring
+    spinning about its axis, which raceway load shapes reproduce only roughly.
+    """
+
+    def load_vectors(self, model: FEModel, full_circle: bool) -> np.ndarray:
+        field = model.nodes_m.copy()
+        field[:, 2] = 0.0
+        return np.asarray(model.M @ field.reshape(-1))[:, None]
+
+
 def rbe2_transform(model: FEModel, interfaces) -> tuple[sp.csr_matrix, np.ndarray, np.ndarray]:
     """u = T q for the rigid interfaces (averaging ones are ignored here).
 

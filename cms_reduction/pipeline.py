@@ -19,7 +19,7 @@ from fem_rings.profile import Profile
 from mbd_core.materials import ElasticMaterial
 
 from .body import ReducedBody
-from .craig_bampton import Augmentation, Interface, reduce_model
+from .craig_bampton import Augmentation, CentrifugalAugmentation, Interface, reduce_model
 from .invariants import compute_invariants
 from .persist import cached_body
 from .sampling import pocket_contact_points, sample_across, sample_points, sample_raceway, sample_to_arrays
@@ -75,7 +75,8 @@ class RacewaySpec:
 
 @dataclass(frozen=True)
 class ReductionSpec:
-    """What to keep of a ring: normal modes, interfaces, raceways, damping, stress modes."""
+    """What to keep of a ring: normal modes, interfaces, raceways, damping, stress modes, and (with
+    ``centrifugal``) the static shape of the ring's centrifugal stretch for bodies that spin."""
 
     n_modes: int = 20
     interfaces: tuple = ()
@@ -83,6 +84,7 @@ class ReductionSpec:
     damping_ratio: float = 0.0
     stress_modes: bool = False
     sample_pockets: bool = True
+    centrifugal: bool = False
 
     def __post_init__(self) -> None:
         if int(self.n_modes) < 1:
@@ -103,6 +105,8 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
                       for i in spec.interfaces for a in i.angles_deg]
         curves = [raceway_curve(model.ring, r.segment, r.n_theta, r.at_rz_m) for r in spec.raceways]
         aug = [Augmentation(c, r.directions, r.n_max) for c, r in zip(curves, spec.raceways) if r.n_max >= 0]
+        if spec.centrifugal:
+            aug.append(CentrifugalAugmentation())
         body = reduce_model(model, spec.n_modes, interfaces, aug, damping_ratio=spec.damping_ratio,
                             name=name or profile.name)
         extras = dict(compute_invariants(model.M, body.nodes_m, body.shapes).to_arrays())

@@ -29,7 +29,7 @@ import math
 
 from numba import njit
 
-from .ball_groove import groove_point_in
+from .ball_groove import TWO_PI, groove_point_in, periodic_lookup_range
 from .element_contacts import POCKET_CYLINDER, ball_ball, pocket_cylinder, pocket_slot, roller_end
 from .laws import friction_coefficient, normal_force_elastic
 from .raceway import add_modal_force, interp_index, raceway_field
@@ -192,7 +192,7 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
         )
         if m.groove_modal[g] >= 0:
             fn, delta, u, ft, e, nx, ny, nz = _flexible_ball_groove(m, q, v, eta, eta_dot, w, c, a, b, g, ra, th,
-                                                                    delta, lx, ly, lz, nx, ny, nz)
+                                                                    lx, ly, lz, nx, ny, nz)
         else:
             mx, my, mz = rotate(q, b, -nx, -ny, -nz)
             px, py, pz = q[a, 0] - ra * mx, q[a, 1] - ra * my, q[a, 2] - ra * mz
@@ -207,30 +207,73 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
 
 
 @njit(cache=True, inline="always")
-def _flexible_ball_groove(m, q, v, eta, eta_dot, w, c, a, b, g, ra, th, delta0, lx, ly, lz, nx, ny, nz):
-    """Ball–groove contact on a modal ring (:mod:`.raceway`): the groove section at θ moves with the
-    raceway point's displacement u = Dη and small rotation ψ = Ωη, so its curvature centre c goes to
-    c + u + ψ × (c − p_s) (p_s the sampled raceway point); the force returns to the modes through the
-    transpose of the same interpolation, Q += Dᵀf + Ωᵀ((p − p_s) × f) for the force f on the ring at
-    the contact point p (work-consistent). Returns (F_n, δ, |v_t|, |F_t|, energy, n) with n the
-    deformed normal in the ring frame."""
-    jm, s0, s1 = m.groove_modal[g], m.groove_samp_off[g], m.groove_samp_off[g + 1]
-    o0, o1 = m.modal_off[jm], m.modal_off[jm + 1]
-    disp, rot, pts = m.samp_disp[s0:s1], m.samp_rot[s0:s1], m.samp_point[s0:s1]
-    i0, i1, w0, w1 = interp_index(m.samp_theta[s0:s1], th, m.groove_periodic[g] == 1)
-    e_j = eta[o0:o1]
-    clear = m.groove_r[g] - ra
-    d = delta0 + clear
-    # undeformed curvature centre, lever from the sampled raceway point, deformed centre
-    cx, cy, cz = lx - d * nx, ly - d * ny, lz - d * nz
+def _table_slope(table, start, stop, th):
+    """Value and dθ-slope of a uniform periodic table over [0, 2π) at θ (linear interpolation)."""
+    n = stop - start
+    if n == 1:
+        return table[start], 0.0
+    s = th / TWO_PI * n
+    i0 = int(math.floor(s))
+    w = s - i0
+    i0 = i0 % n
+    i1 = (i0 + 1) % n
+    return (1.0 - w) * table[start + i0] + w * table[start + i1], (table[start + i1] - table[start + i0]) * n / TWO_PI
+
+
+@njit(cache=True, inline="always")
+def _deformed_groove_centre(m, g, disp, rot, pts, s0, s1, e_j, th):
+    """Deformed curvature centre c'(θ) = c(θ) + u + ψ × (c − p_s) of groove g at angle θ (ring frame)
+    and its θ-derivative (to first order in the deformation: the lever's change is left out), with
+    the interpolation (i0, i1, w0, w1)."""
+    th = th % TWO_PI
+    theta = m.samp_theta[s0:s1]
+    i0, i1, w0, w1 = interp_index(theta, th, m.groove_periodic[g] == 1)
+    dth = theta[i1] - theta[i0]
+    if dth <= 0.0:
+        dth += TWO_PI
+    dr, dr_s = _table_slope(m.groove_dr, m.groove_dr_off[g], m.groove_dr_off[g + 1], th)
+    h, h_s = _table_slope(m.groove_h, m.groove_h_off[g], m.groove_h_off[g + 1], th)
+    r = m.groove_rc[g] + dr
+    cs, sn = math.cos(th), math.sin(th)
+    cx, cy, cz = r * cs, r * sn, m.groove_zc[g] + h
     ax = cx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
     ay = cy - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
     az = cz - (w0 * pts[i0, 2] + w1 * pts[i1, 2])
     ux, uy, uz = raceway_field(disp, i0, i1, w0, w1, e_j)
     rx, ry, rz = raceway_field(rot, i0, i1, w0, w1, e_j)
-    dx = lx - (cx + ux + ry * az - rz * ay)
-    dy = ly - (cy + uy + rz * ax - rx * az)
-    dz = lz - (cz + uz + rx * ay - ry * ax)
+    # θ-derivative: of the rigid centre, of u (difference quotient of the samples), of ψ × lever
+    dux, duy, duz = raceway_field(disp, i0, i1, -1.0 / dth, 1.0 / dth, e_j)
+    drx, dry, drz = raceway_field(rot, i0, i1, -1.0 / dth, 1.0 / dth, e_j)
+    tx = -r * sn + dr_s * cs + dux + dry * az - drz * ay
+    ty = r * cs + dr_s * sn + duy + drz * ax - drx * az
+    tz = h_s + duz + drx * ay - dry * ax
+    return (cx + ux + ry * az - rz * ay, cy + uy + rz * ax - rx * az, cz + uz + rx * ay - ry * ax,
+            tx, ty, tz, i0, i1, w0, w1)
+
+
+@njit(cache=True, inline="always")
+def _flexible_ball_groove(m, q, v, eta, eta_dot, w, c, a, b, g, ra, th, lx, ly, lz, nx, ny, nz):
+    """Ball–groove contact on a modal ring (:mod:`.raceway`): the groove section at θ moves with the
+    raceway point's displacement u = Dη and small rotation ψ = Ωη, so its curvature centre c goes to
+    c'(θ) = c + u + ψ × (c − p_s) (p_s the sampled raceway point). The ball touches the deformed
+    centre curve at its nearest point θ*, (x − c'(θ*))·∂c'/∂θ = 0 (two Gauss–Newton steps from the
+    ball's own angle), so that δ = |x − c'(θ*)| − (f·D − D/2) is the distance whose gradient the
+    force follows: a deformation that only slides the groove along itself does not push the ball,
+    a deflection slope does, as on an undulated groove. The force returns to the modes through the
+    transpose of the interpolation at θ*, Q += Dᵀf + Ωᵀ((p − p_s) × f) for the force f on the ring at
+    the contact point p (work-consistent). Returns (F_n, δ, |v_t|, |F_t|, energy, n), n the normal
+    in the ring frame."""
+    jm, s0, s1 = m.groove_modal[g], m.groove_samp_off[g], m.groove_samp_off[g + 1]
+    o0, o1 = m.modal_off[jm], m.modal_off[jm + 1]
+    disp, rot, pts = m.samp_disp[s0:s1], m.samp_rot[s0:s1], m.samp_point[s0:s1]
+    e_j = eta[o0:o1]
+    ts = th
+    for it in range(2):
+        cx, cy, cz, tx, ty, tz, i0, i1, w0, w1 = _deformed_groove_centre(m, g, disp, rot, pts, s0, s1, e_j, ts)
+        ts += ((lx - cx) * tx + (ly - cy) * ty + (lz - cz) * tz) / (tx * tx + ty * ty + tz * tz)
+    cx, cy, cz, tx, ty, tz, i0, i1, w0, w1 = _deformed_groove_centre(m, g, disp, rot, pts, s0, s1, e_j, ts)
+    clear = m.groove_r[g] - ra
+    dx, dy, dz = lx - cx, ly - cy, lz - cz
     dist = math.sqrt(dx * dx + dy * dy + dz * dz)
     if dist > 0.0:
         nx, ny, nz = dx / dist, dy / dist, dz / dist
@@ -239,7 +282,9 @@ def _flexible_ball_groove(m, q, v, eta, eta_dot, w, c, a, b, g, ra, th, delta0, 
         return 0.0, delta, 0.0, 0.0, 0.0, nx, ny, nz
     # contact point (ring frame), its lever about the raceway point, the raceway's modal velocity there
     plx, ply, plz = lx + ra * nx, ly + ra * ny, lz + ra * nz
-    bx, by, bz = ax + plx - cx, ay + ply - cy, az + plz - cz
+    bx = plx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
+    by = ply - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
+    bz = plz - (w0 * pts[i0, 2] + w1 * pts[i1, 2])
     e_d = eta_dot[o0:o1]
     vx, vy, vz = raceway_field(disp, i0, i1, w0, w1, e_d)
     sx, sy, sz = raceway_field(rot, i0, i1, w0, w1, e_d)

@@ -78,12 +78,16 @@ def _cage_body(builder, name, mass_kg, radius_m, motion):
 def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *, friction=None,
                  damping_N_s_m: float = 0.0, d_max_m: float = 1e-6, cage_mass_kg: float | None = None,
                  pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8,
-                 pocket_friction=None) -> RowBodies:
+                 pocket_friction=None, moving_sample=None, fixed_sample=None, moving_groove_m=None,
+                 fixed_groove_m=None) -> RowBodies:
     """Add the balls of ``row`` with their two ball–groove contacts (and a cage if ``cage_mass_kg``).
 
     ``damping_N_s_m`` is the IMPACT damping of every ball contact, reached at ``d_max_m``;
     ``friction`` the law at the raceways, ``pocket_friction`` the one in the cage pockets (None:
-    frictionless; pocket friction brakes the balls and makes them slip).
+    frictionless; pocket friction brakes the balls and makes them slip). ``moving_sample`` /
+    ``fixed_sample``: the sampled raceway of a modal ring's groove (see
+    :meth:`ModelBuilder.add_groove`); ``moving_groove_m`` / ``fixed_groove_m``: (undulation h(θ),
+    radial offset Δr(θ)) tables of that ring's groove, m (None: none).
     """
     D, R = row.ball_diameter_m, row.pitch_diameter_m / 2
     a0 = row.contact_angle_rad
@@ -100,8 +104,10 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
                              row.ball_material, row.race_material).stiffness_N_per_m1p5
         k_f = ball_on_groove(D, row.conformity_fixed, row.pitch_diameter_m, a0, fixed_raceway,
                              row.ball_material, row.race_material).stiffness_N_per_m1p5
-    g_m = builder.add_groove(moving_ring, c_m[0], c_m[1], row.conformity_moving * D + g2)
-    g_f = builder.add_groove(fixed_ring, c_f[0], c_f[1], row.conformity_fixed * D + g2)
+    g_m = builder.add_groove(moving_ring, c_m[0], c_m[1], row.conformity_moving * D + g2,
+                             *(moving_groove_m or (None, None)), raceway=moving_sample)
+    g_f = builder.add_groove(fixed_ring, c_f[0], c_f[1], row.conformity_fixed * D + g2,
+                             *(fixed_groove_m or (None, None)), raceway=fixed_sample)
     law_m = _law(k_m, 1.5, damping_N_s_m, d_max_m, friction)
     law_f = _law(k_f, 1.5, damping_N_s_m, d_max_m, friction)
     mass = ball_mass_kg(D, row.ball_material.density_kg_m3)

@@ -35,8 +35,12 @@ in the meridian plane (P_i F_i = F_i), the Jacobian is the symmetric
 
     dR/dx = −Σ_i (P_i G_i)ᵀ [Q_i' ŝ_i ŝ_iᵀ + (Q_i/|s_i|)(I − ŝ_i ŝ_iᵀ)] (P_i G_i) − diag(0, K_η),
 
-Q' = 1.5·K·δ^0.5 (the chain rule through s_i, as in the rigid solver). Roller rows act on q only
-(rigid raceways).
+Q' = 1.5·K·δ^0.5 (the chain rule through s_i, as in the rigid solver).
+
+Roller rows: slice k (centre p_k on the roller axis, normal n_k) of a roller at ψ takes the raceway
+fields at ψ the same way, the slice point moving with the section, T_k = D − [p_k − p]ₓ Ω (a tilt
+of the raceway about e_t loads one roller end more), so δ_k = n_k·(G_k x) − gap − drop with G_k as
+above and the slice forces project with G_kᵀ n_k. Offsets shift a raceway by n_k·Δc_k.
 
 Solution: Newton with backtracking (:func:`.solver.damped_newton`), first on q with η = 0 (the
 rigid-ring solution with the offsets), then on (q, η) from there. Each η_j is scaled by the
@@ -76,8 +80,9 @@ __all__ = ["FlexibleRing", "GrooveOffset", "FlexibleBearingModel", "build_flexib
            "FlexibleLoadDistribution", "solve_flexible_load_distribution"]
 
 RING_SIDES = ("fixed", "moving")
-#: Relative tolerance on |c − p| = f·D between a ring's groove centre and its raceway samples.
-GEOMETRY_RTOL = 0.01
+#: Relative tolerance on where the raceway samples lie: f·D from the ring's groove curvature centre
+#: (balls), half a roller diameter from the roller axis (rollers).
+GEOMETRY_RTOL = 0.02
 
 
 def _side(owner: str, side: str) -> None:
@@ -105,7 +110,9 @@ class FlexibleRing:
     ring : {"fixed", "moving"}
         Which ring of the rows it is. A moving ring's interfaces ride on the rigid displacement q.
     raceways : mapping row name → raceway sample name
-        The ball rows whose grooves this ring carries, e.g. ``{"load balls": "groove"}``.
+        The rows whose raceways this ring carries, e.g. ``{"load balls": "groove"}``: for a ball
+        row the groove sampled on a circle at (or near) the contact point, for a roller row the
+        raceway sampled on one circle across it (e.g. mid-width).
     rotation_rad : float
         Angle of the body's frame from the bearing frame about the axis: a ball at azimuth ψ
         sits at body angle ψ − rotation_rad.
@@ -148,12 +155,13 @@ class FlexibleRing:
 
 @dataclass(frozen=True)
 class GrooveOffset:
-    """Offsets of one ring's groove curvature centre as functions of the ring's own angle θ.
+    """Offsets of one ring's groove curvature centre (or roller raceway) as functions of the ring's
+    own angle θ.
 
     Parameters
     ----------
     row : str
-        Ball row whose groove is offset.
+        Row whose groove or raceway is offset.
     ring : {"fixed", "moving"}
     axial_m : callable θ (n,) rad → (n,) m, optional
         Axial undulation h(θ), along +z.
@@ -182,7 +190,7 @@ class GrooveOffset:
             raise ValueError(f"{who}: rotation_rad must be a finite number, got {self.rotation_rad!r}")
 
     def centre_offset_m(self, psi_rad: np.ndarray) -> np.ndarray:
-        """Δc = Δr·e_r + h·e_z (n, 3), m, at ball azimuths ψ (n,) rad."""
+        """Δc = Δr·e_r + h·e_z (n, 3), m, at element azimuths ψ (n,) rad."""
         theta = np.asarray(psi_rad, dtype=float) - self.rotation_rad
         out = {}
         for name in ("axial_m", "radial_m"):
@@ -198,16 +206,15 @@ class GrooveOffset:
 
 @dataclass(frozen=True)
 class _Coupling:
-    """The balls of one row on one flexible ring (Z balls, m modes)."""
+    """The elements of one row on one flexible ring, at their Z azimuths (m modes)."""
 
     ring: str
     row: str
-    balls: np.ndarray        # (Z,) indices into the ball group
-    theta_rad: np.ndarray    # (Z,) ball azimuths
+    azimuth_rad: np.ndarray  # (Z,)
     points_m: np.ndarray     # (Z, 3) interpolated raceway points p_i
     D: np.ndarray            # (Z, 3, m) displacement per unit η
     Omega: np.ndarray        # (Z, 3, m) rotation per unit η
-    T: np.ndarray            # (Z, 3, m) groove-centre displacement per unit η
+    T: np.ndarray | None     # (Z, 3, m) groove-centre displacement per unit η (balls), None for rollers
 
 
 @dataclass(frozen=True, eq=False)
@@ -253,7 +260,7 @@ class FlexibleBearingModel:
         return f
 
     def residual(self, x: np.ndarray, load: RingLoad, jacobian: bool = True):
-        """R(x) (N,) and dR/dx (N, N) (or None) of the module docstring, unscaled (N, N·m, N·√kg⁻¹·m)."""
+        """R(x) (N,) and dR/dx (N, N) (or None) of the module docstring, unscaled (N, N·m, N·m/√kg)."""
         _, _, _, rb, Jb = ball_forces(self.balls, self.ball_dofs, x, jacobian)
         _, _, rs, Js = slice_forces(self.slices, self.slice_dofs, x, jacobian)
         R = rb + rs + self.load_vector(load) - self.stiffness_diag * x
@@ -264,21 +271,19 @@ def _row_index(bearing: Bearing, row: str, who: str) -> int:
     names = [r.name for r in bearing.rows]
     if row not in names:
         raise ValueError(f"{who}: bearing {bearing.name!r} has no row {row!r}; rows: {names}")
-    i = names.index(row)
-    if not isinstance(bearing.rows[i], BallRow):
-        raise ValueError(f"{who}: row {row!r} is a roller row; flexible rings and groove offsets act on ball rows")
-    return i
+    return names.index(row)
 
 
-def _azimuths(bearing: Bearing, balls: BallGroup, mask: np.ndarray) -> np.ndarray:
-    rows = balls.row[mask]
-    n = np.array([bearing.rows[i].n_balls for i in rows])
+def _azimuths(bearing: Bearing, group, mask: np.ndarray) -> np.ndarray:
+    """Azimuth (rad) of the element of every selected ball or slice of a group."""
+    rows = group.row[mask]
+    n = np.array([bearing.rows[i].n_elements for i in rows])
     first = np.array([bearing.rows[i].first_azimuth_rad for i in rows])
-    return first + 2.0 * np.pi * balls.element[mask] / n
+    return first + 2.0 * np.pi * group.element[mask] / n
 
 
 def _rotate_z(v: np.ndarray, angle_rad: float) -> np.ndarray:
-    """Rotate vectors (…, 3, …) with the components on axis 1 about z."""
+    """Rotate vectors about z; the components are on axis 1 of ``v``."""
     c, s = math.cos(angle_rad), math.sin(angle_rad)
     out = v.copy()
     out[:, 0] = c * v[:, 0] - s * v[:, 1]
@@ -287,7 +292,8 @@ def _rotate_z(v: np.ndarray, angle_rad: float) -> np.ndarray:
 
 
 def _interpolate(sample, theta_body: np.ndarray, who: str):
-    """p (Z, 3), D (Z, 3, m), Ω (Z, 3, m) at body angles θ, linear in θ (same weights for all three)."""
+    """p (Z, 3), D (Z, 3, m), Ω (Z, 3, m) at body angles θ, linear in θ with the same weights for
+    all three, and the index of the sample just below each θ."""
     from cms_reduction.sampling import interp_index
 
     grid = sample.theta_rad
@@ -297,7 +303,7 @@ def _interpolate(sample, theta_body: np.ndarray, who: str):
         if not sample.periodic:
             th = grid[0] + (th - grid[0]) % (2.0 * np.pi)
             if th > grid[-1] + 1e-9:
-                raise ValueError(f"{who}: a ball at body angle {math.degrees(th):.6g}° lies outside raceway "
+                raise ValueError(f"{who}: an element at body angle {math.degrees(th):.6g}° lies outside raceway "
                                  f"sample {sample.name!r} ({math.degrees(grid[0]):.6g}°–"
                                  f"{math.degrees(grid[-1]):.6g}°, not periodic)")
         i0, i1, w0, w1 = interp_index(grid, float(th), sample.periodic)
@@ -310,42 +316,80 @@ def _interpolate(sample, theta_body: np.ndarray, who: str):
     return lerp(sample.points_m), lerp(sample.displacement), lerp(sample.rotation), idx[:, 0]
 
 
-def _check_groove_geometry(c: np.ndarray, p_nearest: np.ndarray, radius_m: float, who: str) -> None:
-    """The raceway samples must lie on the groove of radius f·D about the ring's curvature centre."""
-    rz_c = np.column_stack((np.hypot(c[:, 0], c[:, 1]), c[:, 2]))
-    rz_p = np.column_stack((np.hypot(p_nearest[:, 0], p_nearest[:, 1]), p_nearest[:, 2]))
-    dist = np.linalg.norm(rz_p - rz_c, axis=1)
-    worst = int(np.argmax(np.abs(dist - radius_m)))
-    if abs(dist[worst] - radius_m) > GEOMETRY_RTOL * radius_m:
-        raise ValueError(f"{who}: the raceway samples lie {dist[worst] * 1e3:.4g} mm from the ring's groove "
-                         f"curvature centre, expected the groove radius f·D = {radius_m * 1e3:.4g} mm: does the "
-                         "body belong to this ring and row (section, pitch diameter, which ring)?")
+def _ring_fields(ring: FlexibleRing, sample_name: str, psi_rad: np.ndarray, who: str):
+    """Raceway p, D, Ω at bearing azimuths ψ in the bearing frame, and the nearest sample points."""
+    sample = _samples(ring.body)[sample_name]
+    p, D, W, i_near = _interpolate(sample, psi_rad - ring.rotation_rad, who)
+    a = ring.rotation_rad
+    return _rotate_z(p, a), _rotate_z(D, a), _rotate_z(W, a), _rotate_z(sample.points_m[i_near], a)
 
 
-def _coupling(bearing: Bearing, balls: BallGroup, ring: FlexibleRing, row: str, sample_name: str,
-              centre_offset_m: np.ndarray) -> _Coupling:
-    who = f"flexible ring {ring.name!r}"
-    i_row = _row_index(bearing, row, who)
+def _transfer(D: np.ndarray, W: np.ndarray, lever_m: np.ndarray) -> np.ndarray:
+    """T = D − [d]ₓ Ω (k, 3, m): displacement of the point p + d moving rigidly with the section at p."""
+    return D - np.swapaxes(np.cross(lever_m[:, None, :], np.swapaxes(W, 1, 2)), 1, 2)
+
+
+def _check_distance(actual_m: np.ndarray, expected_m: float, what: str, who: str) -> None:
+    worst = int(np.argmax(np.abs(actual_m - expected_m)))
+    if abs(actual_m[worst] - expected_m) > GEOMETRY_RTOL * abs(expected_m):
+        raise ValueError(f"{who}: the raceway samples lie {actual_m[worst] * 1e3:.4g} mm from {what}, expected "
+                         f"{expected_m * 1e3:.4g} mm: does the body belong to this ring and row (section, pitch "
+                         "diameter, which ring)?")
+
+
+def _ball_coupling(bearing: Bearing, balls: BallGroup, ring: FlexibleRing, i_row: int, sample_name: str,
+                   centre_offset_m: np.ndarray):
+    """Coupling of a ball row, its ball indices and T_i (Z, 3, m) of the groove curvature centres."""
+    row = bearing.rows[i_row]
+    who = f"flexible ring {ring.name!r}, row {row.name!r}"
     mask = balls.row == i_row
     psi = _azimuths(bearing, balls, mask)
-    sample = _samples(ring.body)[sample_name]
-    p, D, W, i_near = _interpolate(sample, psi - ring.rotation_rad, f"{who}, row {row!r}")
-    p, D, W = _rotate_z(p, ring.rotation_rad), _rotate_z(D, ring.rotation_rad), _rotate_z(W, ring.rotation_rad)
+    p, D, W, p_near = _ring_fields(ring, sample_name, psi, who)
     moving = ring.ring == "moving"
     c = balls.p_m[mask] if moving else balls.p_m[mask] - balls.s0_m[mask]
-    r = bearing.rows[i_row]
-    radius = (r.conformity_moving if moving else r.conformity_fixed) * r.ball_diameter_m
-    _check_groove_geometry(c, _rotate_z(sample.points_m[i_near], ring.rotation_rad), radius, f"{who}, row {row!r}")
-    d = c + centre_offset_m[mask] - p
-    T = D - np.swapaxes(np.cross(d[:, None, :], np.swapaxes(W, 1, 2)), 1, 2)
-    return _Coupling(ring.name, row, np.flatnonzero(mask), psi, p, D, W, T)
+    rz_gap = np.hypot(np.hypot(c[:, 0], c[:, 1]) - np.hypot(p_near[:, 0], p_near[:, 1]), c[:, 2] - p_near[:, 2])
+    radius = (row.conformity_moving if moving else row.conformity_fixed) * row.ball_diameter_m
+    _check_distance(rz_gap, radius, "the ring's groove curvature centre (the groove radius f·D)", who)
+    T = _transfer(D, W, c + centre_offset_m[mask] - p)
+    return _Coupling(ring.name, row.name, psi, p, D, W, T), np.flatnonzero(mask), T
 
 
-def build_flexible_model(bearing: Bearing, rings=(), offsets=()) -> FlexibleBearingModel:
-    """Flatten a bearing, its flexible rings and groove offsets for :func:`solve_flexible_load_distribution`.
+def _slice_coupling(bearing: Bearing, slices: SliceGroup, ring: FlexibleRing, i_row: int, sample_name: str):
+    """Coupling of a roller row, its slice indices and the approach per unit η (k, m) of its slices."""
+    row = bearing.rows[i_row]
+    who = f"flexible ring {ring.name!r}, row {row.name!r}"
+    mask = slices.row == i_row
+    ns = row.n_slices
+    psi = row.first_azimuth_rad + 2.0 * np.pi * np.arange(row.n_rollers) / row.n_rollers
+    p, D, W, p_near = _ring_fields(ring, sample_name, psi, who)
+    normal = slices.normal[mask]
+    # the raceway lies half a roller diameter from the roller axis: beyond it along n on the fixed
+    # ring (the moving ring moves along +n to load the roller), before it on the moving ring;
+    # measured in the section, as the nearest sample need not sit at the roller's azimuth
+    axis = slices.p_m[mask].reshape(row.n_rollers, ns, 3).mean(axis=1)
+    n_r = np.einsum("ij,ij->i", normal[::ns], axis / np.hypot(axis[:, 0], axis[:, 1])[:, None])
+    side = -1.0 if ring.ring == "moving" else 1.0
+    reach = side * (n_r * (np.hypot(p_near[:, 0], p_near[:, 1]) - np.hypot(axis[:, 0], axis[:, 1]))
+                    + normal[::ns, 2] * (p_near[:, 2] - axis[:, 2]))
+    _check_distance(reach, 0.5 * row.roller_diameter_m, "the roller axis (half the roller diameter)", who)
+    T = _transfer(np.repeat(D, ns, axis=0), np.repeat(W, ns, axis=0), slices.p_m[mask] - np.repeat(p, ns, axis=0))
+    approach = np.einsum("kjm,kj->km", T, normal)
+    return _Coupling(ring.name, row.name, psi, p, D, W, None), np.flatnonzero(mask), approach
 
-    Raises ValueError naming the field for a ring or offset that does not fit the bearing.
-    """
+
+def _offsets(bearing: Bearing, balls: BallGroup, slices: SliceGroup, offsets) -> dict:
+    """Δc (n, 3) of every ball and slice, per ring side."""
+    delta = {side: (np.zeros_like(balls.s0_m), np.zeros_like(slices.p_m)) for side in RING_SIDES}
+    for o in offsets:
+        i = _row_index(bearing, o.row, f"groove offset of row {o.row!r}")
+        k, group = (0, balls) if isinstance(bearing.rows[i], BallRow) else (1, slices)
+        mask = group.row == i
+        delta[o.ring][k][mask] += o.centre_offset_m(_azimuths(bearing, group, mask))
+    return delta
+
+
+def _checked_inputs(bearing: Bearing, rings, offsets):
+    """Validated (rings, offsets) tuples."""
     if not isinstance(bearing, Bearing):
         raise TypeError(f"bearing must be a Bearing, got {type(bearing).__name__}")
     rings, offsets = tuple(rings), tuple(offsets)
@@ -366,55 +410,71 @@ def build_flexible_model(bearing: Bearing, rings=(), offsets=()) -> FlexibleBear
                 raise ValueError(f"flexible ring {r.name!r}: the {r.ring} ring of row {row!r} is already "
                                  f"flexible ring {taken[row, r.ring]!r}")
             taken[row, r.ring] = r.name
+    return rings, offsets
 
+
+def build_flexible_model(bearing: Bearing, rings=(), offsets=()) -> FlexibleBearingModel:
+    """Flatten a bearing, its flexible rings and groove offsets for :func:`solve_flexible_load_distribution`.
+
+    Parameters
+    ----------
+    bearing : Bearing
+    rings : sequence of FlexibleRing
+        At most one per ring side of a row; rows not named by any ring have rigid raceways.
+    offsets : sequence of GrooveOffset
+        Offsets of the same ring and row add up.
+
+    Raises ValueError naming the field for a ring or offset that does not fit the bearing.
+    """
+    rings, offsets = _checked_inputs(bearing, rings, offsets)
     balls, slices = build_groups(bearing)
-    # groove offsets: fixed-ring centre up by Δc shortens s, moving-ring centre up lengthens it
-    delta = {side: np.zeros_like(balls.s0_m) for side in RING_SIDES}
-    for o in offsets:
-        mask = balls.row == _row_index(bearing, o.row, f"groove offset of row {o.row!r}")
-        delta[o.ring][mask] += o.centre_offset_m(_azimuths(bearing, balls, mask))
-
-    n_modes = [r.body.n_modes for r in rings]
-    starts = 5 + np.concatenate(([0], np.cumsum(n_modes))).astype(int)
+    delta = _offsets(bearing, balls, slices, offsets)
+    starts = 5 + np.concatenate(([0], np.cumsum([r.body.n_modes for r in rings]))).astype(int)
+    ring_dofs = tuple(slice(int(starts[k]), int(starts[k + 1])) for k in range(len(rings)))
     N = int(starts[-1])
     G = np.zeros((len(balls.K), 3, N))
     G[:, :, :5] = displacement_matrix(balls.p_m)
     w = np.zeros((len(slices.K), N))
     w[:, :5] = np.einsum("nji,nj->ni", displacement_matrix(slices.p_m), slices.normal)
-    stiffness = np.zeros(N)
-    scale = np.zeros(N)
+    stiffness, scale = np.zeros(N), np.zeros(N)
     scale[:5] = _scaling(bearing)
     couplings = []
-    for k, ring in enumerate(rings):
-        cols = slice(int(starts[k]), int(starts[k + 1]))
+    for ring, cols in zip(rings, ring_dofs):
         stiffness[cols] = ring.body.omega_rad_s**2
         sign = 1.0 if ring.ring == "moving" else -1.0
         amplitude = np.zeros(ring.body.n_modes)
-        for row, sample_name in ring.raceways:
-            c = _coupling(bearing, balls, ring, row, sample_name, delta[ring.ring])
-            G[c.balls, :, cols] += sign * c.T
+        for row_name, sample_name in ring.raceways:
+            i_row = _row_index(bearing, row_name, f"flexible ring {ring.name!r}")
+            if isinstance(bearing.rows[i_row], BallRow):
+                c, idx, T = _ball_coupling(bearing, balls, ring, i_row, sample_name, delta[ring.ring][0])
+                G[idx, :, cols] += sign * T
+            else:
+                c, idx, wk = _slice_coupling(bearing, slices, ring, i_row, sample_name)
+                w[idx, cols] += sign * wk
             couplings.append(c)
             disp = _samples(ring.body)[sample_name].displacement
             amplitude = np.maximum(amplitude, np.linalg.norm(disp, axis=1).max(axis=0))
         scale[cols] = np.maximum(amplitude, 1e-6 * max(amplitude.max(), 1e-300))
-    balls = replace(balls, s0_m=balls.s0_m + delta["moving"] - delta["fixed"])
-    ring_dofs = tuple(slice(int(starts[k]), int(starts[k + 1])) for k in range(len(rings)))
+    rel = {k: delta["moving"][k] - delta["fixed"][k] for k in (0, 1)}
+    balls = replace(balls, s0_m=balls.s0_m + rel[0])
+    slices = replace(slices, offset_m=slices.offset_m - np.einsum("ij,ij->i", rel[1], slices.normal))
     return FlexibleBearingModel(bearing, rings, offsets, balls, slices, G, w, stiffness, ring_dofs, scale,
                                 tuple(couplings))
 
 
 @dataclass(frozen=True)
 class RacewayDeflection:
-    """Elastic deflection of a flexible ring's raceway at the balls of one row (Z balls).
+    """Elastic deflection of a flexible ring's raceway at the elements of one row (Z balls or rollers).
 
     Attributes
     ----------
     ring, row : str
-    azimuth_rad : (Z,) ball azimuths, rad
-    points_m : (Z, 3) undeformed raceway points at the balls (interpolated samples), m
+    azimuth_rad : (Z,) element azimuths, rad
+    points_m : (Z, 3) undeformed raceway points at the elements (interpolated samples), m
     displacement_m : (Z, 3) raceway displacement D_i η, m (without the rigid motion q of a moving ring)
     rotation_rad : (Z, 3) raceway small rotation Ω_i η, rad
     groove_centre_displacement_m : (Z, 3) T_i η, the groove curvature centre's displacement, m
+        (ball rows; None for roller rows)
     """
 
     ring: str
@@ -423,7 +483,7 @@ class RacewayDeflection:
     points_m: np.ndarray
     displacement_m: np.ndarray
     rotation_rad: np.ndarray
-    groove_centre_displacement_m: np.ndarray
+    groove_centre_displacement_m: np.ndarray | None
 
     def to_dict(self) -> dict:
         return {"ring": self.ring, "row": self.row, "azimuth_deg": np.degrees(self.azimuth_rad).tolist(),
@@ -454,7 +514,7 @@ class FlexibleLoadDistribution(LoadDistribution):
         return self.modal_coordinates[self.ring_names.index(ring)]
 
     def raceway_deflection(self, ring: str, row: str) -> RacewayDeflection:
-        """Deflection of ``ring``'s raceway at the balls of ``row``."""
+        """Deflection of ``ring``'s raceway at the elements of ``row``."""
         for d in self.deflections:
             if d.ring == ring and d.row == row:
                 return d
@@ -546,7 +606,7 @@ def _collect(model: FlexibleBearingModel, load: RingLoad, x: np.ndarray, iterati
     deflections = []
     for c in model.couplings:
         eta = etas[names.index(c.ring)]
-        deflections.append(RacewayDeflection(c.ring, c.row, c.theta_rad, c.points_m, c.D @ eta, c.Omega @ eta,
-                                             c.T @ eta))
+        deflections.append(RacewayDeflection(c.ring, c.row, c.azimuth_rad, c.points_m, c.D @ eta, c.Omega @ eta,
+                                             None if c.T is None else c.T @ eta))
     return FlexibleLoadDistribution(model.bearing.name, load.as_array(), x[:5].copy(), (rb + rs)[:5], rows,
                                     iterations, float(error), held, names, etas, tuple(deflections))

@@ -261,8 +261,9 @@ def supported_dofs(prob: _Problem, bearing_name: str, f_ext: np.ndarray, S: np.n
     :meth:`_Problem.linear_stiffness`. A load on an unsupported DOF is a
     :class:`LoadDistributionError` naming the load component.
     """
-    scale = max(float(np.linalg.norm(f_ext / S)), 1.0)
-    K_lin = prob.linear_stiffness(float(np.linalg.norm(f_ext / S))) / S[:, None] / S[None, :]
+    load_scale = float(np.linalg.norm(f_ext / S))
+    scale = max(load_scale, 1.0)
+    K_lin = prob.linear_stiffness(load_scale) / S[:, None] / S[None, :]
     diag = np.diag(K_lin)
     supported = diag > 1e-12 * diag.max()
     for i in np.flatnonzero(~supported):
