@@ -79,7 +79,7 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
                  damping_N_s_m: float = 0.0, d_max_m: float = 1e-6, cage_mass_kg: float | None = None,
                  pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8,
                  pocket_friction=None, moving_sample=None, fixed_sample=None, moving_groove_m=None,
-                 fixed_groove_m=None) -> RowBodies:
+                 fixed_groove_m=None, cage_motion=None) -> RowBodies:
     """Add the balls of ``row`` with their two ball–groove contacts (and a cage if ``cage_mass_kg``).
 
     ``damping_N_s_m`` is the IMPACT damping of every ball contact, reached at ``d_max_m``;
@@ -87,7 +87,9 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
     frictionless; pocket friction brakes the balls and makes them slip). ``moving_sample`` /
     ``fixed_sample``: the sampled raceway of a modal ring's groove (see
     :meth:`ModelBuilder.add_groove`); ``moving_groove_m`` / ``fixed_groove_m``: (undulation h(θ),
-    radial offset Δr(θ)) tables of that ring's groove, m (None: none).
+    radial offset Δr(θ)) tables of that ring's groove, m (None: none); ``cage_motion``: the cage's
+    :class:`Free` (default), :class:`Fixed` (balls held at their azimuths, as in the quasi-static
+    model) or :class:`Driven` motion.
     """
     D, R = row.ball_diameter_m, row.pitch_diameter_m / 2
     a0 = row.contact_angle_rad
@@ -114,7 +116,7 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
     inertia = 0.1 * mass * D * D
     cage = None
     if cage_mass_kg is not None:
-        cage = _cage_body(builder, f"{row.name} cage", cage_mass_kg, R, None)
+        cage = _cage_body(builder, f"{row.name} cage", cage_mass_kg, R, cage_motion)
     balls, mov, fix, pockets = [], [], [], []
     for j, psi in enumerate(_azimuths(row.n_balls, row.first_azimuth_rad)):
         b = builder.add_body(f"{row.name} ball {j}", mass, (inertia,) * 3,

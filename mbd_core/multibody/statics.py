@@ -10,8 +10,9 @@ cage, a ring's spin — are handled by the Levenberg–Marquardt damping of
 ``scipy.optimize.least_squares``, which leaves them where they are.
 
 The modal coordinates of modal bodies are unknowns too, with the residual of their modal equations
-Q + I3ᵀRᵀg − Kη = 0 (contact modal forces Q, weight, modal stiffness; the frames of modal bodies are
-held where they are, and a driven frame's centrifugal load is not included: velocities are zero).
+Q + I3ᵀRᵀg − Kη = 0 (contact modal forces Q, weight, modal stiffness), and so are the free frame
+components of modal bodies, as for rigid bodies (their weight from the invariants). A driven
+frame's centrifugal load is not included: velocities are zero.
 """
 
 from __future__ import annotations
@@ -76,6 +77,7 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     # trial points of the solver may penetrate deeply: no divergence bound here
     a = model.arrays._replace(pair_delta_max=np.full(model.n_pairs, np.inf))
     free = a.body_free.astype(bool)
+    free[a.modal_body] = a.modal_frame_free.astype(bool)  # the free components of modal frames
     held = {model.body(x) if isinstance(x, str) else int(x) for x in fixed_azimuth}
     unknowns = []  # (body, component 0..5)
     directions = []  # unit direction of each translation unknown
@@ -136,9 +138,10 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
         if status != STATUS_OK:
             raise DivergenceError("static equilibrium: " + _failure_text(model, status, index, trial.t, work))
         r = np.empty(n_r)
-        r[trans] = np.sum(work.body_f[body_idx[trans]] * dirs, axis=1) / force_scale
+        f, t = _frame_loads(model, trial, work)
+        r[trans] = np.sum(f[body_idx[trans]] * dirs, axis=1) / force_scale
         if rot_bodies.size:
-            tb = _rotate_back_vecs(trial.q[body_idx[rot], 3:], work.body_t[body_idx[rot]])
+            tb = _rotate_back_vecs(trial.q[body_idx[rot], 3:], t[body_idx[rot]])
             r[rot] = tb[np.arange(tb.shape[0]), comp_idx[rot] - 3] / (force_scale * length_scale)
         # in raceway displacement: (Q/ω² − η)·d, per 0.1 mm — the scale of the rigid unknowns
         r_modal = (_modal_residual(model, trial, work) / omega2 * d_ref) / 1e-4
@@ -195,6 +198,30 @@ def _modal_displacement_scale(model: Model) -> np.ndarray:
             tab = a.samp_disp[a.groove_samp_off[g]:a.groove_samp_off[g + 1], :, :o1 - o0]
             d[o0:o1] = np.maximum(d[o0:o1], np.linalg.norm(tab, axis=1).max(axis=0))
     return d
+
+
+def _frame_loads(model: Model, state: State, work):
+    """World force and moment on every body's reference point: the work's, plus the weight of the
+    modal bodies (m g at the centre of mass S/m: moment R(S × Rᵀg) about the frame origin), which
+    their body_force leaves out."""
+    a = model.arrays
+    if not a.modal_body.size:
+        return work.body_f, work.body_t
+    f, t = work.body_f.copy(), work.body_t.copy()
+    for j, i in enumerate(a.modal_body):
+        o0, o1 = a.modal_off[j], a.modal_off[j + 1]
+        q = state.q[i:i + 1, 3:]
+        S_w = _rotate_vecs(q, (a.modal_I2[j] + a.modal_I3[j, :, :o1 - o0] @ state.eta[o0:o1])[None])[0]
+        f[i] += a.modal_mass[j] * a.gravity
+        t[i] += np.cross(S_w, a.gravity)
+    return f, t
+
+
+def _rotate_vecs(q: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """R(q_k) x_k row by row; q (k, 4), x (k, 3)."""
+    w, v = q[:, :1], q[:, 1:]
+    t = 2.0 * np.cross(v, x)
+    return x + w * t + np.cross(v, t)
 
 
 def _modal_residual(model: Model, state: State, work) -> np.ndarray:

@@ -20,6 +20,10 @@ Held (prescribed) velocity components keep their values. Orientations are handle
 matrices (scipy.spatial.transform.Rotation) and stored back as the unit quaternion (w, x, y, z) on
 the same side of the sphere as before the step (q and −q are the same rotation; the kernel's
 quaternion moves continuously).
+
+Modal bodies (body_modal ≥ 0) are moved by the twin of the modal step (``modal_step``) only: in
+:func:`modal_step`, the rigid kick and drift, then their half kick and drift; the forces; the rigid
+kick, then their corrected half kick.
 """
 
 from collections import namedtuple
@@ -27,6 +31,7 @@ from collections import namedtuple
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from . import modal_step as ms
 from . import multibody as mb
 from . import rigid_rotation
 
@@ -62,11 +67,13 @@ def kick(m, q, v, body_f, body_t, hh):
 
 def drift(m, q, v, h):
     """Positions by h v; orientations by the free-rotation splitting (unequal inertias) or at
-    constant ω (spheres, whose free rotation keeps ω; driven bodies); returns (q, v)."""
+    constant ω (spheres, whose free rotation keeps ω; driven bodies); returns (q, v). Modal bodies
+    are left as they are (their drift is the modal twin's)."""
     q, v = q.copy(), v.copy()
     free = m.body_free.astype(bool)
-    q[:, :3] += h * v[:, :3]
-    for i in range(len(m.body_mass)):
+    rigid = m.body_modal < 0
+    q[rigid, :3] += h * v[rigid, :3]
+    for i in np.flatnonzero(rigid):
         R = mb.matrix(q[i, 3:])
         inertia = m.body_inertia[i]
         if free[i, 3:].all() and np.ptp(inertia) > 0:
@@ -88,6 +95,20 @@ def step(m, q, v, forces, t, h):
     forces = mb.compute_forces(m, t, q, v)
     v = kick(m, q, v, forces.body_f, forces.body_t, 0.5 * h)
     return q, v, forces
+
+
+def modal_step(m, q, v, eta, eta_dot, forces, t, h, groove_angle=None):
+    """One step of size h ending at time t of a model with modal bodies, from (q, v, η, η̇) with ``forces``
+    (twin Forces, with modal forces) at that state; ``groove_angle`` as in the twin of compute_forces.
+    Returns (q, v, η, η̇, forces at the new state)."""
+    v = kick(m, q, v, forces.body_f, forces.body_t, 0.5 * h)
+    q, v = drift(m, q, v, h)
+    v, eta_dot = ms.kick(m, q, v, eta, eta_dot, forces.body_f, forces.body_t, forces.modal_f, 0.5 * h, False)
+    q, v, eta, eta_dot = ms.drift(m, q, v, eta, eta_dot, h)
+    forces = mb.compute_forces(m, t, q, v, eta, eta_dot, groove_angle)
+    v = kick(m, q, v, forces.body_f, forces.body_t, 0.5 * h)
+    v, eta_dot = ms.kick(m, q, v, eta, eta_dot, forces.body_f, forces.body_t, forces.modal_f, 0.5 * h, True)
+    return q, v, eta, eta_dot, forces
 
 
 def run(m, q, v, forces, t_origin, step0, n_steps, h, every):

@@ -7,12 +7,21 @@ points (δ, unit normal m of the force on the element, point p; world frame), th
 applies the penalty and friction laws to a point, using the twins of the laws
 (``contact_laws``), of the groove geometry (``contact_laws.ball_groove``) and of the roller slices
 (``roller_slices``).
+
+A groove on a modal ring (groove_modal ≥ 0) deforms with the ring's modal coordinates η: its curvature
+centre goes to c'(θ) = c(θ) + u(θ) + ψ(θ) × (c(θ) − p_s(θ)), u = D(θ) η and ψ = Ω(θ) η with D, Ω and the
+raceway point p_s interpolated linearly in θ between the samples. The ball touches at the nearest
+point θ* of that curve, found here by a bounded scalar minimisation of |x − c'(θ)|² near the ball's
+angle and polished to round-off on the exact stationarity condition (x − c')·∂c'/∂θ = 0 (with the
+lever's θ-derivative). The raceway's material point at the contact point p moves with
+u̇ + ψ̇ × (p − p_s); the force g on the ring there gives the modal force Dᵀg + Ωᵀ((p − p_s) × g).
 """
 
 from collections import namedtuple
 
 import numpy as np
 from scipy.interpolate import CubicSpline, PPoly
+from scipy.optimize import brentq, minimize_scalar
 from scipy.spatial.transform import Rotation
 
 from . import contact_laws as laws
@@ -26,8 +35,9 @@ PARALLEL_TOL = 1e-12  # |projection of d normal to the axis| below which the rol
 
 #: body_f_scale, body_t_scale (n_b,): Σ of the magnitudes of the terms summed into each body's force and
 #: moment (|F|, |p − r| |F|, |M|), the scale of their round-off.
+#: modal_f (n_η,): the contacts' modal forces (flexible grooves), √kg·m/s².
 Forces = namedtuple("Forces", "body_f body_t fn delta slip ft angle theta energy_contact energy_bushing "
-                              "body_f_scale body_t_scale")
+                              "body_f_scale body_t_scale modal_f", defaults=(np.zeros(0),))
 
 
 # -- rotations ---------------------------------------------------------------------------------
@@ -186,15 +196,19 @@ class _Bodies:
         return self.r[i] + self.R[i] @ x
 
 
-def contact_point_force(m, bodies, c, delta, normal, p):
+def contact_point_force(m, bodies, c, delta, normal, p, surface_velocity=None):
     """Penalty and friction force of one contact point (DESIGN §5.3).
 
-    Returns (F_n, |v_t|, |F_t|, elastic energy, force (3,) on body a in world axes).
+    ``surface_velocity`` (3,) world: velocity of body b's surface at p beyond its rigid motion (the
+    modal velocity of a flexible raceway). Returns (F_n, |v_t|, |F_t|, elastic energy, force (3,) on
+    body a in world axes).
     """
     if not delta > 0:
         return 0.0, 0.0, 0.0, 0.0, np.zeros(3)
     a, b = m.pair_a[c], m.pair_b[c]
     rel = bodies.velocity(a, p) - bodies.velocity(b, p)
+    if surface_velocity is not None:
+        rel = rel - surface_velocity
     k, n = m.pair_k[c], m.pair_n[c]
     fn = float(laws.normal_force(m.pair_law[c], delta, -(rel @ normal), k, n, m.pair_c[c], m.pair_dmax[c]))
     v_t = rel - (rel @ normal) * normal
@@ -227,6 +241,122 @@ def _points_ball_groove(m, bodies, c):
     point = (delta[0], -n_w, bodies.r[a] + ra * n_w)
     angle = np.arctan2(abs(n[0, 2]), abs(n[0, 0] * np.cos(th[0]) + n[0, 1] * np.sin(th[0])))
     return [point], angle, th[0]
+
+
+# -- flexible grooves on modal rings ---------------------------------------------------------------
+#: A flexible ring's surface at a contact point: its modal coordinates (slice of η), the world velocity of
+#: its material point there beyond the rigid frame motion, and the map of a force on the element (world)
+#: to the ring's modal force.
+Surface = namedtuple("Surface", "modes velocity modal_force")
+TWO_PI = 2.0 * np.pi
+
+
+def _linear(grid, values, x):
+    """Value and slope at x of the piecewise-linear interpolation of values (n, ...) on the ascending grid,
+    on the interval [grid[i], grid[i + 1]) that holds x (the last one at its right end)."""
+    i = int(np.clip(np.searchsorted(grid, x, side="right") - 1, 0, len(grid) - 2))
+    slope = (values[i + 1] - values[i]) / (grid[i + 1] - grid[i])
+    return values[i] + (x - grid[i]) * slope, slope
+
+
+def _periodic(grid, values, x):
+    """:func:`_linear` on a full circle: grid (n,) ascending within [grid[0], grid[0] + 2π), x any angle."""
+    if len(values) == 1:
+        return values[0], np.zeros_like(values[0])
+    x0 = grid[0]
+    return _linear(np.append(grid, x0 + TWO_PI), np.concatenate([values, values[:1]]), x0 + np.mod(x - x0, TWO_PI))
+
+
+def _groove_table(table, off, g, th):
+    """Undulation or radial offset of groove g (uniform table over [0, 2π)) and its θ-slope."""
+    t = table[off[g]:off[g + 1]]
+    return _periodic(TWO_PI * np.arange(len(t)) / len(t), t, th)
+
+
+def raceway_tables(m, g):
+    """The raceway samples of flexible groove g: (θ (n,), p_s (n, 3), D (n, 3, k), Ω (n, 3, k), periodic,
+    slice of η of its ring), the tables cut to the ring's k modes."""
+    j, s0, s1 = m.groove_modal[g], m.groove_samp_off[g], m.groove_samp_off[g + 1]
+    o0, o1 = m.modal_off[j], m.modal_off[j + 1]
+    k = o1 - o0
+    return (m.samp_theta[s0:s1], m.samp_point[s0:s1], m.samp_disp[s0:s1, :, :k], m.samp_rot[s0:s1, :, :k],
+            m.groove_periodic[g] == 1, slice(o0, o1))
+
+
+def _sampled(theta, table, periodic, th):
+    """A sampled table (n, ...) at angle θ and its θ-slope: periodic, or held at the ends of its range."""
+    if periodic:
+        return _periodic(theta, table, th)
+    if th <= theta[0] or th >= theta[-1]:
+        return table[0 if th <= theta[0] else -1], np.zeros_like(table[0])
+    return _linear(theta, table, th)
+
+
+def deformed_groove_centre(m, g, eta_ring, th):
+    """c'(θ) = c + u + ψ × (c − p_s) of flexible groove g (ring frame), its exact θ-derivative (the
+    lever's change included), and the interpolated (D (3, k), Ω (3, k), p_s (3,)) at θ."""
+    theta, points, disp, rot, periodic, _ = raceway_tables(m, g)
+    h, h_s = _groove_table(m.groove_h, m.groove_h_off, g, th)
+    dr, dr_s = _groove_table(m.groove_dr, m.groove_dr_off, g, th)
+    e_r, e_t = np.array([np.cos(th), np.sin(th), 0.0]), np.array([-np.sin(th), np.cos(th), 0.0])
+    c = (m.groove_rc[g] + dr) * e_r + [0.0, 0.0, m.groove_zc[g] + h]
+    c_s = (m.groove_rc[g] + dr) * e_t + dr_s * e_r + [0.0, 0.0, h_s]
+    D, D_s = _sampled(theta, disp, periodic, th)
+    W, W_s = _sampled(theta, rot, periodic, th)
+    P, P_s = _sampled(theta, points, periodic, th)
+    psi = W @ eta_ring
+    centre = c + D @ eta_ring + np.cross(psi, c - P)
+    tangent = c_s + D_s @ eta_ring + np.cross(W_s @ eta_ring, c - P) + np.cross(psi, c_s - P_s)
+    return centre, tangent, (D, W, P)
+
+
+def nearest_groove_angle(m, g, eta_ring, x, th_ball, span=0.05):
+    """θ* minimising |x − c'(θ)| within th_ball ± span (rad): bounded Brent on the squared distance, then
+    the root of (x − c')·∂c'/∂θ in the smallest bracket around it that changes sign (brentq)."""
+    def dist2(s):
+        d = x - deformed_groove_centre(m, g, eta_ring, th_ball + s)[0]
+        return d @ d
+
+    def slope(s):
+        centre, tangent, _ = deformed_groove_centre(m, g, eta_ring, th_ball + s)
+        return (x - centre) @ tangent
+
+    s = minimize_scalar(dist2, bounds=(-span, span), method="bounded", options={"xatol": 1e-14}).x
+    if slope(s) == 0.0:
+        return th_ball + s
+    for w in 10.0 ** np.arange(-13, 0):
+        lo, hi = max(s - w, -span), min(s + w, span)
+        if slope(lo) * slope(hi) <= 0.0:
+            return th_ball + brentq(slope, lo, hi, xtol=1e-19, rtol=4 * np.finfo(float).eps)
+    raise ValueError(f"groove {g}: no nearest point within ±{span} rad of the ball angle {th_ball}")
+
+
+def _points_flexible_groove(m, bodies, c, eta, eta_dot, nearest=nearest_groove_angle):
+    """Contact point of a ball on a flexible groove at the groove angle ``nearest(m, g, η_ring, x, θ_ball)``
+    (x the ball centre in the ring frame), by default the nearest point θ*."""
+    a, b, g = m.pair_a[c], m.pair_b[c], m.pair_geom[c]
+    ra = m.pair_radius[c]
+    x = bodies.to_local(b, bodies.r[a])
+    th_ball = np.mod(np.arctan2(x[1], x[0]), TWO_PI)
+    th_ball = th_ball - TWO_PI if th_ball >= TWO_PI else th_ball
+    modes = raceway_tables(m, g)[-1]
+    th = nearest(m, g, eta[modes], x, th_ball)
+    centre, _, (D, W, P) = deformed_groove_centre(m, g, eta[modes], th)
+    d = x - centre
+    dist = np.linalg.norm(d)
+    n = d / dist
+    p_ring = x + ra * n
+    lever = p_ring - P
+    R = bodies.R[b]
+    velocity = R @ (D @ eta_dot[modes] + np.cross(W @ eta_dot[modes], lever))
+
+    def modal_force(force_on_element):
+        on_ring = R.T @ -force_on_element
+        return D.T @ on_ring + W.T @ np.cross(lever, on_ring)
+
+    point = (dist - (m.groove_r[g] - ra), -(R @ n), bodies.to_world(b, p_ring), Surface(modes, velocity, modal_force))
+    angle_out = np.arctan2(abs(n[2]), abs(n[0] * np.cos(th_ball) + n[1] * np.sin(th_ball)))
+    return [point], angle_out, th_ball
 
 
 def _points_ball_ball(m, bodies, c):
@@ -292,14 +422,23 @@ def _bushings(m, q, bodies):
     return energy
 
 
-def compute_forces(m, t, q, v):
-    """Twin of mbd_core.kernels.forces.compute_forces on the model arrays ``m`` at state (t, q, v).
+def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
+    """Twin of mbd_core.kernels.forces.compute_forces on the model arrays ``m`` at state (t, q, v, η, η̇).
 
-    Returns :data:`Forces`: body forces and moments about the bodies' centres (n_b, 3) world frame;
-    per contact F_n (sum over points), largest δ, slip at the most loaded point, Σ|F_t|, contact
-    angle (raceway: at the most loaded slice), ball angle θ (grooves; 0 otherwise); energies.
+    ``eta``, ``eta_dot`` (n_η,): modal coordinates and rates (None: zero). ``groove_angle``: a function
+    (m, g, η of the ring, ball centre x in the ring frame, ball angle) → θ that replaces the nearest-point
+    search of flexible grooves (:func:`nearest_groove_angle`), so that what follows it can be compared
+    alone. Returns :data:`Forces`: body forces and moments about the bodies' centres (n_b, 3)
+    world frame; per contact F_n (sum over points), largest δ, slip at the most loaded point, Σ|F_t|,
+    contact angle (raceway: at the most loaded slice), ball angle θ (grooves; 0 otherwise); energies;
+    modal forces (n_η,).
     """
     nc = len(m.pair_type)
+    n_eta = int(m.modal_off[-1]) if len(m.modal_off) else 0
+    eta = np.zeros(n_eta) if eta is None else np.asarray(eta, float)
+    eta_dot = np.zeros(n_eta) if eta_dot is None else np.asarray(eta_dot, float)
+    nearest = groove_angle or nearest_groove_angle
+    modal_f = np.zeros(n_eta)
     bodies = _Bodies(q, v)
     loads = [(i, m.body_force[i]) for i in range(len(m.body_mass))]
     loads += [(m.load_body[l], _stored_spline(m, l, t)) for l in range(len(m.load_body))]
@@ -311,14 +450,21 @@ def compute_forces(m, t, q, v):
     e_contact = 0.0
     for c in range(nc):
         a, b = m.pair_a[c], m.pair_b[c]
-        points, angle, theta = POINTS[m.pair_type[c]](m, bodies, c)
+        if m.pair_type[c] == BALL_GROOVE and m.groove_modal[m.pair_geom[c]] >= 0:
+            points, angle, theta = _points_flexible_groove(m, bodies, c, eta, eta_dot, nearest)
+        else:
+            points, angle, theta = POINTS[m.pair_type[c]](m, bodies, c)
         loaded = []
-        for delta, normal, p in points:
+        for delta, normal, p, *surface in points:
             if not delta > 0:
                 continue
-            fn, slip, ft, e, force = contact_point_force(m, bodies, c, delta, normal, p)
+            surface = surface[0] if surface else None
+            fn, slip, ft, e, force = contact_point_force(m, bodies, c, delta, normal, p,
+                                                         None if surface is None else surface.velocity)
             bodies.add(a, force, p)
             bodies.add(b, -force, p)
+            if surface is not None:
+                modal_f[surface.modes] += surface.modal_force(force)
             loaded.append((fn, slip, ft, normal, p))
             e_contact += e
         out["delta"][c] = max(point[0] for point in points)
@@ -331,4 +477,4 @@ def compute_forces(m, t, q, v):
             angle = _angle_in_ring(bodies.R[b], bodies.r[b], top[3], top[4]) if loaded else 0.0
         out["angle"][c], out["theta"][c] = angle, theta
     return Forces(bodies.f, bodies.t, out["fn"], out["delta"], out["slip"], out["ft"], out["angle"], out["theta"],
-                  e_contact, e_bushing, bodies.f_scale, bodies.t_scale)
+                  e_contact, e_bushing, bodies.f_scale, bodies.t_scale, modal_f)
