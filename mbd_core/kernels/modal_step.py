@@ -26,15 +26,17 @@ recovered as u = M_r(η)⁻¹ (π, p_η).
 integrated components f of u get u_f += (h/2) M_ff⁻¹ (rhs − h)_f (prescribed accelerations are
 zero: prescribed velocities are constant); the frame drifts by its velocity, η += h η̇. With
 ``implicit`` set the linear modal part −Kη − Dη̇ is left out of the kicks and integrated in the
-drift per mode, unconditionally stable, so the stiffest kept mode does not limit the step (frames
-without free components only: then M_ηη = I6 = 1 and the modes decouple from the frame). Modes the
-step resolves (hω ≤ 2) use the trapezoidal rule (Newmark average acceleration: second order, no
-numerical damping); for the others the θ-method with θ = 1 − 1/(hω) (→ backward Euler), whose
-damping of the unresolved frequencies keeps them from ringing at the step's Nyquist frequency
-under the contact kicks (with θ = ½ they would, by ±6 % of the contact force in a 20 kHz
-raceway load shape at h = 35 µs): they respond quasi-statically, all they can do at that step
-(J. C. Houbolt's and the θ-method's L-stability argument, T. J. R. Hughes, *The Finite Element
-Method*, 2000, §9.3).
+drift per mode by the trapezoidal rule (Newmark average acceleration), unconditionally stable, so
+the stiffest kept mode does not limit the step (frames without free components only: then
+M_ηη = I6 = 1 and the modes decouple from the frame). Modes the step resolves (hω ≤ 2) keep their
+own damping (second order, no numerical damping). Modes it does not resolve are damped critically
+(c = 2ω): undamped, the trapezoidal rule would let the contact kicks make them ring at the step's
+Nyquist frequency (±6 % of the contact force for a 20 kHz raceway load shape at h = 35 µs); critically
+damped, a step multiplies that ringing by (hω − 2)/(hω + 2) — the smallest factor any damping gives
+the trapezoidal rule (T. J. R. Hughes, *The Finite Element Method*, 2000, §9.3) — while their static
+response, the fixed point of the kick–drift–kick step under a constant force, stays exact. (An
+L-stable θ-method would damp them more but, split from the kicks, biases that static response by
+about (θ − ½)h²ω².) They respond quasi-statically, all they can do at that step.
 
 The second kick of both forms depends on the new velocities through the quadratic-velocity terms and
 the modal damping; one fixed-point correction (predict, re-evaluate those terms, kick again) keeps
@@ -376,16 +378,16 @@ def _constrained_drift(m, q, v, eta, eta_dot, j, h):
         for k in range(o0, o1):
             eta[k] += h * eta_dot[k]
         return
-    for k in range(o0, o1):  # θ-method on η̈ = −ω²η − cη̇ (trapezoidal rule for θ = ½)
+    hh = 0.5 * h
+    for k in range(o0, o1):  # trapezoidal rule on η̈ = −ω²η − cη̇
         w2, c = m.modal_omega2[k], m.modal_damp[k]
-        hw = h * math.sqrt(w2)
-        th = 0.5 if hw <= 2.0 else 1.0 - 1.0 / hw
-        a, b = th * h, (1.0 - th) * h
-        r1 = eta[k] + b * eta_dot[k]
-        r2 = eta_dot[k] - b * (w2 * eta[k] + c * eta_dot[k])
-        ed = (r2 - a * w2 * r1) / (1.0 + a * c + a * a * w2)
+        if hh * hh * w2 > 1.0:  # hω > 2: not resolved, damped critically (module docstring)
+            c = max(c, 2.0 * math.sqrt(w2))
+        r1 = eta[k] + hh * eta_dot[k]
+        r2 = eta_dot[k] - hh * (w2 * eta[k] + c * eta_dot[k])
+        ed = (r2 - hh * w2 * r1) / (1.0 + hh * c + hh * hh * w2)
         eta_dot[k] = ed
-        eta[k] = r1 + a * ed
+        eta[k] = r1 + hh * ed
 
 
 @njit(cache=True)

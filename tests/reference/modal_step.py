@@ -14,8 +14,8 @@ turns π by the explicit-midpoint body rotation θ = h ω_mid: R ← R exp([θ]�
 
 Constrained frame (acceleration form): u_f ← u0_f + (h/2) M_ff⁻¹ (rhs(u) − h(u))_f on the integrated
 components f; the frame drifts at its velocity, R ← R exp([h ω]×); η ← η + h η̇, or with implicit
-modes the θ-method on the first-order system (η, η̇)' = A (η, η̇), A = [[0, 1], [−ω², −2ζω]]:
-(1 − θhA) y₁ = (1 + (1 − θ)hA) y₀, θ = ½ for hω ≤ 2, else 1 − 1/(hω).
+modes the trapezoidal rule on the first-order system (η, η̇)' = A (η, η̇), A = [[0, 1], [−ω², −c]],
+(1 − hA/2) y₁ = (1 + hA/2) y₀, c = 2ζω, raised to the critical 2ω for modes with hω > 2.
 
 Both kicks with ``correct`` evaluate the velocity-dependent terms once more at the predicted u.
 """
@@ -133,13 +133,13 @@ def expm(theta):
     return Rotation.from_rotvec(theta).as_matrix()
 
 
-def theta_method(omega2, damp, h, eta, eta_dot):
-    """One step of the θ-method on (η, η̇)' = [[0, 1], [−ω², −c]] (η, η̇); returns (η, η̇) and θ."""
-    hw = h * np.sqrt(omega2)
-    th = 0.5 if hw <= 2.0 else 1.0 - 1.0 / hw
-    A = np.array([[0.0, 1.0], [-omega2, -damp]])
-    y = np.linalg.solve(np.eye(2) - th * h * A, (np.eye(2) + (1.0 - th) * h * A) @ [eta, eta_dot])
-    return y[0], y[1], th
+def implicit_mode_step(omega2, damp, h, eta, eta_dot):
+    """One trapezoidal step of (η, η̇)' = [[0, 1], [−ω², −c]] (η, η̇), c raised to 2ω when hω > 2;
+    returns (η, η̇) and the c used."""
+    c = max(damp, 2.0 * np.sqrt(omega2)) if h * np.sqrt(omega2) > 2.0 else damp
+    A = np.array([[0.0, 1.0], [-omega2, -c]])
+    y = np.linalg.solve(np.eye(2) - 0.5 * h * A, (np.eye(2) + 0.5 * h * A) @ [eta, eta_dot])
+    return y[0], y[1], c
 
 
 def _free_drift(m, j, q, v, eta, eta_dot, h):
@@ -167,7 +167,7 @@ def _constrained_drift(m, j, q, v, eta, eta_dot, h):
         eta[s] += h * eta_dot[s]
         return
     for k in range(s.start, s.stop):
-        eta[k], eta_dot[k], _ = theta_method(m.modal_omega2[k], m.modal_damp[k], h, eta[k], eta_dot[k])
+        eta[k], eta_dot[k], _ = implicit_mode_step(m.modal_omega2[k], m.modal_damp[k], h, eta[k], eta_dot[k])
 
 
 def drift(m, q, v, eta, eta_dot, h):
