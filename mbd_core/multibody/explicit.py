@@ -28,11 +28,13 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg
 
 from ..kernels.explicit import record_now, run_explicit, total_kinetic_energy
 from ..kernels.forces import (STATUS_ENERGY, STATUS_MODAL, STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION,
                               compute_forces)
 from ..kernels.laws import friction_coefficient
+from ..kernels.modal import modal_mass_matrix
 from .model import Model, State, make_record_buffers, make_work
 from .recorder import RunRecord, _modal_ranges, read_run, recorded_timestep_s
 
@@ -164,45 +166,75 @@ def stable_timestep(model: Model, state: State, load_factor: float = 3.0, safety
         h = 2.0 / omega * (math.sqrt(1.0 + zeta * zeta) - zeta)
         if h < best[0]:
             best = (h, f"bushing {j} (stiffness {k:.3g} N/m)")
-    h_modal, why = _modal_limit(model, work, k_lin_of)
+    h_modal, why = _modal_limit(model, state, work, k_lin_of)
     if h_modal < best[0]:
         best = (h_modal, why)
     return StepLimit(best[0], safety * best[0], best[1])
 
 
-def _modal_limit(model: Model, work, k_lin_of: np.ndarray) -> tuple[float, str]:
-    """Step limit of each modal body: largest eigenvalue of K_η + 2 Σ_c k_c D_cᵀD_c (explicit modes;
-    the contact part only for implicit ones), D_c the raceway displacement table at contact c's angle
-    (balls on both sides free: factor 2, as the Gershgorin bound of the contacts)."""
+def _modal_limit(model: Model, state: State, work, k_lin_of: np.ndarray) -> tuple[float, str]:
+    """Step limit of each modal body: the largest generalized eigenvalue of (K, M) over its integrated
+    components u_f = (free frame components, η̇), M = M(η)_ff (:func:`mbd_core.kernels.modal.modal_mass_matrix`,
+    the frame–mode coupling included), K = diag(0, K_η) (K_η only for explicit modes) + Σ_c 2 k_c J_cᵀJ_c
+    over its contacts, J_c the displacement of contact c's point per unit u_f (frame translation,
+    rotation about the frame origin, raceway displacement table D at the contact's angle), k_c the
+    contact's linearised stiffness (factor 2: the element on the other side is free too, as in the
+    contacts' Gershgorin bound)."""
     a = model.arrays
     best = (math.inf, "")
     for j, i in enumerate(a.modal_body):
         o0, o1 = int(a.modal_off[j]), int(a.modal_off[j + 1])
         mj = o1 - o0
-        K = np.zeros((mj, mj)) if a.modal_implicit[j] else np.diag(a.modal_omega2[o0:o1])
-        for c in np.flatnonzero((a.pair_type == 0) & (a.pair_b == i)):
+        sel = np.concatenate([np.flatnonzero(a.modal_frame_free[j]), 6 + np.arange(mj)])
+        n_frame = sel.size - mj
+        inv = [np.ascontiguousarray(x) for x in (a.modal_I2[j], a.modal_I3[j, :, :mj], a.modal_I4[j, :, :mj],
+                                                 a.modal_I5[j, :, :mj, :mj], a.modal_I6[j, :mj, :mj], a.modal_I7[j],
+                                                 a.modal_I8[j, :, :, :mj], a.modal_I9[j, :, :, :mj, :mj])]
+        M = modal_mass_matrix(float(a.modal_mass[j]), *inv, np.ascontiguousarray(state.eta[o0:o1]),
+                              np.zeros((6 + mj, 6 + mj)))[np.ix_(sel, sel)]
+        K = np.zeros((sel.size, sel.size))
+        if not a.modal_implicit[j]:
+            K[n_frame:, n_frame:] = np.diag(a.modal_omega2[o0:o1])
+        R = _rotation_matrix(state.q[i, 3:])
+        for c in np.flatnonzero((a.pair_b == i) | (a.pair_a == i)):
+            other = a.pair_a[c] if a.pair_b[c] == i else a.pair_b[c]
+            r = R.T @ (state.q[other, :3] - state.q[i, :3])  # the contact near the other body's centre
+            J = np.zeros((3, 6 + mj))
+            J[:, :3] = np.eye(3)
+            J[:, 3:6] = -_skew(r)
             g = a.pair_geom[c]
-            if a.groove_modal[g] != j:
-                continue
-            s0, s1 = a.groove_samp_off[g], a.groove_samp_off[g + 1]
-            th = a.samp_theta[s0:s1]
-            k = int(np.argmin(np.abs(np.angle(np.exp(1j * (th - work.contact_theta[c]))))))
-            D = a.samp_disp[s0 + k, :, :mj]
-            K += 2.0 * k_lin_of[c] * D.T @ D
-        if mj == 0:
+            if a.pair_type[c] == 0 and a.groove_modal[g] == j:
+                s0, s1 = a.groove_samp_off[g], a.groove_samp_off[g + 1]
+                th = a.samp_theta[s0:s1]
+                k = int(np.argmin(np.abs(np.angle(np.exp(1j * (th - work.contact_theta[c]))))))
+                J[:, 6:] = a.samp_disp[s0 + k, :, :mj]
+            J = J[:, sel]
+            K += 2.0 * k_lin_of[c] * J.T @ J
+        if sel.size == 0:
             continue
-        lam = float(np.linalg.eigvalsh(K)[-1])
+        lam = float(scipy.linalg.eigh(K, M, eigvals_only=True)[-1])
         if lam <= 0.0:
             continue
         zeta = float(np.max(a.modal_damp[o0:o1] / (2.0 * np.sqrt(np.maximum(a.modal_omega2[o0:o1], 1e-300)))))
         zeta = 0.0 if a.modal_implicit[j] else min(zeta, 1.0)
         h = 2.0 / math.sqrt(lam) * (math.sqrt(1.0 + zeta * zeta) - zeta)
         if h < best[0]:
-            f_max = math.sqrt(a.modal_omega2[o1 - 1]) / (2 * math.pi) if not a.modal_implicit[j] else 0.0
-            best = (h, f"the modes of modal body {model.body_names[i]!r} (highest kept mode {f_max:.4g} Hz, with the "
-                       f"contacts on its raceway: {math.sqrt(lam) / (2 * math.pi):.4g} Hz"
+            f_max = 0.0 if a.modal_implicit[j] else math.sqrt(a.modal_omega2[o1 - 1]) / (2 * math.pi)
+            best = (h, f"modal body {model.body_names[i]!r} (highest kept mode {f_max:.4g} Hz; with its frame's free "
+                       f"components and the contacts on it: {math.sqrt(lam) / (2 * math.pi):.4g} Hz"
                        + ("; implicit modes: contacts only" if a.modal_implicit[j] else "") + ")")
     return best
+
+
+def _rotation_matrix(q) -> np.ndarray:
+    w, x, y, z = q
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+def _skew(a) -> np.ndarray:
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
 
 
 def _failure_text(model: Model, status: int, index: int, t: float, work) -> str:
