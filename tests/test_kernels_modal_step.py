@@ -238,7 +238,7 @@ def test_constrained_rhs_matches_twin_with_and_without_the_elastic_part():
             for elastic in (True, False):
                 got = np.full(6 + m, np.nan)
                 MS.constrained_rhs(*inv, eta, eta_dot, v_b, omega, f_b, n_b, g_b, modal_f, omega2, damp, elastic,
-                                   np.full(6 + m, np.nan), got)
+                                   True, np.full(6 + m, np.nan), got)
                 want = twin.constrained_rhs(inv, eta, eta_dot, v_b, omega, f_b, n_b, g_b, modal_f, omega2, damp,
                                             elastic)
                 for blk in (slice(0, 3), slice(3, 6), slice(6, None)):

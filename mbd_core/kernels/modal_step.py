@@ -145,15 +145,20 @@ def _gravity_body(q, i, gx, gy, gz):
 
 @njit(cache=True)
 def constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, eta_dot, v_b, omega, f_b, n_b, g_b,
-                    modal_f, omega2, damp, elastic, hvec, rhs):
+                    modal_f, omega2, damp, elastic, moving, hvec, rhs):
     """Right-hand side (F, N, Q − Kη − Dη̇ + gravity) − h of a modal body into rhs (6 + m,).
 
-    ``elastic`` False leaves −Kη − Dη̇ out (integrated in the drift). f_b, n_b body-frame force and
+    ``elastic`` False leaves −Kη − Dη̇ out (integrated in the drift); ``moving`` False (a frame at
+    rest and held there) skips the quadratic-velocity vector h, which is then zero. f_b, n_b body-frame force and
     moment about the frame origin (N, N·m); g_b gravity in body axes (m/s²); modal_f (m,) contact
     modal forces.
     """
     m = eta.shape[0]
-    modal_velocity_terms(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, v_b, omega, eta_dot, hvec)
+    if moving:
+        modal_velocity_terms(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, v_b, omega, eta_dot, hvec)
+    else:  # a frame at rest: no quadratic-velocity terms
+        for k in range(6 + m):
+            hvec[k] = 0.0
     sx, sy, sz = I2[0], I2[1], I2[2]
     for k in range(m):
         sx += I3[0, k] * eta[k]
@@ -229,6 +234,12 @@ def _constrained_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
         u0[c] = u[c]
     n = _select(m, j, mj, sel)
     unit = n == mj and m.modal_unit[j] == 1
+    # a held frame at rest has no velocity terms; with implicit modes the kick then does not depend
+    # on the velocities at all, so the second kick needs no correction
+    moving = n > mj or v[i, 0] != 0.0 or v[i, 1] != 0.0 or v[i, 2] != 0.0 or v[i, 3] != 0.0 or \
+        v[i, 4] != 0.0 or v[i, 5] != 0.0
+    if not moving and not elastic:
+        correct = False
     if not unit:
         modal_mass_matrix(mass, I2, I3, I4, I5, I6, I7, I8, I9, e, w.modal_M)
         _reduced_block(w.modal_M, n, sel, L)
@@ -236,7 +247,7 @@ def _constrained_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
             return False
     for it in range(2 if correct else 1):
         constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, e, u[6:6 + mj], u[0:3], u[3:6], vec[1], vec[2],
-                        vec[3], qf, om2, dmp, elastic, hv, rhs)
+                        vec[3], qf, om2, dmp, elastic, moving, hv, rhs)
         b = w.modal_b
         for r in range(n):
             b[r] = rhs[sel[r]]
