@@ -21,6 +21,22 @@ body ``index`` − n_contacts when ``index`` ≥ n_contacts; messages in :mod:`m
 ``STATUS_PENETRATION`` (penetration beyond the pair's bound at contact ``index``).
 ``STATUS_ENERGY`` is set by the step loop (:mod:`.explicit`) on a kinetic-energy runaway,
 ``STATUS_MODAL`` when the mass matrix of a modal body is no longer positive definite.
+
+Contacts on a modal ring or cage deform with it. A groove follows its sampled raceway
+(:func:`_flexible_ball_groove`); a roller slice or roller end on a surface sampled on a (θ, s) grid
+(:mod:`.roller_slices`) and an element in a pocket whose two walls are sampled (leading and trailing
+wall, interpolated linearly along the segment between them) see the surface displaced, at the contact
+point p (ring frame) of the rigid geometry with its normal n (of the force on the element), by
+
+    d = Σ_c w_c (D_c η + (Ω_c η) × (p − p_s)),     p_s = Σ_c w_c p_c,
+
+over the interpolation's sample rows c with weights w_c: the section moves rigidly with the sampled
+point's displacement and small rotation. The penetration becomes δ + n·d, the surface's velocity
+Σ_c w_c (D_c η̇ + (Ω_c η̇) × (p − p_s)) enters the relative velocity, and the force g on the ring returns
+to the modes by the transpose, Q += Σ_c w_c (D_cᵀ g + Ω_cᵀ((p − p_s) × g)), so that Q = −∂E/∂η exactly
+(the weights, n and p depend on the element's pose only). The sampled fields of each row are computed
+once per pair and the loads gathered per row before they are projected (``w.flex_*``, a small cache of
+rows that is flushed when full): the slices of a roller share a few rows.
 """
 
 from __future__ import annotations
@@ -33,7 +49,7 @@ from .ball_groove import TWO_PI, groove_point_in, periodic_lookup_range
 from .element_contacts import POCKET_CYLINDER, ball_ball, pocket_cylinder, pocket_slot, roller_end
 from .laws import friction_coefficient, normal_force_elastic
 from .raceway import add_modal_force, interp_index, raceway_field
-from .roller_slices import roller_slices
+from .roller_slices import circle_index, roller_slices, surface_coordinate
 from .splines import spline_value
 
 BALL_GROOVE = 0
@@ -311,6 +327,192 @@ def _flexible_ball_groove(m, q, v, eta, eta_dot, w, c, a, b, g, ra, th, lx, ly, 
     return fn, delta, u, ft, e, nx, ny, nz
 
 
+# -- surfaces of modal rings and cages sampled at rows of samp_* (module docstring) ---------------------------
+@njit(cache=True, inline="always")
+def _cached_row(rows, field, n, row, disp, rot, e_j, ed_j):
+    """Slot of sample row ``row`` in the row cache (``n`` slots in use); a new row gets its fields
+    D η, Ω η, D η̇, Ω η̇ (``field[:, 0:12]``) and an empty load (``field[:, 12:18]``). Returns (slot, n)."""
+    for k in range(n):
+        if rows[k] == row:
+            return k, n
+    ux = uy = uz = rx = ry = rz = vx = vy = vz = sx = sy = sz = 0.0
+    for k in range(e_j.shape[0]):
+        e, ed = e_j[k], ed_j[k]
+        d0, d1, d2 = disp[row, 0, k], disp[row, 1, k], disp[row, 2, k]
+        o0, o1, o2 = rot[row, 0, k], rot[row, 1, k], rot[row, 2, k]
+        ux += d0 * e
+        uy += d1 * e
+        uz += d2 * e
+        rx += o0 * e
+        ry += o1 * e
+        rz += o2 * e
+        vx += d0 * ed
+        vy += d1 * ed
+        vz += d2 * ed
+        sx += o0 * ed
+        sy += o1 * ed
+        sz += o2 * ed
+    rows[n] = row
+    field[n, 0], field[n, 1], field[n, 2], field[n, 3], field[n, 4], field[n, 5] = ux, uy, uz, rx, ry, rz
+    field[n, 6], field[n, 7], field[n, 8], field[n, 9], field[n, 10], field[n, 11] = vx, vy, vz, sx, sy, sz
+    for i in range(12, 18):
+        field[n, i] = 0.0
+    return n, n + 1
+
+
+@njit(cache=True, inline="always")
+def _flush_rows(rows, field, n, disp, rot, qf):
+    """Modal force of the loads gathered on the ``n`` cached rows: qf += D_rowᵀ f + Ω_rowᵀ μ."""
+    for k in range(n):
+        row = rows[k]
+        f0, f1, f2, m0, m1, m2 = field[k, 12], field[k, 13], field[k, 14], field[k, 15], field[k, 16], field[k, 17]
+        if f0 == 0.0 and f1 == 0.0 and f2 == 0.0 and m0 == 0.0 and m1 == 0.0 and m2 == 0.0:
+            continue
+        for i in range(qf.shape[0]):
+            qf[i] += (disp[row, 0, i] * f0 + disp[row, 1, i] * f1 + disp[row, 2, i] * f2
+                      + rot[row, 0, i] * m0 + rot[row, 1, i] * m1 + rot[row, 2, i] * m2)
+
+
+@njit(cache=True, inline="always")
+def _grid_corners(theta, periodic, circ, kind, s0, lx, ly, lz, corner, weight):
+    """Sample rows and weights (4 corners) of the ring-frame point l on a (θ, s) grid whose circles (at
+    ``circ``, each with the angles ``theta``) start at row s0 of samp_*."""
+    n_th = theta.shape[0]
+    th = math.atan2(ly, lx)
+    if th < 0.0:  # sample angles lie in [0, 2π) (an arc from θ = 0)
+        th += TWO_PI
+    i0, i1, w0, w1 = interp_index(theta, th, periodic)
+    j0, j1, v0, v1 = circle_index(circ, surface_coordinate(kind, lx, ly, lz))
+    r0, r1 = s0 + j0 * n_th, s0 + j1 * n_th
+    corner[0, 0], corner[1, 0], corner[2, 0], corner[3, 0] = r0 + i0, r0 + i1, r1 + i0, r1 + i1
+    weight[0], weight[1], weight[2], weight[3] = v0 * w0, v0 * w1, v1 * w0, v1 * w1
+
+
+@njit(cache=True, inline="always")
+def _wall_corners(pts, row, lx, ly, lz, corner, weight):
+    """Rows and weights of the ring-frame point l between the leading (``row``) and trailing (``row + 1``)
+    wall samples of a pocket: its projection on the segment between them, clamped to it."""
+    ex, ey, ez = pts[row, 0] - pts[row + 1, 0], pts[row, 1] - pts[row + 1, 1], pts[row, 2] - pts[row + 1, 2]
+    t = ((lx - pts[row + 1, 0]) * ex + (ly - pts[row + 1, 1]) * ey + (lz - pts[row + 1, 2]) * ez) / (
+        ex * ex + ey * ey + ez * ez)
+    t = min(max(t, 0.0), 1.0)
+    corner[0, 0], corner[1, 0], corner[2, 0], corner[3, 0] = row, row + 1, row, row + 1
+    weight[0], weight[1], weight[2], weight[3] = t, 1.0 - t, 0.0, 0.0
+
+
+# (at most 30 arguments: a call with more compiles to CALL_FUNCTION_EX, which numba cannot inline)
+@njit(cache=True, inline="always")
+def _flexible_contact(q, v, bf, bt, disp, rot, pts, e_j, ed_j, rows, field, corner, weight, n, a, b, law, k_c,
+                      n_exp, damping, d_max, fric, fp_c, sd, sp, sn, k):
+    """Contact point l = sp[k] (ring frame) of a pair on a sampled surface of modal body b, normal n = sn[k]
+    of the force on a (ring frame), rigid-geometry penetration δ = sd[k]; the corners in ``corner[:, 0]``
+    and ``weight``, the tables samp_disp, samp_rot, samp_point. Penetration δ + n·d, surface velocity in
+    the slip, force on both frames, load gathered on the cached rows (module docstring; ``n`` slots of
+    the cache ``rows``, ``field`` in use, at least four free). Returns (n, F_n, δ + n·d, |v_t|, |F_t|,
+    energy, p world, m world)."""
+    lx, ly, lz, nx, ny, nz, delta = sp[k, 0], sp[k, 1], sp[k, 2], sn[k, 0], sn[k, 1], sn[k, 2], sd[k]
+    psx = psy = psz = ux = uy = uz = rx = ry = rz = vx = vy = vz = sx = sy = sz = 0.0
+    for i in range(4):
+        row = corner[i, 0]
+        slot, n = _cached_row(rows, field, n, row, disp, rot, e_j, ed_j)
+        corner[i, 1] = slot
+        cw = weight[i]
+        psx += cw * pts[row, 0]
+        psy += cw * pts[row, 1]
+        psz += cw * pts[row, 2]
+        ux += cw * field[slot, 0]
+        uy += cw * field[slot, 1]
+        uz += cw * field[slot, 2]
+        rx += cw * field[slot, 3]
+        ry += cw * field[slot, 4]
+        rz += cw * field[slot, 5]
+        vx += cw * field[slot, 6]
+        vy += cw * field[slot, 7]
+        vz += cw * field[slot, 8]
+        sx += cw * field[slot, 9]
+        sy += cw * field[slot, 10]
+        sz += cw * field[slot, 11]
+    bx, by, bz = lx - psx, ly - psy, lz - psz
+    delta += nx * (ux + ry * bz - rz * by) + ny * (uy + rz * bx - rx * bz) + nz * (uz + rx * by - ry * bx)
+    px, py, pz = _to_world(q, b, lx, ly, lz)
+    mx, my, mz = rotate(q, b, nx, ny, nz)
+    if delta <= 0.0:
+        return n, 0.0, delta, 0.0, 0.0, 0.0, px, py, pz, mx, my, mz
+    wx, wy, wz = rotate(q, b, vx + sy * bz - sz * by, vy + sz * bx - sx * bz, vz + sx * by - sy * bx)
+    vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
+    vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
+    fn, u, ft, e, fx, fy, fz = point_force(law, k_c, n_exp, damping, d_max, fric, fp_c[0], fp_c[1], fp_c[2],
+                                           fp_c[3], delta, mx, my, mz, vax - vbx - wx, vay - vby - wy, vaz - vbz - wz)
+    _add_force(q, bf, bt, a, fx, fy, fz, px, py, pz)
+    _add_force(q, bf, bt, b, -fx, -fy, -fz, px, py, pz)
+    gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
+    tx, ty, tz = by * gz - bz * gy, bz * gx - bx * gz, bx * gy - by * gx
+    for i in range(4):
+        slot, cw = corner[i, 1], weight[i]
+        field[slot, 12] += cw * gx
+        field[slot, 13] += cw * gy
+        field[slot, 14] += cw * gz
+        field[slot, 15] += cw * tx
+        field[slot, 16] += cw * ty
+        field[slot, 17] += cw * tz
+    return n, fn, delta, u, ft, e, px, py, pz, mx, my, mz
+
+
+@njit(cache=True, inline="always")
+def _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta, lx, ly, lz, nx, ny, nz):
+    """:func:`_flexible_contact` of one point of pair c (a roller end, a pocket wall; corners set, at most
+    two points per pair, so the cache has room) through slot 0 of the slice scratch; returns (n, F_n,
+    δ + n·d, |v_t|, |F_t|, energy)."""
+    sd, sp, sn = w.slice_delta, w.slice_point, w.slice_normal
+    sd[0], sp[0, 0], sp[0, 1], sp[0, 2], sn[0, 0], sn[0, 1], sn[0, 2] = delta, lx, ly, lz, nx, ny, nz
+    n, fn, delta, u, ft, e, _, _, _, _, _, _ = _flexible_contact(
+        q, v, w.body_f, w.body_t, m.samp_disp, m.samp_rot, m.samp_point, eta[o0:o1], eta_dot[o0:o1], w.flex_row,
+        w.flex_field, w.flex_corner, w.flex_weight, n, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
+        m.pair_dmax[c], m.pair_fric[c], m.pair_fric_p[c], sd, sp, sn, 0)
+    return n, fn, delta, u, ft, e
+
+
+@njit(cache=True, inline="always")
+def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns):
+    """The slices of roller pair c (rigid geometry in ``w.slice_*``) on the (θ, s)-sampled surface g of
+    modal ring b. Returns (ΣF_n, largest δ, slip at the most loaded slice, Σ|F_t|, its contact angle,
+    energy)."""
+    jm = m.race_modal[g]
+    o0, o1 = m.modal_off[jm], m.modal_off[jm + 1]
+    e_j, ed_j, qf = eta[o0:o1], eta_dot[o0:o1], w.modal_f[o0:o1]
+    sd, sp, sn = w.slice_delta, w.slice_point, w.slice_normal
+    bf, bt, disp, rot, pts = w.body_f, w.body_t, m.samp_disp, m.samp_rot, m.samp_point
+    rows, field, corner, weight = w.flex_row, w.flex_field, w.flex_corner, w.flex_weight
+    s0, s1 = m.race_samp_off[g], m.race_samp_off[g + 1]
+    circ = m.race_circle_s[m.race_circle_off[g]:m.race_circle_off[g + 1]]
+    theta = m.samp_theta[s0:s0 + (s1 - s0) // circ.shape[0]]
+    periodic, kind = m.race_periodic[g] == 1, m.race_kind[g]
+    law, k_c, n_exp, damp, d_mx = m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c]
+    fric, fp_c = m.pair_fric[c], m.pair_fric_p[c]
+    fn_sum, dmax, u_at_max, ft_sum, f_max, angle, e_sum = 0.0, -math.inf, 0.0, 0.0, -1.0, 0.0, 0.0
+    n = 0
+    for k in range(ns):
+        _grid_corners(theta, periodic, circ, kind, s0, sp[k, 0], sp[k, 1], sp[k, 2], corner, weight)
+        if n > rows.shape[0] - 4:
+            _flush_rows(rows, field, n, disp, rot, qf)
+            n = 0
+        n, fn, delta, u, ft, e, px, py, pz, mx, my, mz = _flexible_contact(
+            q, v, bf, bt, disp, rot, pts, e_j, ed_j, rows, field, corner, weight, n, a, b, law, k_c, n_exp,
+            damp, d_mx, fric, fp_c, sd, sp, sn, k)
+        if delta > dmax:
+            dmax = delta
+        if delta <= 0.0:
+            continue
+        fn_sum += fn
+        ft_sum += ft
+        e_sum += e
+        if fn > f_max:
+            f_max, u_at_max = fn, u
+            angle = _contact_angle(q, b, mx, my, mz, px, py, pz)
+    _flush_rows(rows, field, n, disp, rot, qf)
+    return fn_sum, dmax, u_at_max, ft_sum, angle, e_sum
+
+
 @njit(cache=True)
 def _ball_ball_pairs(m, q, v, w):
     e_sum = 0.0
@@ -329,7 +531,7 @@ def _ball_ball_pairs(m, q, v, w):
 
 
 @njit(cache=True)
-def _roller_raceway_pairs(m, q, v, w):
+def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
     center, axis = w.center, w.axis
@@ -344,6 +546,13 @@ def _roller_raceway_pairs(m, q, v, w):
         axis[0], axis[1], axis[2] = _roller_axis(q, a, b)
         roller_slices(center, axis, m.pair_length[c], m.pair_radius[c], m.slice_drop[s0:s1],
                       m.race_kind[g], m.race_value[g], sd, sp, sn)
+        if m.race_modal[g] >= 0:
+            fn_sum, dmax, u_at_max, ft_sum, angle, e = _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g,
+                                                                                 ns)
+            e_sum += e
+            _store(w, c, fn_sum, dmax, u_at_max, ft_sum)
+            w.contact_angle[c] = angle
+            continue
         fn_sum, dmax, u_at_max, ft_sum, f_max, angle = 0.0, -math.inf, 0.0, 0.0, -1.0, 0.0
         # the slices share both bodies: their angular velocities once, forces summed per pair
         oax, oay, oaz = rotate(q, a, v[a, 3], v[a, 4], v[a, 5])
@@ -399,7 +608,7 @@ def _roller_raceway_pairs(m, q, v, w):
 
 
 @njit(cache=True)
-def _roller_rib_pairs(m, q, v, w):
+def _roller_rib_pairs(m, q, v, eta, eta_dot, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
     center, axis, point = w.center, w.axis, w.point
@@ -411,6 +620,20 @@ def _roller_rib_pairs(m, q, v, w):
         axis[0], axis[1], axis[2] = _roller_axis(q, a, b)
         delta, nx, ny, nz = roller_end(center, axis, m.pair_radius[c], m.pair_length[c], m.pair_aux[c, 0],
                                        m.pair_aux[c, 1], m.race_kind[g], m.race_value[g], point)
+        if m.race_modal[g] >= 0:
+            jm = m.race_modal[g]
+            o0, o1 = m.modal_off[jm], m.modal_off[jm + 1]
+            s0, s1 = m.race_samp_off[g], m.race_samp_off[g + 1]
+            circ = m.race_circle_s[m.race_circle_off[g]:m.race_circle_off[g + 1]]
+            _grid_corners(m.samp_theta[s0:s0 + (s1 - s0) // circ.shape[0]], m.race_periodic[g] == 1, circ,
+                          m.race_kind[g], s0, point[0], point[1], point[2], w.flex_corner, w.flex_weight)
+            n, fn, delta, u, ft, e = _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, 0, delta,
+                                                     point[0], point[1], point[2], nx, ny, nz)
+            _flush_rows(w.flex_row, w.flex_field, n, m.samp_disp, m.samp_rot, w.modal_f[o0:o1])
+            _store(w, c, fn, delta, u, ft)
+            w.contact_angle[c] = 0.0
+            e_sum += e
+            continue
         px, py, pz = _to_world(q, b, point[0], point[1], point[2])
         mx, my, mz = rotate(q, b, nx, ny, nz)
         fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
@@ -422,7 +645,7 @@ def _roller_rib_pairs(m, q, v, w):
 
 
 @njit(cache=True)
-def _element_pocket_pairs(m, q, v, w):
+def _element_pocket_pairs(m, q, v, eta, eta_dot, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
     center = w.center
@@ -436,6 +659,9 @@ def _element_pocket_pairs(m, q, v, w):
         fn_sum, dmax, u_max, ft_sum, f_max = 0.0, -math.inf, 0.0, 0.0, -1.0
         slot = m.pocket_kind[g] != POCKET_CYLINDER
         ax, ay, az = _roller_axis(q, a, b)
+        jm = m.pocket_modal[g]
+        o0, o1 = (m.modal_off[jm], m.modal_off[jm + 1]) if jm >= 0 else (0, 0)
+        n = 0
         for k in range(2 if slot else 1):
             center[0], center[1], center[2] = lx, ly, lz
             if slot:
@@ -446,19 +672,27 @@ def _element_pocket_pairs(m, q, v, w):
                 delta, nx, ny, nz, plx, ply, plz = pocket_slot(center, r, ang, rp, zp, clr)
             else:
                 delta, nx, ny, nz, plx, ply, plz = pocket_cylinder(center, r, ang, rp, zp, clr)
+            if jm >= 0:  # the force, if any, is applied here already
+                _wall_corners(m.samp_point, m.pocket_samp[g], plx, ply, plz, w.flex_corner, w.flex_weight)
+                n, fn, delta, u, ft, e = _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta,
+                                                         plx, ply, plz, nx, ny, nz)
             if delta > dmax:
                 dmax = delta
             if delta <= 0.0:
                 continue
-            px, py, pz = _to_world(q, b, plx, ply, plz)
-            mx, my, mz = rotate(q, b, nx, ny, nz)
-            fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
-                                         m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
+            if jm < 0:
+                px, py, pz = _to_world(q, b, plx, ply, plz)
+                mx, my, mz = rotate(q, b, nx, ny, nz)
+                fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
+                                             m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
+                                             px, py, pz)
             fn_sum += fn
             ft_sum += ft
             e_sum += e
             if fn > f_max:
                 f_max, u_max = fn, u
+        if jm >= 0:
+            _flush_rows(w.flex_row, w.flex_field, n, m.samp_disp, m.samp_rot, w.modal_f[o0:o1])
         _store(w, c, fn_sum, dmax, u_max, ft_sum)
         w.contact_angle[c] = 0.0
     return e_sum
@@ -548,11 +782,11 @@ def compute_forces(m, t, q, v, eta, eta_dot, w):
     if n_of[BALL_BALL] > 0:
         e += _ball_ball_pairs(m, q, v, w)
     if n_of[ROLLER_RACEWAY] > 0:
-        e += _roller_raceway_pairs(m, q, v, w)
+        e += _roller_raceway_pairs(m, q, v, eta, eta_dot, w)
     if n_of[ROLLER_RIB] > 0:
-        e += _roller_rib_pairs(m, q, v, w)
+        e += _roller_rib_pairs(m, q, v, eta, eta_dot, w)
     if n_of[ELEMENT_POCKET] > 0:
-        e += _element_pocket_pairs(m, q, v, w)
+        e += _element_pocket_pairs(m, q, v, eta, eta_dot, w)
     w.energy[0] = e
     for c in range(m.pair_type.shape[0]):
         if not (math.isfinite(w.contact_fn[c]) and math.isfinite(w.contact_ft[c])):

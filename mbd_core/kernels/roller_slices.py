@@ -73,3 +73,36 @@ def roller_slices(center, axis, length, radius, drop, raceway, value, out_delta,
         else:
             out_delta[k] = qz - value
             out_normal[k, 0], out_normal[k, 1], out_normal[k, 2] = 0.0, 0.0, -1.0
+
+
+# -- raceways of a modal ring sampled on a (θ, s) grid ---------------------------------------------------
+# A straight raceway of a modal ring is sampled on n_c circles (cms_reduction.sampling.sample_across): circle
+# j at the coordinate s_j across the raceway (s = z on a cylinder, s = r on a plane; ascending), each with
+# the same n_θ angles. A point at (θ, s) takes the sample fields bilinearly: linear in θ within each circle
+# (mbd_core.kernels.raceway.interp_index), linear in s between the two circles around it, and those of the
+# end circle beyond the first or last circle (the lever p − p_s to the held sample point then carries the
+# section's small rotation on, so a rigid tilt of the section is still followed there).
+
+
+@njit(cache=True, inline="always")
+def surface_coordinate(raceway, x, y, z):
+    """s of a ring-frame point on a surface of the given kind: z on a cylinder, r on a plane (m)."""
+    if raceway <= RACEWAY_OUTER_CYLINDER:
+        return z
+    return math.sqrt(x * x + y * y)
+
+
+@njit(cache=True)
+def circle_index(circle_s, s):
+    """Neighbouring circles (j0, j1) and linear weights (v0, v1) of coordinate s on the ascending circle
+    coordinates ``circle_s`` (n_c,) m; the end circle alone (j0 = j1, v1 = 0) beyond the ends."""
+    n = circle_s.shape[0]
+    if s <= circle_s[0]:
+        return 0, 0, 1.0, 0.0
+    if s >= circle_s[n - 1]:
+        return n - 1, n - 1, 1.0, 0.0
+    j = 0
+    while circle_s[j + 1] < s:
+        j += 1
+    v1 = (s - circle_s[j]) / (circle_s[j + 1] - circle_s[j])
+    return j, j + 1, 1.0 - v1, v1

@@ -162,8 +162,8 @@ class ModelBuilder:
         self._bodies: list[_Body] = []
         self._pairs: list[dict] = []
         self._grooves: list[dict] = []
-        self._surfaces: list[tuple[int, float]] = []
-        self._pockets: list[tuple[int, float, float, float, float]] = []
+        self._surfaces: list[dict] = []
+        self._pockets: list[dict] = []
         self._bushings: list[dict] = []
         self._loads: list[tuple[int, np.ndarray, np.ndarray]] = []
 
@@ -373,29 +373,120 @@ class ModelBuilder:
                     disp=np.asarray(raceway.displacement, float), rot=np.asarray(raceway.rotation, float),
                     periodic=int(raceway.periodic))
 
-    def add_surface(self, ring, kind: str, value_m: float) -> int:
+    def add_surface(self, ring, kind: str, value_m: float, raceway=None, raceway_s_m=None) -> int:
         """A raceway or rib surface on ``ring``: kind in {inner_cylinder, outer_cylinder, plane_up,
-        plane_down} with its radius or height ``value_m`` (ring frame)."""
-        self._body_index(ring, "surface")
+        plane_down} with its radius or height ``value_m`` (ring frame).
+
+        On a modal ring, ``raceway`` is the (θ, s) grid the surface deforms with (roller slices and
+        roller ends on it then follow the ring's modes): a list of
+        :class:`cms_reduction.sampling.RacewaySample` circles (or names of samples stored with the
+        body), or one name — a stored sample, or a segment whose ``"<segment>@s<k>"`` circles
+        (:func:`cms_reduction.sampling.sample_across`) are stored with the body. Every circle has the
+        same angles. ``raceway_s_m`` (n_c,) is the coordinate of each circle across the surface in the
+        ring's FE frame — z on a cylinder, r on a plane; None takes it from the sample points. A
+        surface on a modal ring without ``raceway`` carries no contacts.
+        """
+        owner = "surface"
+        r = self._body_index(ring, owner)
         if kind not in SURFACE_KINDS:
-            raise ValueError(f"surface: kind must be one of {sorted(SURFACE_KINDS)}, got {kind!r}")
+            raise ValueError(f"{owner}: kind must be one of {sorted(SURFACE_KINDS)}, got {kind!r}")
         if not math.isfinite(value_m) or (kind.endswith("cylinder") and value_m <= 0):
-            raise ValueError(f"surface: value_m must be finite (and > 0 for a cylinder), got {value_m!r}")
+            raise ValueError(f"{owner}: value_m must be finite (and > 0 for a cylinder), got {value_m!r}")
+        body = self._bodies[r]
         if kind.startswith("plane"):
-            value_m -= self._bodies[self._body_index(ring, "surface")].frame_z_m
-        self._surfaces.append((SURFACE_KINDS[kind], float(value_m)))
+            value_m -= body.frame_z_m
+        grid = self._surface_grid(body, kind, raceway, raceway_s_m, owner)
+        self._surfaces.append(dict(kind=SURFACE_KINDS[kind], value=float(value_m), ring=r, grid=grid))
         return len(self._surfaces) - 1
 
-    def add_pocket(self, cage, kind: str, angle_rad: float, radius_m: float, height_m: float, clearance_m: float) -> int:
-        """A cage pocket (kind "cylinder" for balls, "slot" for rollers) at angle/radius/height in the cage frame."""
-        self._body_index(cage, "pocket")
+    def _surface_grid(self, body: _Body, kind: str, raceway, raceway_s_m, owner: str):
+        """The (θ, s) grid of a surface on a modal body, circles by ascending s, in the body's frame."""
+        if raceway is None:
+            if raceway_s_m is not None:
+                raise ValueError(f"{owner}: raceway_s_m needs raceway= (the sampled circles)")
+            return None
+        if body.modal is None:
+            raise ValueError(f"{owner}: body {body.name!r} is rigid; a raceway sample needs a modal body")
+        from cms_reduction.sampling import RacewaySample, samples_from_arrays
+
+        if isinstance(raceway, str):
+            stored = samples_from_arrays(body.modal["reduced"].extras)
+            if raceway in stored:
+                circles = [stored[raceway]]
+            else:
+                found = {int(n[len(raceway) + 2:]): smp for n, smp in stored.items()
+                         if n.startswith(f"{raceway}@s") and n[len(raceway) + 2:].isdigit()}
+                if not found:
+                    raise ValueError(f"{owner}: modal body {body.name!r} has no raceway sample {raceway!r} and no "
+                                     f"circles '{raceway}@s<k>' (has {sorted(stored)})")
+                circles = [found[k] for k in sorted(found)]
+        elif isinstance(raceway, RacewaySample):
+            circles = [raceway]
+        else:
+            circles = list(raceway)
+            if not circles:
+                raise ValueError(f"{owner}: raceway must name at least one sampled circle")
+        samples = [self._raceway_sample(body, c, owner) for c in circles]
+        th0, periodic = samples[0]["theta"], samples[0]["periodic"]
+        for smp in samples[1:]:
+            if smp["periodic"] != periodic or smp["theta"].shape != th0.shape or not np.allclose(
+                    smp["theta"], th0, rtol=0.0, atol=1e-12):
+                raise ValueError(f"{owner}: every circle of a (θ, s) grid needs the same sample angles")
+        cylinder = kind.endswith("cylinder")
+        if raceway_s_m is None:
+            coords = [smp["points"][:, 2] if cylinder else np.hypot(smp["points"][:, 0], smp["points"][:, 1])
+                      for smp in samples]
+            scale = max(float(np.abs(np.concatenate(coords)).max()), 1.0)
+            if any(np.ptp(x) > 1e-9 * scale for x in coords):
+                raise ValueError(f"{owner}: a sampled circle does not lie at one {'z' if cylinder else 'r'}: give "
+                                 "raceway_s_m, the coordinate of each circle across the surface")
+            s_m = np.array([x.mean() for x in coords])
+        else:
+            s_m = _vec(owner, "raceway_s_m", raceway_s_m, len(samples)) - (body.frame_z_m if cylinder else 0.0)
+        order = np.argsort(s_m, kind="stable")
+        s_m = s_m[order]
+        if np.any(np.diff(s_m) <= 0.0):
+            raise ValueError(f"{owner}: the circles of a (θ, s) grid need distinct coordinates s, got {s_m.tolist()}")
+        samples = [samples[i] for i in order]
+        return dict(theta=np.concatenate([smp["theta"] for smp in samples]),
+                    points=np.concatenate([smp["points"] for smp in samples]),
+                    disp=np.concatenate([smp["disp"] for smp in samples]),
+                    rot=np.concatenate([smp["rot"] for smp in samples]), periodic=periodic, circle_s=s_m)
+
+    def add_pocket(self, cage, kind: str, angle_rad: float, radius_m: float, height_m: float, clearance_m: float,
+                   walls=None) -> int:
+        """A cage pocket (kind "cylinder" for balls, "slot" for rollers) at angle/radius/height in the cage frame.
+
+        On a modal cage, ``walls`` gives the samples its walls deform with: the index k of the pocket
+        in the body's stored ``"pockets"`` sample (rows 2k, 2k + 1: leading then trailing wall,
+        :func:`cms_reduction.sampling.pocket_contact_points`), or (sample, k) with a
+        :class:`cms_reduction.sampling.RacewaySample` or the name of one stored with the body. A
+        pocket on a modal cage without ``walls`` carries no contacts.
+        """
+        owner = "pocket"
+        i = self._body_index(cage, owner)
         if kind not in POCKET_KINDS:
-            raise ValueError(f"pocket: kind must be one of {sorted(POCKET_KINDS)}, got {kind!r}")
-        check_positive("pocket", radius_m=radius_m)
+            raise ValueError(f"{owner}: kind must be one of {sorted(POCKET_KINDS)}, got {kind!r}")
+        check_positive(owner, radius_m=radius_m)
         if not (math.isfinite(clearance_m) and clearance_m >= 0):
-            raise ValueError(f"pocket: clearance_m must be ≥ 0, got {clearance_m!r}")
-        height_m -= self._bodies[self._body_index(cage, "pocket")].frame_z_m
-        self._pockets.append((POCKET_KINDS[kind], float(angle_rad), float(radius_m), float(height_m), float(clearance_m)))
+            raise ValueError(f"{owner}: clearance_m must be ≥ 0, got {clearance_m!r}")
+        body = self._bodies[i]
+        height_m -= body.frame_z_m
+        sample = None
+        if walls is not None:
+            sample, k = ("pockets", walls) if isinstance(walls, (int, np.integer)) else walls
+            smp = self._raceway_sample(body, sample, owner)
+            if not (isinstance(k, (int, np.integer)) and 0 <= 2 * k + 1 < smp["theta"].size):
+                raise ValueError(f"{owner}: the wall sample has no pocket {k!r} ({smp['theta'].size // 2} pockets)")
+            rows = slice(2 * int(k), 2 * int(k) + 2)
+            sample = {key: smp[key][rows] for key in ("theta", "points", "disp", "rot")}
+            centre = np.array([radius_m * math.cos(angle_rad), radius_m * math.sin(angle_rad), height_m])
+            off = float(np.linalg.norm(sample["points"].mean(axis=0) - centre))
+            if off > 1e-3 * radius_m:
+                raise ValueError(f"{owner}: wall samples of pocket {k} are centred {off:.3g} m away from the pocket "
+                                 f"at {angle_rad:.6g} rad, r = {radius_m} m")
+        self._pockets.append(dict(kind=POCKET_KINDS[kind], angle=float(angle_rad), r=float(radius_m),
+                                  z=float(height_m), clearance=float(clearance_m), cage=i, walls=sample))
         return len(self._pockets) - 1
 
     # -- contact pairs --------------------------------------------------------------------------
@@ -446,6 +537,7 @@ class ModelBuilder:
         drop = np.zeros(n_slices) if drop_m is None else np.asarray(drop_m, float).reshape(-1)
         if drop.shape != (n_slices,) or not np.all(np.isfinite(drop)) or np.any(drop < 0) or np.any(drop >= radius_m):
             raise ValueError(f"{owner}: drop_m must be {n_slices} values in [0, radius)")
+        self._check_owner(self._surfaces[surface]["grid"], self._surfaces[surface]["ring"], ring, owner, "surface")
         return self._add_pair(ROLLER_RACEWAY, roller, ring, surface, law, radius_m, name, length=length_m, drop=drop)
 
     def add_roller_rib(self, roller, ring, surface: int, radius_m: float, length_m: float, end_sign: int,
@@ -459,6 +551,7 @@ class ModelBuilder:
         check_positive(owner, length_m=length_m, edge_radius_m=edge_radius_m)
         if edge_radius_m >= min(radius_m, length_m / 2):
             raise ValueError(f"{owner}: edge_radius_m must be smaller than the roller radius and half length")
+        self._check_owner(self._surfaces[surface]["grid"], self._surfaces[surface]["ring"], ring, owner, "surface")
         return self._add_pair(ROLLER_RIB, roller, ring, surface, law, radius_m, name, length=length_m,
                               aux=(float(end_sign), edge_radius_m))
 
@@ -468,9 +561,15 @@ class ModelBuilder:
         owner = "element–pocket contact"
         if not 0 <= pocket < len(self._pockets):
             raise ValueError(f"{owner}: no pocket {pocket}")
-        if self._pockets[pocket][0] == POCKET_SLOT:
+        if self._pockets[pocket]["kind"] == POCKET_SLOT:
             check_positive(owner, length_m=length_m)
+        self._check_owner(self._pockets[pocket]["walls"], self._pockets[pocket]["cage"], cage, owner, "pocket")
         return self._add_pair(ELEMENT_POCKET, element, cage, pocket, law, radius_m, name, length=length_m)
+
+    def _check_owner(self, sampled, geom_body: int, body, owner: str, what: str) -> None:
+        """A sampled surface or pocket deforms with its own body only (its modal forces go there)."""
+        if sampled is not None and geom_body != self._body_index(body, owner):
+            raise ValueError(f"{owner}: the sampled {what} belongs to body {self._bodies[geom_body].name!r}")
 
     # -- finalize -------------------------------------------------------------------------------
     def finalize(self) -> tuple[Model, State]:
@@ -507,10 +606,17 @@ class ModelBuilder:
         grooves = self._grooves
         modal_arrays = self._modal_arrays()
         for p in pairs:
-            if p["kind"] not in (BALL_GROOVE, BALL_BALL) and bodies[p["b"]].modal is not None:
-                raise ValueError(f"model: contact {p['name']!r}: {PAIR_KIND_NAMES[p['kind']]} contacts on a modal body "
-                                 f"({bodies[p['b']].name!r}) are not supported; only ball–groove contacts deform "
-                                 "a modal ring")
+            if bodies[p["b"]].modal is None or p["kind"] in (BALL_GROOVE, BALL_BALL):
+                continue
+            if p["kind"] == ELEMENT_POCKET and self._pockets[p["geom"]]["walls"] is None:
+                raise ValueError(f"model: contact {p['name']!r}: pocket {p['geom']} on the modal cage "
+                                 f"{bodies[p['b']].name!r} has no wall samples; give add_pocket(..., walls=k) "
+                                 "(pocket k of the cage's stored 'pockets' sample) so that its walls deform with the "
+                                 "cage")
+            if p["kind"] in (ROLLER_RACEWAY, ROLLER_RIB) and self._surfaces[p["geom"]]["grid"] is None:
+                raise ValueError(f"model: contact {p['name']!r}: surface {p['geom']} on the modal ring "
+                                 f"{bodies[p['b']].name!r} is not sampled; give add_surface(..., raceway=...) (the "
+                                 "(θ, s) grid of circles it deforms with)")
         arrays = ModelArrays(
             body_mass=mass, body_inertia=np.array([b.inertia for b in bodies]),
             body_free=np.array([b.free for b in bodies], dtype=np.int64), body_force=force,
@@ -538,10 +644,11 @@ class ModelBuilder:
             groove_h=_f64(np.concatenate([g["h"] for g in grooves] or [np.zeros(0)])),
             groove_dr_off=_i64(np.concatenate([[0], np.cumsum([g["dr"].size for g in grooves])])),
             groove_dr=_f64(np.concatenate([g["dr"] for g in grooves] or [np.zeros(0)])),
-            race_kind=_i64([s[0] for s in self._surfaces]), race_value=_f64([s[1] for s in self._surfaces]),
-            pocket_kind=_i64([p[0] for p in self._pockets]), pocket_angle=_f64([p[1] for p in self._pockets]),
-            pocket_r=_f64([p[2] for p in self._pockets]), pocket_z=_f64([p[3] for p in self._pockets]),
-            pocket_clearance=_f64([p[4] for p in self._pockets]),
+            race_kind=_i64([s["kind"] for s in self._surfaces]), race_value=_f64([s["value"] for s in self._surfaces]),
+            pocket_kind=_i64([p["kind"] for p in self._pockets]),
+            pocket_angle=_f64([p["angle"] for p in self._pockets]),
+            pocket_r=_f64([p["r"] for p in self._pockets]), pocket_z=_f64([p["z"] for p in self._pockets]),
+            pocket_clearance=_f64([p["clearance"] for p in self._pockets]),
             gravity=self.gravity_m_s2.copy(), **modal_arrays,
         )
         model = Model(arrays, tuple(b.name for b in bodies), tuple(p["name"] for p in pairs),
@@ -553,7 +660,8 @@ class ModelBuilder:
         return model, state
 
     def _modal_arrays(self) -> dict:
-        """The modal-body and flexible-groove arrays of :class:`ModelArrays` (zero-padded to M modes)."""
+        """The modal-body arrays of :class:`ModelArrays` and those of the grooves, surfaces and pockets that
+        deform with them (zero-padded to M modes); the samples go to samp_* in that order."""
         bodies = self._bodies
         modal = [b.modal for b in bodies if b.modal is not None]
         n_mb = len(modal)
@@ -574,9 +682,14 @@ class ModelBuilder:
                 body_modal[i] = j
                 j += 1
         samples = [g["sample"] for g in self._grooves]
+        grids = [s["grid"] for s in self._surfaces]
+        walls = [p["walls"] for p in self._pockets]
         n_s = [0 if smp is None else smp["theta"].size for smp in samples]
+        n_grid = [0 if grid is None else grid["theta"].size for grid in grids]
+        start = sum(n_s) + np.concatenate([[0], np.cumsum(n_grid)])
+        pocket_samp = start[-1] + np.cumsum([0] + [0 if x is None else 2 for x in walls])[:-1]
         s_theta, s_point, s_disp, s_rot = [np.zeros(0)], [np.zeros((0, 3))], [np.zeros((0, 3, M))], [np.zeros((0, 3, M))]
-        for smp in samples:
+        for smp in samples + grids + walls:
             if smp is None:
                 continue
             s_theta.append(smp["theta"])
@@ -602,6 +715,14 @@ class ModelBuilder:
             groove_samp_off=_i64(np.concatenate([[0], np.cumsum(n_s)])),
             samp_theta=_f64(np.concatenate(s_theta)), samp_point=_f64(np.concatenate(s_point)),
             samp_disp=_f64(np.concatenate(s_disp)), samp_rot=_f64(np.concatenate(s_rot)),
+            race_modal=_i64([-1 if grid is None else body_modal[s["ring"]] for s, grid in zip(self._surfaces, grids)]),
+            race_periodic=_i64([0 if grid is None else grid["periodic"] for grid in grids]),
+            race_samp_off=_i64(start),
+            race_circle_off=_i64(np.concatenate([[0], np.cumsum([0 if x is None else x["circle_s"].size
+                                                                 for x in grids])])),
+            race_circle_s=_f64(np.concatenate([x["circle_s"] for x in grids if x is not None] or [np.zeros(0)])),
+            pocket_modal=_i64([-1 if x is None else body_modal[p["cage"]] for p, x in zip(self._pockets, walls)]),
+            pocket_samp=_i64([-1 if x is None else r for x, r in zip(walls, pocket_samp)]),
         )
 
 

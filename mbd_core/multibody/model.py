@@ -43,6 +43,16 @@ Flexible grooves: groove_modal (n_g,) int64 modal index of the groove's ring or 
     (n_g,) int64; groove_samp_off (n_g + 1,) into the raceway samples samp_theta (n_s,) rad,
     samp_point (n_s, 3) m (ring frame), samp_disp and samp_rot (n_s, 3, M) m/√kg and rad/√kg
     (:class:`cms_reduction.sampling.RacewaySample`).
+Flexible roller raceways and ribs (:mod:`mbd_core.kernels.roller_slices`, a (θ, s) grid of n_c circles
+    of n_θ samples each): race_modal (n_r,) int64 modal index of the surface's ring or −1 (a rigid
+    surface, or one on a modal ring that is not sampled); race_periodic (n_r,) int64; race_samp_off
+    (n_r + 1,) into samp_*, circle after circle (circle j of surface r starts at race_samp_off[r] + j n_θ,
+    every circle with the angles of the first); race_circle_off (n_r + 1,) into race_circle_s (n_sc,) m,
+    the ascending coordinate s of each circle across the surface (z on a cylinder, r on a plane, ring frame).
+Flexible cage pockets: pocket_modal (n_p,) int64 modal index of the pocket's cage or −1; pocket_samp
+    (n_p,) int64 row in samp_* of the pocket's leading wall sample (the trailing wall's is the next row;
+    −1 for a rigid pocket).
+Every one of these tables is empty, and every index −1, in a model without sampled surfaces or pockets.
 """
 
 from __future__ import annotations
@@ -63,7 +73,8 @@ MODEL_FIELDS = (
     "pocket_kind pocket_angle pocket_r pocket_z pocket_clearance "
     "gravity body_modal modal_body modal_off modal_frame_free modal_implicit modal_unit modal_omega2 modal_damp "
     "modal_mass modal_I2 modal_I3 modal_I4 modal_I5 modal_I6 modal_I7 modal_I8 modal_I9 "
-    "groove_modal groove_periodic groove_samp_off samp_theta samp_point samp_disp samp_rot"
+    "groove_modal groove_periodic groove_samp_off samp_theta samp_point samp_disp samp_rot "
+    "race_modal race_periodic race_samp_off race_circle_off race_circle_s pocket_modal pocket_samp"
 )
 ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 
@@ -75,12 +86,18 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: contacts' modal forces, √kg·m/s²; the modal_* rest is scratch of the modal step (M the largest
 #: number of modes of a body): modal_M, modal_L (6 + M, 6 + M), modal_u, modal_u0, modal_rhs,
 #: modal_h, modal_b (6 + M,), modal_sel (6 + M,) int64, modal_vec (4, 3), modal_eta (M,).
+#: Sampled surfaces of modal bodies (:mod:`mbd_core.kernels.forces`): flex_row (FLEX_ROWS,) int64 the
+#: cached sample rows, flex_field (FLEX_ROWS, 18) their D η, Ω η, D η̇, Ω η̇ and gathered force and
+#: moment on the ring (ring frame); flex_corner (4, 2) int64 row and cache slot, flex_weight (4,) the
+#: interpolation weights of one contact point.
 WorkArrays = namedtuple(
     "WorkArrays",
     "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta energy "
     "load pi center axis point slice_delta slice_point slice_normal type_count "
-    "modal_f modal_M modal_L modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta",
+    "modal_f modal_M modal_L modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta "
+    "flex_row flex_field flex_corner flex_weight",
 )
+FLEX_ROWS = 32
 
 #: Buffers for k samples: t (k,), q (k, n_b, 7), v (k, n_b, 6), eta and eta_dot (k, n_η), contact
 #: outputs (k, n_c).
@@ -181,6 +198,8 @@ def make_work(model: Model) -> WorkArrays:
         modal_u=np.zeros(n6), modal_u0=np.zeros(n6), modal_rhs=np.zeros(n6), modal_h=np.zeros(n6),
         modal_b=np.zeros(n6), modal_sel=np.zeros(n6, dtype=np.int64), modal_vec=np.zeros((4, 3)),
         modal_eta=np.zeros(n6 - 6),
+        flex_row=np.zeros(FLEX_ROWS, dtype=np.int64), flex_field=np.zeros((FLEX_ROWS, 18)),
+        flex_corner=np.zeros((4, 2), dtype=np.int64), flex_weight=np.zeros(4),
     )
 
 

@@ -15,6 +15,14 @@ point θ* of that curve, found here by a bounded scalar minimisation of |x − c
 angle and polished to round-off on the exact stationarity condition (x − c')·∂c'/∂θ = 0 (with the
 lever's θ-derivative). The raceway's material point at the contact point p moves with
 u̇ + ψ̇ × (p − p_s); the force g on the ring there gives the modal force Dᵀg + Ωᵀ((p − p_s) × g).
+
+A roller raceway or rib on a modal ring (race_modal ≥ 0) is sampled on circles of samples at coordinates
+s_j across it (z on a cylinder, r on a plane): the tables at a point (θ, s) are each circle's table
+interpolated in θ as above, then combined with the weights of s on the circles (np.interp of the unit
+vectors: linear between neighbours, the end circle beyond the ends). A cage pocket (pocket_modal ≥ 0) has
+its two wall samples, combined with the weights of the contact point's projection on the segment between
+them (clamped). In both the contact point p and the normal n are those of the rigid geometry; the
+penetration grows by n·(u + ψ × (p − p_s)), and velocity and modal force are as for grooves.
 """
 
 from collections import namedtuple
@@ -359,6 +367,91 @@ def _points_flexible_groove(m, bodies, c, eta, eta_dot, nearest=nearest_groove_a
     return [point], angle_out, th_ball
 
 
+def _modes_of(m, j):
+    """Slice of η and number of modes of modal body j."""
+    o0, o1 = m.modal_off[j], m.modal_off[j + 1]
+    return slice(o0, o1), o1 - o0
+
+
+def surface_tables(m, r, x):
+    """(D (3, k), Ω (3, k), p_s (3,)) of sampled surface r at the ring-frame point x: per circle in θ
+    (:func:`_sampled`), then across the circles with the weights of s (module docstring)."""
+    modes, k = _modes_of(m, m.race_modal[r])
+    s0, s1 = m.race_samp_off[r], m.race_samp_off[r + 1]
+    circle_s = m.race_circle_s[m.race_circle_off[r]:m.race_circle_off[r + 1]]
+    n_th = (s1 - s0) // len(circle_s)
+    th = np.mod(np.arctan2(x[1], x[0]), TWO_PI)
+    s = x[2] if m.race_kind[r] in (INNER_CYLINDER, OUTER_CYLINDER) else np.hypot(x[0], x[1])
+    weights = np.array([np.interp(s, circle_s, e) for e in np.eye(len(circle_s))])
+    periodic = m.race_periodic[r] == 1
+    D, W, P = np.zeros((3, k)), np.zeros((3, k)), np.zeros(3)
+    for j, wj in enumerate(weights):
+        rows = slice(s0 + j * n_th, s0 + (j + 1) * n_th)
+        theta = m.samp_theta[rows]
+        D += wj * _sampled(theta, m.samp_disp[rows, :, :k], periodic, th)[0]
+        W += wj * _sampled(theta, m.samp_rot[rows, :, :k], periodic, th)[0]
+        P += wj * _sampled(theta, m.samp_point[rows], periodic, th)[0]
+    return D, W, P
+
+
+def pocket_tables(m, g, x):
+    """(D (3, k), Ω (3, k), p_s (3,)) of the walls of sampled pocket g at the cage-frame point x."""
+    _, k = _modes_of(m, m.pocket_modal[g])
+    lead, trail = m.pocket_samp[g], m.pocket_samp[g] + 1
+    e = m.samp_point[lead] - m.samp_point[trail]
+    t = float(np.clip((x - m.samp_point[trail]) @ e / (e @ e), 0.0, 1.0))
+    def mix(table):
+        return t * table[lead] + (1.0 - t) * table[trail]
+    return mix(m.samp_disp[:, :, :k]), mix(m.samp_rot[:, :, :k]), mix(m.samp_point)
+
+
+def _deformed_surface_point(bodies, b, modes, tables, eta, eta_dot, delta, n, x):
+    """Contact point of the rigid geometry (δ, normal n of the force on the element and point x, ring frame)
+    on a sampled surface of modal body b whose tables at x are (D, Ω, p_s)."""
+    D, W, P = tables
+    lever = x - P
+    R = bodies.R[b]
+    e, ed = eta[modes], eta_dot[modes]
+    velocity = R @ (D @ ed + np.cross(W @ ed, lever))
+
+    def modal_force(force_on_element):
+        on_ring = R.T @ -force_on_element
+        return D.T @ on_ring + W.T @ np.cross(lever, on_ring)
+
+    return (delta + n @ (D @ e + np.cross(W @ e, lever)), R @ n, bodies.to_world(b, x),
+            Surface(modes, velocity, modal_force))
+
+
+def _points_flexible_roller(m, bodies, c, eta, eta_dot):
+    """Roller slices or a roller end on a sampled surface of a modal ring."""
+    a, b, g = m.pair_a[c], m.pair_b[c], m.pair_geom[c]
+    center, axis = _roller_in_ring(bodies, a, b)
+    if m.pair_type[c] == ROLLER_RACEWAY:
+        drop = m.slice_drop[m.pair_slice_off[c]:m.pair_slice_off[c + 1]]
+        local = zip(*roller_slices(center, axis, m.pair_length[c], m.pair_radius[c], drop, m.race_kind[g],
+                                   m.race_value[g]))
+        angle = None
+    else:
+        delta, n, p = roller_end(center, axis, m.pair_radius[c], m.pair_length[c], m.pair_aux[c, 0],
+                                 m.pair_aux[c, 1], m.race_kind[g], m.race_value[g])
+        local, angle = [(delta, p, n)], 0.0
+    modes = _modes_of(m, m.race_modal[g])[0]
+    return [_deformed_surface_point(bodies, b, modes, surface_tables(m, g, x), eta, eta_dot, d, n, x)
+            for d, x, n in local], angle, 0.0
+
+
+def _points_flexible_pocket(m, bodies, c, eta, eta_dot):
+    """An element in a pocket of a modal cage whose walls are sampled."""
+    b, g = m.pair_b[c], m.pair_geom[c]
+    modes = _modes_of(m, m.pocket_modal[g])[0]
+    local, _, _ = _points_element_pocket(m, bodies, c)
+    out = []
+    for delta, n_world, p_world in local:
+        n, x = bodies.R[b].T @ n_world, bodies.to_local(b, p_world)
+        out.append(_deformed_surface_point(bodies, b, modes, pocket_tables(m, g, x), eta, eta_dot, delta, n, x))
+    return out, 0.0, 0.0
+
+
 def _points_ball_ball(m, bodies, c):
     return [ball_ball(bodies.r[m.pair_a[c]], bodies.r[m.pair_b[c]], m.pair_radius[c], m.pair_radius_b[c])], 0.0, 0.0
 
@@ -398,6 +491,22 @@ def _points_element_pocket(m, bodies, c):
 
 POINTS = {BALL_GROOVE: _points_ball_groove, BALL_BALL: _points_ball_ball, ROLLER_RACEWAY: _points_roller_raceway,
           ROLLER_RIB: _points_roller_rib, ELEMENT_POCKET: _points_element_pocket}
+
+
+def contact_points(m, q, v, c, eta=None, eta_dot=None):
+    """The contact points of pair c at state (q, v, η, η̇): tuples (δ, unit normal of the force on the element,
+    point; world frame) followed, on a modal body's sampled surface, by its :data:`Surface`."""
+    n_eta = int(m.modal_off[-1]) if len(m.modal_off) else 0
+    eta = np.zeros(n_eta) if eta is None else np.asarray(eta, float)
+    eta_dot = np.zeros(n_eta) if eta_dot is None else np.asarray(eta_dot, float)
+    bodies, kind, g = _Bodies(q, v), m.pair_type[c], m.pair_geom[c]
+    if kind == BALL_GROOVE and m.groove_modal[g] >= 0:
+        return _points_flexible_groove(m, bodies, c, eta, eta_dot)[0]
+    if kind in (ROLLER_RACEWAY, ROLLER_RIB) and m.race_modal[g] >= 0:
+        return _points_flexible_roller(m, bodies, c, eta, eta_dot)[0]
+    if kind == ELEMENT_POCKET and m.pocket_modal[g] >= 0:
+        return _points_flexible_pocket(m, bodies, c, eta, eta_dot)[0]
+    return POINTS[kind](m, bodies, c)[0]
 
 
 def _bushings(m, q, bodies):
@@ -450,8 +559,13 @@ def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
     e_contact = 0.0
     for c in range(nc):
         a, b = m.pair_a[c], m.pair_b[c]
-        if m.pair_type[c] == BALL_GROOVE and m.groove_modal[m.pair_geom[c]] >= 0:
+        kind, g = m.pair_type[c], m.pair_geom[c]
+        if kind == BALL_GROOVE and m.groove_modal[g] >= 0:
             points, angle, theta = _points_flexible_groove(m, bodies, c, eta, eta_dot, nearest)
+        elif kind in (ROLLER_RACEWAY, ROLLER_RIB) and m.race_modal[g] >= 0:
+            points, angle, theta = _points_flexible_roller(m, bodies, c, eta, eta_dot)
+        elif kind == ELEMENT_POCKET and m.pocket_modal[g] >= 0:
+            points, angle, theta = _points_flexible_pocket(m, bodies, c, eta, eta_dot)
         else:
             points, angle, theta = POINTS[m.pair_type[c]](m, bodies, c)
         loaded = []
