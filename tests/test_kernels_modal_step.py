@@ -50,6 +50,7 @@ from mbd_core.contact.friction import Coulomb
 from mbd_core.kernels import explicit as EX
 from mbd_core.kernels import forces as FK
 from mbd_core.kernels import modal_step as MS
+from mbd_core.kernels.raceway import interp_index
 from mbd_core.multibody import ContactLaw, Driven, Fixed, Free, ModelBuilder
 from mbd_core.multibody.model import make_record_buffers, make_work
 from tests.reference import explicit_step as twin_step
@@ -469,20 +470,22 @@ def _scene_state(model, state, rng, slow, eta_scale=3e-6, jitter=3e-6):
     return type(state)(state.t, q, v, rng.normal(size=n) * eta_scale, rng.normal(size=n) * 3e-3)
 
 
-def _groove_tables(m, g):
-    s0, s1 = m.groove_samp_off[g], m.groove_samp_off[g + 1]
-    return m.samp_disp[s0:s1], m.samp_rot[s0:s1], m.samp_point[s0:s1], s0, s1
-
-
 def _kernel_step(m, g, eta_ring, x, th):
     """One Gauss–Newton step of the kernel from θ: θ + (x − c')·t/|t|² with its c'(θ) and tangent t."""
-    eta_ring = np.ascontiguousarray(eta_ring)
-    cx, cy, cz, tx, ty, tz, *_ = FK._deformed_groove_centre(m, g, *_groove_tables(m, g), eta_ring, th)
+    s0, s1 = m.groove_samp_off[g], m.groove_samp_off[g + 1]
+    theta, periodic = m.samp_theta[s0:s1], bool(m.groove_periodic[g] == 1)
+    thw = th % (2 * np.pi)  # evaluated at the wrapped angle, stepped from the given one
+    i0, i1, w0, w1 = interp_index(theta, thw, periodic)
+    rows = np.zeros((4, 3))
+    FK._groove_rows(m.samp_disp[s0:s1], m.samp_rot[s0:s1], i0, i1, np.ascontiguousarray(eta_ring), rows)
+    cx, cy, cz, tx, ty, tz = FK._deformed_groove_centre(
+        theta, periodic, m.samp_point[s0:s1], rows, m.groove_rc[g], m.groove_zc[g], m.groove_h, m.groove_h_off[g],
+        m.groove_h_off[g + 1], m.groove_dr, m.groove_dr_off[g], m.groove_dr_off[g + 1], thw, i0, i1, w0, w1)
     return th + ((x[0] - cx) * tx + (x[1] - cy) * ty + (x[2] - cz) * tz) / (tx * tx + ty * ty + tz * tz)
 
 
 def kernel_groove_angle(m, g, eta_ring, x, th_ball):
-    """The kernel's contact angle: two Gauss–Newton steps from the ball angle (forces._flexible_ball_groove)."""
+    """The kernel's contact angle: two Gauss–Newton steps from the ball angle (forces._nearest_deformed_centre)."""
     return _kernel_step(m, g, eta_ring, x, _kernel_step(m, g, eta_ring, x, th_ball))
 
 

@@ -23,7 +23,7 @@ body ``index`` − n_contacts when ``index`` ≥ n_contacts; messages in :mod:`m
 ``STATUS_MODAL`` when the mass matrix of a modal body is no longer positive definite.
 
 Contacts on a modal ring or cage deform with it. A groove follows its sampled raceway
-(:func:`_flexible_ball_groove`); a roller slice or roller end on a surface sampled on a (θ, s) grid
+(:func:`_nearest_deformed_centre`); a roller slice or roller end on a surface sampled on a (θ, s) grid
 (:mod:`.roller_slices`) and an element in a pocket whose two walls are sampled (leading and trailing
 wall, interpolated linearly along the segment between them) see the surface displaced, at the contact
 point p (ring frame) of the rigid geometry with its normal n (of the force on the element), by
@@ -45,10 +45,10 @@ import math
 
 from numba import njit
 
-from .ball_groove import TWO_PI, groove_point_in, periodic_lookup_range
+from .ball_groove import TWO_PI, groove_point_in
 from .element_contacts import POCKET_CYLINDER, ball_ball, pocket_cylinder, pocket_slot, roller_end
 from .laws import friction_coefficient, normal_force_elastic
-from .raceway import add_modal_force, interp_index, raceway_field
+from .raceway import interp_index
 from .roller_slices import circle_index, roller_slices, surface_coordinate
 from .splines import spline_value
 
@@ -206,15 +206,49 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
             m.groove_h, m.groove_h_off[g], m.groove_h_off[g + 1],
             m.groove_dr, m.groove_dr_off[g], m.groove_dr_off[g + 1],
         )
-        if m.groove_modal[g] >= 0:
-            fn, delta, u, ft, e, nx, ny, nz = _flexible_ball_groove(m, q, v, eta, eta_dot, w, c, a, b, g, ra, th,
-                                                                    lx, ly, lz, nx, ny, nz)
-        else:
+        if m.groove_modal[g] < 0:
             mx, my, mz = rotate(q, b, -nx, -ny, -nz)
             px, py, pz = q[a, 0] - ra * mx, q[a, 1] - ra * my, q[a, 2] - ra * mz
             fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                          m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
                                          px, py, pz)
+        else:
+            # a groove on a modal ring (see _nearest_deformed_centre); the arrays are sliced here so
+            # that no per-contact function takes the model tuple
+            jm, s0, s1 = m.groove_modal[g], m.groove_samp_off[g], m.groove_samp_off[g + 1]
+            o0, o1 = m.modal_off[jm], m.modal_off[jm + 1]
+            disp, rot, pts = m.samp_disp[s0:s1], m.samp_rot[s0:s1], m.samp_point[s0:s1]
+            cx, cy, cz, i0, i1, w0, w1 = _nearest_deformed_centre(
+                m.samp_theta[s0:s1], m.groove_periodic[g] == 1, disp, rot, pts, eta[o0:o1], w.groove_rows, m.groove_rc[g],
+                m.groove_zc[g], m.groove_h, m.groove_h_off[g], m.groove_h_off[g + 1], m.groove_dr,
+                m.groove_dr_off[g], m.groove_dr_off[g + 1], th, lx, ly, lz)
+            dx, dy, dz = lx - cx, ly - cy, lz - cz
+            dist = math.sqrt(dx * dx + dy * dy + dz * dz)
+            if dist > 0.0:
+                nx, ny, nz = dx / dist, dy / dist, dz / dist
+            delta = dist - (m.groove_r[g] - ra)
+            fn, u, ft, e = 0.0, 0.0, 0.0, 0.0
+            if delta > 0.0:
+                # contact point (ring frame), its lever about the raceway point, the modal velocity there
+                plx, ply, plz = lx + ra * nx, ly + ra * ny, lz + ra * nz
+                bx = plx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
+                by = ply - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
+                bz = plz - (w0 * pts[i0, 2] + w1 * pts[i1, 2])
+                vx, vy, vz = _section_velocity(disp, rot, i0, i1, w0, w1, eta_dot[o0:o1], bx, by, bz)
+                vx, vy, vz = rotate(q, b, vx, vy, vz)
+                px, py, pz = _to_world(q, b, plx, ply, plz)
+                mx, my, mz = rotate(q, b, -nx, -ny, -nz)
+                vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
+                vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
+                fn, u, ft, e, fx, fy, fz = point_force(m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
+                                                       m.pair_dmax[c], m.pair_fric[c], fp[c, 0], fp[c, 1], fp[c, 2],
+                                                       fp[c, 3], delta, mx, my, mz, vax - vbx - vx, vay - vby - vy,
+                                                       vaz - vbz - vz)
+                _add_force(q, bf, bt, a, fx, fy, fz, px, py, pz)
+                _add_force(q, bf, bt, b, -fx, -fy, -fz, px, py, pz)
+                gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
+                _add_section_force(disp, rot, i0, i1, w0, w1, gx, gy, gz, by * gz - bz * gy, bz * gx - bx * gz,
+                                   bx * gy - by * gx, w.modal_f[o0:o1])
         _store(w, c, fn, delta, u, ft)
         w.contact_theta[c] = th
         w.contact_angle[c] = math.atan2(abs(nz), abs(nx * math.cos(th) + ny * math.sin(th)))
@@ -237,97 +271,108 @@ def _table_slope(table, start, stop, th):
 
 
 @njit(cache=True, inline="always")
-def _deformed_groove_centre(m, g, disp, rot, pts, s0, s1, e_j, th):
-    """Deformed curvature centre c'(θ) = c(θ) + u + ψ × (c − p_s) of groove g at angle θ (ring frame)
-    and its θ-derivative, with the interpolation (i0, i1, w0, w1). The derivative leaves out
-    ψ × ∂(c − p_s)/∂θ, which turns the normal at the nearest point by about |ψ|·|c − p_s|/r (7e-5
-    of the force in the kernel tests); beyond the ends of a raceway sampled on an arc the
-    deformation is held, so its slope there is zero."""
-    th = th % TWO_PI
-    theta = m.samp_theta[s0:s1]
-    i0, i1, w0, w1 = interp_index(theta, th, m.groove_periodic[g] == 1)
-    dth = theta[i1] - theta[i0]
-    if dth <= 0.0:
-        dth += TWO_PI
-    dr, dr_s = _table_slope(m.groove_dr, m.groove_dr_off[g], m.groove_dr_off[g + 1], th)
-    h, h_s = _table_slope(m.groove_h, m.groove_h_off[g], m.groove_h_off[g + 1], th)
-    r = m.groove_rc[g] + dr
-    cs, sn = math.cos(th), math.sin(th)
-    cx, cy, cz = r * cs, r * sn, m.groove_zc[g] + h
-    ax = cx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
-    ay = cy - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
-    az = cz - (w0 * pts[i0, 2] + w1 * pts[i1, 2])
-    ux, uy, uz = raceway_field(disp, i0, i1, w0, w1, e_j)
-    rx, ry, rz = raceway_field(rot, i0, i1, w0, w1, e_j)
-    # θ-derivative: of the rigid centre, of u (difference quotient of the samples), of ψ × lever
-    slope = 1.0 / dth
-    if m.groove_periodic[g] == 0 and (th < theta[0] or th > theta[theta.shape[0] - 1]):
-        slope = 0.0
-    dux, duy, duz = raceway_field(disp, i0, i1, -slope, slope, e_j)
-    drx, dry, drz = raceway_field(rot, i0, i1, -slope, slope, e_j)
-    tx = -r * sn + dr_s * cs + dux + dry * az - drz * ay
-    ty = r * cs + dr_s * sn + duy + drz * ax - drx * az
-    tz = h_s + duz + drx * ay - dry * ax
-    return (cx + ux + ry * az - rz * ay, cy + uy + rz * ax - rx * az, cz + uz + rx * ay - ry * ax,
-            tx, ty, tz, i0, i1, w0, w1)
+def _section_velocity(disp, rot, i0, i1, w0, w1, ed, bx, by, bz):
+    """Velocity (Dη̇) + (Ωη̇) × b of the raceway section's point at lever b from the sampled point,
+    interpolated between samples i0, i1 (ring frame)."""
+    vx = vy = vz = sx = sy = sz = 0.0
+    for k in range(ed.shape[0]):
+        e = ed[k]
+        vx += (w0 * disp[i0, 0, k] + w1 * disp[i1, 0, k]) * e
+        vy += (w0 * disp[i0, 1, k] + w1 * disp[i1, 1, k]) * e
+        vz += (w0 * disp[i0, 2, k] + w1 * disp[i1, 2, k]) * e
+        sx += (w0 * rot[i0, 0, k] + w1 * rot[i1, 0, k]) * e
+        sy += (w0 * rot[i0, 1, k] + w1 * rot[i1, 1, k]) * e
+        sz += (w0 * rot[i0, 2, k] + w1 * rot[i1, 2, k]) * e
+    return vx + sy * bz - sz * by, vy + sz * bx - sx * bz, vz + sx * by - sy * bx
 
 
 @njit(cache=True, inline="always")
-def _flexible_ball_groove(m, q, v, eta, eta_dot, w, c, a, b, g, ra, th, lx, ly, lz, nx, ny, nz):
+def _add_section_force(disp, rot, i0, i1, w0, w1, fx, fy, fz, tx, ty, tz, qf):
+    """qf += Dᵀf + Ωᵀt at the interpolated section: the modal force of a force f and moment t (ring
+    frame) on the raceway section — the transpose of :func:`_section_velocity`."""
+    for k in range(qf.shape[0]):
+        qf[k] += (w0 * (disp[i0, 0, k] * fx + disp[i0, 1, k] * fy + disp[i0, 2, k] * fz
+                        + rot[i0, 0, k] * tx + rot[i0, 1, k] * ty + rot[i0, 2, k] * tz)
+                  + w1 * (disp[i1, 0, k] * fx + disp[i1, 1, k] * fy + disp[i1, 2, k] * fz
+                          + rot[i1, 0, k] * tx + rot[i1, 1, k] * ty + rot[i1, 2, k] * tz))
+
+
+@njit(cache=True, inline="always")
+def _groove_rows(disp, rot, i0, i1, e_j, out):
+    """out (4, 3) = D_i0 η, D_i1 η, Ω_i0 η, Ω_i1 η: the two samples around a contact, whose linear
+    interpolation and difference quotient give the raceway's displacement, rotation and their slopes."""
+    for r in range(4):
+        for c in range(3):
+            out[r, c] = 0.0
+    for k in range(e_j.shape[0]):
+        ek = e_j[k]
+        for c in range(3):
+            out[0, c] += disp[i0, c, k] * ek
+            out[1, c] += disp[i1, c, k] * ek
+            out[2, c] += rot[i0, c, k] * ek
+            out[3, c] += rot[i1, c, k] * ek
+
+
+@njit(cache=True, inline="always")
+def _deformed_groove_centre(theta, periodic, pts, rows, rc, zc, h_all, h0, h1, dr_all, dr0, dr1, th, i0, i1, w0, w1):
+    """Deformed curvature centre c'(θ) = c(θ) + u + ψ × (c − p_s) of a groove at angle θ ∈ [0, 2π) (ring
+    frame) between samples i0, i1 (weights w0, w1; ``rows`` from :func:`_groove_rows`), and its
+    θ-derivative. The derivative leaves out ψ × ∂(c − p_s)/∂θ, which turns the normal at the nearest
+    point by about |ψ|·|c − p_s|/r (7e-5 of the force in the kernel tests); beyond the ends of a
+    raceway sampled on an arc the deformation is held, so its slope there is zero."""
+    dth = theta[i1] - theta[i0]
+    if dth <= 0.0:
+        dth += TWO_PI
+    dr, dr_s = _table_slope(dr_all, dr0, dr1, th)
+    h, h_s = _table_slope(h_all, h0, h1, th)
+    r = rc + dr
+    cs, sn = math.cos(th), math.sin(th)
+    cx, cy, cz = r * cs, r * sn, zc + h
+    ax = cx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
+    ay = cy - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
+    az = cz - (w0 * pts[i0, 2] + w1 * pts[i1, 2])
+    ux, uy, uz = w0 * rows[0, 0] + w1 * rows[1, 0], w0 * rows[0, 1] + w1 * rows[1, 1], w0 * rows[0, 2] + w1 * rows[1, 2]
+    rx, ry, rz = w0 * rows[2, 0] + w1 * rows[3, 0], w0 * rows[2, 1] + w1 * rows[3, 1], w0 * rows[2, 2] + w1 * rows[3, 2]
+    # θ-derivative: of the rigid centre, of u (difference quotient of the samples), of ψ × lever
+    slope = 1.0 / dth
+    if not periodic and (th < theta[0] or th > theta[theta.shape[0] - 1]):
+        slope = 0.0
+    dux, duy, duz = (rows[1, 0] - rows[0, 0]) * slope, (rows[1, 1] - rows[0, 1]) * slope, (rows[1, 2] - rows[0, 2]) * slope
+    drx, dry, drz = (rows[3, 0] - rows[2, 0]) * slope, (rows[3, 1] - rows[2, 1]) * slope, (rows[3, 2] - rows[2, 2]) * slope
+    tx = -r * sn + dr_s * cs + dux + dry * az - drz * ay
+    ty = r * cs + dr_s * sn + duy + drz * ax - drx * az
+    tz = h_s + duz + drx * ay - dry * ax
+    return cx + ux + ry * az - rz * ay, cy + uy + rz * ax - rx * az, cz + uz + rx * ay - ry * ax, tx, ty, tz
+
+
+@njit(cache=True, inline="always")
+def _nearest_deformed_centre(theta, periodic, disp, rot, pts, e_j, rows, rc, zc, h_all, h0, h1, dr_all, dr0, dr1,
+                             th, lx, ly, lz):
     """Ball–groove contact on a modal ring (:mod:`.raceway`): the groove section at θ moves with the
     raceway point's displacement u = Dη and small rotation ψ = Ωη, so its curvature centre c goes to
-    c'(θ) = c + u + ψ × (c − p_s) (p_s the sampled raceway point). The ball touches the deformed
-    centre curve at its nearest point θ*, (x − c'(θ*))·∂c'/∂θ = 0 (two Gauss–Newton steps from the
-    ball's own angle), so that δ = |x − c'(θ*)| − (f·D − D/2) is the distance whose gradient the
-    force follows: a deformation that only slides the groove along itself does not push the ball,
-    a deflection slope does, as on an undulated groove. The force returns to the modes through the
-    transpose of the interpolation at θ*, Q += Dᵀf + Ωᵀ((p − p_s) × f) for the force f on the ring at
-    the contact point p (work-consistent). Returns (F_n, δ, |v_t|, |F_t|, energy, n), n the normal
-    in the ring frame."""
-    jm, s0, s1 = m.groove_modal[g], m.groove_samp_off[g], m.groove_samp_off[g + 1]
-    o0, o1 = m.modal_off[jm], m.modal_off[jm + 1]
-    disp, rot, pts = m.samp_disp[s0:s1], m.samp_rot[s0:s1], m.samp_point[s0:s1]
-    e_j = eta[o0:o1]
+    c'(θ) = c + u + ψ × (c − p_s) (p_s the sampled raceway point). The ball at x (ring frame) touches
+    the deformed centre curve at its nearest point θ*, (x − c'(θ*))·∂c'/∂θ = 0 (two Gauss–Newton
+    steps from the ball's own angle θ), so that δ = |x − c'(θ*)| − (f·D − D/2) is the distance whose
+    gradient the force follows: a deformation that only slides the groove along itself does not push
+    the ball, a deflection slope does, as on an undulated groove. The caller returns the force to the
+    modes through the transpose of the interpolation at θ*, Q += Dᵀf + Ωᵀ((p − p_s) × f) for the force
+    f on the ring at the contact point p (work-consistent). The sample products D η, Ω η are formed
+    once per pair of samples (``rows``, scratch (4, 3)). Returns (c'(θ*), i0, i1, w0, w1)."""
     ts = th
-    for it in range(2):
-        cx, cy, cz, tx, ty, tz, i0, i1, w0, w1 = _deformed_groove_centre(m, g, disp, rot, pts, s0, s1, e_j, ts)
-        ts += ((lx - cx) * tx + (ly - cy) * ty + (lz - cz) * tz) / (tx * tx + ty * ty + tz * tz)
-    cx, cy, cz, tx, ty, tz, i0, i1, w0, w1 = _deformed_groove_centre(m, g, disp, rot, pts, s0, s1, e_j, ts)
-    clear = m.groove_r[g] - ra
-    dx, dy, dz = lx - cx, ly - cy, lz - cz
-    dist = math.sqrt(dx * dx + dy * dy + dz * dz)
-    if dist > 0.0:
-        nx, ny, nz = dx / dist, dy / dist, dz / dist
-    delta = dist - clear
-    if delta <= 0.0:
-        return 0.0, delta, 0.0, 0.0, 0.0, nx, ny, nz
-    # contact point (ring frame), its lever about the raceway point, the raceway's modal velocity there
-    plx, ply, plz = lx + ra * nx, ly + ra * ny, lz + ra * nz
-    bx = plx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
-    by = ply - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
-    bz = plz - (w0 * pts[i0, 2] + w1 * pts[i1, 2])
-    e_d = eta_dot[o0:o1]
-    vx, vy, vz = raceway_field(disp, i0, i1, w0, w1, e_d)
-    sx, sy, sz = raceway_field(rot, i0, i1, w0, w1, e_d)
-    vx, vy, vz = rotate(q, b, vx + sy * bz - sz * by, vy + sz * bx - sx * bz, vz + sx * by - sy * bx)
-    px, py, pz = _to_world(q, b, plx, ply, plz)
-    mx, my, mz = rotate(q, b, -nx, -ny, -nz)
-    vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
-    vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
-    fp = m.pair_fric_p
-    fn, u, ft, e, fx, fy, fz = point_force(m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c],
-                                           m.pair_fric[c], fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3], delta,
-                                           mx, my, mz, vax - vbx - vx, vay - vby - vy, vaz - vbz - vz)
-    _add_force(q, w.body_f, w.body_t, a, fx, fy, fz, px, py, pz)
-    _add_force(q, w.body_f, w.body_t, b, -fx, -fy, -fz, px, py, pz)
-    gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
-    qf = w.modal_f[o0:o1]
-    add_modal_force(disp, i0, i1, w0, w1, gx, gy, gz, qf)
-    add_modal_force(rot, i0, i1, w0, w1, by * gz - bz * gy, bz * gx - bx * gz, bx * gy - by * gx, qf)
-    return fn, delta, u, ft, e, nx, ny, nz
+    r0, r1 = -1, -1
+    for it in range(3):
+        ts = ts % TWO_PI
+        i0, i1, w0, w1 = interp_index(theta, ts, periodic)
+        if i0 != r0 or i1 != r1:
+            _groove_rows(disp, rot, i0, i1, e_j, rows)
+            r0, r1 = i0, i1
+        cx, cy, cz, tx, ty, tz = _deformed_groove_centre(theta, periodic, pts, rows, rc, zc, h_all, h0, h1, dr_all,
+                                                         dr0, dr1, ts, i0, i1, w0, w1)
+        if it < 2:
+            ts += ((lx - cx) * tx + (ly - cy) * ty + (lz - cz) * tz) / (tx * tx + ty * ty + tz * tz)
+    return cx, cy, cz, i0, i1, w0, w1
 
 
-# -- surfaces of modal rings and cages sampled at rows of samp_* (module docstring) ---------------------------
 @njit(cache=True, inline="always")
 def _cached_row(rows, field, n, row, disp, rot, e_j, ed_j):
     """Slot of sample row ``row`` in the row cache (``n`` slots in use); a new row gets its fields

@@ -89,13 +89,14 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: Sampled surfaces of modal bodies (:mod:`mbd_core.kernels.forces`): flex_row (FLEX_ROWS,) int64 the
 #: cached sample rows, flex_field (FLEX_ROWS, 18) their D η, Ω η, D η̇, Ω η̇ and gathered force and
 #: moment on the ring (ring frame); flex_corner (4, 2) int64 row and cache slot, flex_weight (4,) the
-#: interpolation weights of one contact point.
+#: interpolation weights of one contact point; groove_rows (4, 3) D_i0 η, D_i1 η, Ω_i0 η, Ω_i1 η of the two
+#: samples around a ball on a modal ring's groove.
 WorkArrays = namedtuple(
     "WorkArrays",
     "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta energy "
     "load pi center axis point slice_delta slice_point slice_normal type_count "
     "modal_f modal_M modal_L modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta "
-    "flex_row flex_field flex_corner flex_weight",
+    "flex_row flex_field flex_corner flex_weight groove_rows",
 )
 FLEX_ROWS = 32
 
@@ -199,7 +200,7 @@ def make_work(model: Model) -> WorkArrays:
         modal_b=np.zeros(n6), modal_sel=np.zeros(n6, dtype=np.int64), modal_vec=np.zeros((4, 3)),
         modal_eta=np.zeros(n6 - 6),
         flex_row=np.zeros(FLEX_ROWS, dtype=np.int64), flex_field=np.zeros((FLEX_ROWS, 18)),
-        flex_corner=np.zeros((4, 2), dtype=np.int64), flex_weight=np.zeros(4),
+        flex_corner=np.zeros((4, 2), dtype=np.int64), flex_weight=np.zeros(4), groove_rows=np.zeros((4, 3)),
     )
 
 
