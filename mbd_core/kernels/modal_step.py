@@ -276,6 +276,29 @@ def _momenta(m, j, e, w, n, sel):
 
 
 @njit(cache=True, inline="always")
+def _rotational_momenta(m, j, v, eta_dot, w, i, o0, mj, e, p):
+    """(π, p_η) = M_r(η)(ω, η̇) of free modal body j into p, with u = (ω, η̇) in w.modal_u, the selection
+    of the (ω, η) block in w.modal_sel and M_r(η) factored in w.modal_L; False if not positive definite."""
+    u, sel = w.modal_u, w.modal_sel
+    n = 3 + mj
+    for c in range(3):
+        sel[c] = 3 + c
+        u[c] = v[i, 3 + c]
+    for k in range(mj):
+        sel[3 + k] = 6 + k
+        u[3 + k] = eta_dot[o0 + k]
+    if not _momenta(m, j, e, w, n, sel):
+        return False
+    M = w.modal_M
+    for r in range(n):
+        s = 0.0
+        for c in range(n):
+            s += M[sel[r], sel[c]] * u[c]
+        p[r] = s
+    return True
+
+
+@njit(cache=True, inline="always")
 def _free_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
     i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
     mj = o1 - o0
@@ -287,21 +310,9 @@ def _free_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
     for c in range(3):
         v[i, c] += inv_m * (w.body_f[i, c] + mass * m.gravity[c])
     _body_vectors(m, q, v, w, i)
-    u, p0, b, sel, dT = w.modal_u, w.modal_u0, w.modal_b, w.modal_sel, w.modal_h
-    for c in range(3):
-        sel[c] = 3 + c
-        u[c] = v[i, 3 + c]
-    for k in range(mj):
-        sel[3 + k] = 6 + k
-        u[3 + k] = eta_dot[o0 + k]
-    if not _momenta(m, j, e, w, n, sel):
+    u, p0, b, dT = w.modal_u, w.modal_u0, w.modal_b, w.modal_h
+    if not _rotational_momenta(m, j, v, eta_dot, w, i, o0, mj, e, p0):
         return False
-    M = w.modal_M
-    for r in range(n):  # p = M_r u
-        s = 0.0
-        for c in range(n):
-            s += M[sel[r], sel[c]] * u[c]
-        p0[r] = s
     for c in range(3):
         p0[c] += hh * w.modal_vec[2, c]
     for it in range(2 if correct else 1):
@@ -339,20 +350,8 @@ def _free_drift(m, q, v, eta, eta_dot, w, j, h):
     n = 3 + mj
     e, e_mid = eta[o0:o1], w.modal_eta[:mj]
     u, p, b, sel = w.modal_u, w.modal_u0, w.modal_b, w.modal_sel
-    for c in range(3):
-        sel[c] = 3 + c
-        u[c] = v[i, 3 + c]
-    for k in range(mj):
-        sel[3 + k] = 6 + k
-        u[3 + k] = eta_dot[o0 + k]
-    if not _momenta(m, j, e, w, n, sel):
+    if not _rotational_momenta(m, j, v, eta_dot, w, i, o0, mj, e, p):
         return False
-    M = w.modal_M
-    for r in range(n):
-        s = 0.0
-        for c in range(n):
-            s += M[sel[r], sel[c]] * u[c]
-        p[r] = s
     # explicit midpoint: velocities at (π turned by hω/2, η + hη̇/2)
     b[0], b[1], b[2] = _turn_back(p[0], p[1], p[2], 0.5 * h * u[0], 0.5 * h * u[1], 0.5 * h * u[2])
     for k in range(mj):
