@@ -174,10 +174,11 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
                            f"displacement after {count[0]} evaluations")
     if max(f_res, m_res / length_scale) > 1e-4 * force_scale:
         worst = int(np.argmax(np.abs(r)))
+        axes = ("radial", "", "axial") if body_idx[worst] in held else "xyz"
         raise RuntimeError(
             f"static equilibrium not found: residual force {f_res:.3g} N, moment {m_res:.3g} N·m "
             f"(load scale {force_scale:.3g} N), largest on body {model.body_names[body_idx[worst]]!r} "
-            f"(component {'xyz'[comp_idx[worst] % 3]}{'' if comp_idx[worst] < 3 else ' rotation'}) after "
+            f"(component {axes[comp_idx[worst] % 3]}{'' if comp_idx[worst] < 3 else ' rotation'}) after "
             f"{count[0]} evaluations — can the bearing carry the load?")
     result = trial.copy()
     result.v[:] = state.v
