@@ -87,7 +87,9 @@ def test_undulated_ring_dynamic_settles_to_the_flexible_quasistatic_ball_loads(t
     # play lets them move along the undulated groove, which the quasi-static model does not
     loaded = q_flexible > 0.25 * q_flexible.max()
     assert np.all(np.abs(fn[loaded] / q_flexible[loaded] - 1) < 0.03)
-    # settled: the last two samples (0.05 s apart) agree
-    assert np.abs(out["fn"][-1] - out["fn"][-2]).max() < 1e-3 * q_flexible.max()
+    # settled: the ball loads of the last two samples (0.05 s apart) agree (the pocket contacts of
+    # light balls may still rattle in their play)
+    moving = list(bodies.moving_pairs)
+    assert np.abs(out["fn"][-1, moving] - out["fn"][-2, moving]).max() < 1e-3 * q_flexible.max()
     # the quasi-static solution carries the load (the balls' resultant on the top race)
     assert flexible.reaction[2] == pytest.approx(LOAD_N, rel=1e-6)
