@@ -49,17 +49,9 @@ import math
 
 from numba import njit
 
+from .forces import rotate, rotate_back
 from .modal import modal_mass_matrix, modal_velocity_terms
 from .rigid import turn_quaternion
-
-
-@njit(cache=True, inline="always")
-def _rot(qw, qx, qy, qz, x, y, z):
-    """R(q) (x, y, z) for a unit quaternion given by its components."""
-    tx = 2.0 * (qy * z - qz * y)
-    ty = 2.0 * (qz * x - qx * z)
-    tz = 2.0 * (qx * y - qy * x)
-    return x + qw * tx + (qy * tz - qz * ty), y + qw * ty + (qz * tx - qx * tz), z + qw * tz + (qx * ty - qy * tx)
 
 
 @njit(cache=True, inline="always")
@@ -138,12 +130,6 @@ def _reduced_block(Mfull, n, sel, A):
 
 
 @njit(cache=True)
-def _gravity_body(q, i, gx, gy, gz):
-    w, x, y, z = q[i, 3], -q[i, 4], -q[i, 5], -q[i, 6]
-    return _rot(w, x, y, z, gx, gy, gz)
-
-
-@njit(cache=True)
 def constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, eta_dot, v_b, omega, f_b, n_b, g_b,
                     modal_f, omega2, damp, elastic, moving, hvec, rhs):
     """Right-hand side (F, N, Q − Kη − Dη̇ + gravity) − h of a modal body into rhs (6 + m,).
@@ -207,12 +193,11 @@ def _select(m, j, mj, sel):
 @njit(cache=True, inline="always")
 def _body_vectors(m, q, v, w, i):
     """Body-frame velocity, force, moment and gravity of body i into w.modal_vec rows 0…3."""
-    qw, qx, qy, qz = q[i, 3], -q[i, 4], -q[i, 5], -q[i, 6]
     vec = w.modal_vec
-    vec[0, 0], vec[0, 1], vec[0, 2] = _rot(qw, qx, qy, qz, v[i, 0], v[i, 1], v[i, 2])
-    vec[1, 0], vec[1, 1], vec[1, 2] = _rot(qw, qx, qy, qz, w.body_f[i, 0], w.body_f[i, 1], w.body_f[i, 2])
-    vec[2, 0], vec[2, 1], vec[2, 2] = _rot(qw, qx, qy, qz, w.body_t[i, 0], w.body_t[i, 1], w.body_t[i, 2])
-    vec[3, 0], vec[3, 1], vec[3, 2] = _rot(qw, qx, qy, qz, m.gravity[0], m.gravity[1], m.gravity[2])
+    vec[0, 0], vec[0, 1], vec[0, 2] = rotate_back(q, i, v[i, 0], v[i, 1], v[i, 2])
+    vec[1, 0], vec[1, 1], vec[1, 2] = rotate_back(q, i, w.body_f[i, 0], w.body_f[i, 1], w.body_f[i, 2])
+    vec[2, 0], vec[2, 1], vec[2, 2] = rotate_back(q, i, w.body_t[i, 0], w.body_t[i, 1], w.body_t[i, 2])
+    vec[3, 0], vec[3, 1], vec[3, 2] = rotate_back(q, i, m.gravity[0], m.gravity[1], m.gravity[2])
 
 
 @njit(cache=True, inline="always")
@@ -255,9 +240,8 @@ def _constrained_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
             cholesky_solve(L, n, b)
         for r in range(n):
             u[sel[r]] = u0[sel[r]] + hh * b[r]
-    qw, qx, qy, qz = q[i, 3], q[i, 4], q[i, 5], q[i, 6]
     if m.modal_frame_free[j, 0]:
-        v[i, 0], v[i, 1], v[i, 2] = _rot(qw, qx, qy, qz, u[0], u[1], u[2])
+        v[i, 0], v[i, 1], v[i, 2] = rotate(q, i, u[0], u[1], u[2])
     for c in range(3):
         if m.modal_frame_free[j, 3 + c]:
             v[i, 3 + c] = u[3 + c]
