@@ -202,6 +202,30 @@ def cmd_modes(args) -> dict:
     return summary
 
 
+def _progress(iterable, desc: str):
+    from tqdm import tqdm
+
+    return tqdm(iterable, desc=desc, leave=False, file=sys.stderr, dynamic_ncols=True)
+
+
+def cmd_run(args) -> dict:
+    from .run import CASES, resolve_case, run_case
+
+    if args.list or args.case is None:
+        print(format_table([(n, d) for n, d in CASES.items()], ("case", "what it runs")))
+        return {}
+    case = resolve_case(args.case, args.quick, args.set)
+    out_dir = args.out or f"results/{case.name}"
+    print(f"{case.name}: {case.description}" if case.description else case.name)
+    out = run_case(case, out_dir, progress=_progress)
+    for line in out.report:
+        print(f"  {line}")
+    files = sorted({p.suffix for p in out.folder.iterdir()})
+    print(f"wall time {out.summary['wall_time_s']:.1f} s, peak memory {out.summary['peak_rss_mb']:.0f} MB; "
+          f"results in {out.folder}/ ({', '.join(f'*{x}' for x in files)})")
+    return out.summary
+
+
 def _add_material(p: argparse.ArgumentParser) -> None:
     p.add_argument("--E-GPa", dest="E_GPa", type=float, default=207.0, help="Young's modulus of both bodies (GPa)")
     p.add_argument("--nu", type=float, default=0.29, help="Poisson's ratio of both bodies")
@@ -256,6 +280,16 @@ def build_parser() -> argparse.ArgumentParser:
     ld.add_argument("--out", default=None, help="write summary.json, element_loads.csv and a plot here")
     ld.add_argument("--json", action="store_true", help="print SI results as JSON")
     ld.set_defaults(func=cmd_loaddist)
+
+    rn = sub.add_parser("run", help="run a case (named study or TOML file) into a results folder")
+    rn.add_argument("case", nargs="?", default=None, help="case name (see --list) or a case .toml file")
+    rn.add_argument("--quick", action="store_true", help="the reduced variant (coarser meshes, fewer positions)")
+    rn.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="change one case entry, e.g. --set undulation.scale=1.5 --set top.n_modes=30")
+    rn.add_argument("--out", default=None, help="results folder (default results/<case name>)")
+    rn.add_argument("--list", action="store_true", help="list the named cases")
+    rn.add_argument("--json", action="store_true", help="print summary.json to stdout at the end")
+    rn.set_defaults(func=cmd_run)
 
     md = sub.add_parser("modes", help="free–free natural modes of a ring or cage (solid finite elements)")
     md.add_argument("part", choices=sorted(RING_PARTS), help="built-in ring or cage")

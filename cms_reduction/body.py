@@ -14,11 +14,13 @@ The body is a plain data object; building it is :func:`cms_reduction.craig_bampt
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import math
+
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-__all__ = ["ReducedBody"]
+__all__ = ["ReducedBody", "with_stiffness_scaled"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -109,3 +111,21 @@ class ReducedBody:
 
         cls = {"tet10": skfem.MeshTet2, "hex27": skfem.MeshHex2}[self.mesh_kind]
         return cls(self.mesh_doflocs, self.mesh_t)
+
+
+def with_stiffness_scaled(body: ReducedBody, factor: float) -> ReducedBody:
+    """The body with every Young's modulus multiplied by ``factor`` (Poisson's ratio unchanged).
+
+    K scales with E while M does not, so the mass-normalised shapes, the inertia invariants and
+    the raceway samples stay as they are, ω scales with √factor and the stresses per unit η with
+    ``factor`` — exactly what a new reduction of the scaled material would give, without the FE
+    work (e.g. the thesis' reduced-stiffness ring, E·(2/6.69)⁴).
+    """
+    if not (isinstance(factor, (int, float)) and math.isfinite(factor) and factor > 0.0):
+        raise ValueError(f"body {body.name!r}: stiffness factor must be a positive number, got {factor!r}")
+    extras = dict(body.extras)
+    if "stress_modes" in extras:
+        extras["stress_modes"] = extras["stress_modes"] * factor
+    metadata = {**body.metadata, "stiffness_factor": float(factor) * float(body.metadata.get("stiffness_factor", 1.0))}
+    return replace(body, frequencies_Hz=np.asarray(body.frequencies_Hz) * math.sqrt(factor), extras=extras,
+                   metadata=metadata)

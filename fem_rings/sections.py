@@ -61,7 +61,7 @@ from .profile import Arc, Line, Profile, polygon, rectangle
 
 __all__ = [
     "BallGroove", "ball_groove_arc", "grooved_ring",
-    "SlewingSection", "slewing_bottom_race", "slewing_top_race", "slewing_tmr",
+    "SlewingSection", "slewing_bottom_race", "slewing_top_race", "slewing_tmr", "slewing_top_structure",
     "ThreeRowGeometry", "three_row_outer_ring", "three_row_inner_ring",
 ]
 
@@ -335,6 +335,34 @@ def slewing_tmr(pitch_diameter_m: float = 6.69, section: SlewingSection = Slewin
         raise ValueError(f"tmr_width_m ({section.tmr_width_m}) must be below pitch_diameter_m ({pitch_diameter_m})")
     z1 = z0 + section.tmr_height_m
     return polygon(name, [(r0, z0), (r1, z0), (r1, z1), (r0, z1)], ["race_face", "outer", "load_face", "bore"])
+
+
+def slewing_top_structure(pitch_diameter_m: float = 6.69, section: SlewingSection = SlewingSection(),
+                          name: str = "top structure") -> Profile:
+    """Top race with the TMR bolted on its top face, as one section (one flexible body).
+
+    The TMR must be wider than the race on both sides. Segments: those of the top race with its
+    ``bolt_face`` replaced by ``tmr_underside`` (the TMR overhangs), ``tmr_outer``, ``load_face``
+    and ``tmr_bore``.
+    """
+    race = slewing_top_race(pitch_diameter_m, section, name)
+    tmr = slewing_tmr(pitch_diameter_m, section)
+    r0, r1, z0, z1 = tmr.bounds_m
+    segs = []
+    for seg in race.segments:
+        if seg.name != "bolt_face":
+            segs.append(seg)
+            continue
+        (a_r, z), (b_r, _) = seg.start, seg.end
+        lo, hi = min(a_r, b_r), max(a_r, b_r)
+        if not (r0 < lo and hi < r1):
+            raise ValueError(f"tmr_width_m ({section.tmr_width_m}) must exceed race_width_m ({section.race_width_m})")
+        outline = [(hi, z), (r1, z), (r1, z1), (r0, z1), (r0, z), (lo, z)]
+        names = ["tmr_underside", "tmr_outer", "load_face", "tmr_bore", "tmr_underside"]
+        if a_r < b_r:  # same orientation as the replaced face
+            outline, names = outline[::-1], names[::-1]
+        segs += [Line(outline[i], outline[i + 1], names[i]) for i in range(5)]
+    return Profile(name, tuple(segs))
 
 
 # -- three-row roller main bearing (DESIGN §7.2) -------------------------------------------------------

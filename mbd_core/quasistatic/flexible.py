@@ -99,14 +99,19 @@ def _samples(body) -> dict:
 
 @dataclass(frozen=True)
 class FlexibleRing:
-    """A ring of the bearing that bends: a reduced body grounded at its interfaces.
+    """A ring of the bearing that bends: a reduced body grounded at its interfaces, or (moving ring
+    only) a floating body whose frame is the rigid displacement q.
+
+    A floating moving ring has free–free elastic modes, mass-orthogonal to its rigid motion, so a
+    load spread like its mass (its weight, or a dead load carried as mass) does no work on η and
+    only the element forces bend it: K_η η = Σ Tᵢᵀ fᵢ holds as for a grounded ring.
 
     Parameters
     ----------
     name : str
         Label (names the ring's modal coordinates in the result).
     body : cms_reduction.ReducedBody
-        Grounded (``floating=False``) body with raceway samples in its extras.
+        Body with raceway samples in its extras; grounded, or floating for the moving ring.
     ring : {"fixed", "moving"}
         Which ring of the rows it is. A moving ring's interfaces ride on the rigid displacement q.
     raceways : mapping row name → raceway sample name
@@ -132,10 +137,10 @@ class FlexibleRing:
             raise ValueError(f"flexible ring: name must be a non-empty string, got {self.name!r}")
         if not isinstance(self.body, ReducedBody):
             raise ValueError(f"{who}: body must be a ReducedBody, got {type(self.body).__name__}")
-        if self.body.floating:
-            raise ValueError(f"{who}: body {self.body.name!r} is floating (free–free modes); a grounded body "
-                             "is expected (reduce it with grounded interfaces, InterfaceSpec(grounded=True))")
         _side(who, self.ring)
+        if self.body.floating and self.ring != "moving":
+            raise ValueError(f"{who}: body {self.body.name!r} is floating (free–free modes); a fixed ring must be "
+                             "grounded (reduce it with grounded interfaces, InterfaceSpec(grounded=True))")
         pairs = tuple(self.raceways.items()) if isinstance(self.raceways, Mapping) else tuple(self.raceways)
         if not pairs or not all(isinstance(p, tuple) and len(p) == 2 and all(isinstance(v, str) for v in p)
                                 for p in pairs):

@@ -1,0 +1,227 @@
+"""Case definitions (frozen dataclasses) to TOML and back, with errors that name the key.
+
+The machinery knows no schema: it follows the dataclass fields and their type hints. Supported
+hints are ``float`` (an integer is accepted), ``int``, ``bool``, ``str``, ``Literal[...]``,
+``X | None``, nested dataclasses, ``tuple[X, ...]`` and fixed ``tuple[X, Y]``. TOML has no null,
+so a field whose value is None is left out when writing and takes its default when reading.
+Validation of values stays in the dataclasses' own ``__post_init__``; its ValueError/TypeError is
+re-raised as :class:`CaseError` carrying the dotted path of the table.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+import tomllib
+import types
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any, Literal, Union, get_args, get_origin, get_type_hints
+
+import tomli_w
+
+__all__ = ["CaseError", "dumps_case", "from_mapping", "loads_case", "read_case", "to_mapping",
+           "with_overrides", "write_case"]
+
+_TYPE_NAMES = {int: "an integer", bool: "true or false", str: "a string"}
+
+
+class CaseError(ValueError):
+    """Bad case input; the message starts with the dotted key path, e.g. ``top.n_modes: ...``."""
+
+
+def _join(where: str, name: str) -> str:
+    return f"{where}.{name}" if where else name
+
+
+def _show(value: Any) -> str:
+    """A value as it is spelled in TOML where that differs from Python (booleans)."""
+    return str(value).lower() if isinstance(value, bool) else repr(value)
+
+
+def _init_fields(cls: type) -> dict[str, dataclasses.Field]:
+    return {f.name: f for f in dataclasses.fields(cls) if f.init}
+
+
+def _strip_optional(hint: Any) -> Any:
+    """``X | None`` → ``X``; any other hint unchanged."""
+    if get_origin(hint) in (Union, types.UnionType):
+        options = [a for a in get_args(hint) if a is not type(None)]
+        if len(options) == 1:
+            return options[0]
+    return hint
+
+
+def _coerce(hint: Any, value: Any, where: str) -> Any:
+    """Check ``value`` (as read from TOML) against the type hint and convert it."""
+    hint = _strip_optional(hint)
+    origin, args = get_origin(hint), get_args(hint)
+    if dataclasses.is_dataclass(hint):
+        if not isinstance(value, Mapping):
+            raise CaseError(f"{where}: expected a table, got {_show(value)}")
+        return from_mapping(hint, value, where)
+    if origin is Literal:
+        if any(value == c and type(value) is type(c) for c in args):
+            return value
+        raise CaseError(f"{where}: must be one of {', '.join(map(repr, args))}, got {_show(value)}")
+    if origin is tuple:
+        if not isinstance(value, (list, tuple)):
+            raise CaseError(f"{where}: expected a list, got {_show(value)}")
+        if len(args) == 2 and args[1] is Ellipsis:
+            args = (args[0],) * len(value)
+        elif len(args) != len(value):
+            raise CaseError(f"{where}: expected a list of {len(args)} items, got {len(value)}")
+        return tuple(_coerce(h, v, f"{where}[{i}]") for i, (h, v) in enumerate(zip(args, value)))
+    if hint is float:
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            return float(value)
+        raise CaseError(f"{where}: expected a number, got {_show(value)}")
+    if hint in _TYPE_NAMES:
+        if type(value) is hint:  # type(), not isinstance(): bool is an int subclass
+            return value
+        raise CaseError(f"{where}: expected {_TYPE_NAMES[hint]}, got {_show(value)}")
+    if hint is Any:
+        return value
+    raise TypeError(f"{where}: unsupported field type {hint!r}")
+
+
+def _post_init_message(where: str, message: str, names: Sequence[str]) -> str:
+    """Prefix a dataclass's own validation message with the path of that dataclass."""
+    if not where:
+        return message
+    first = re.match(r"(\w+)[ :]", message)
+    return f"{where}.{message}" if first and first.group(1) in names else f"{where}: {message}"
+
+
+def from_mapping(cls: type, data: Mapping, where: str = "") -> Any:
+    """Build a (possibly nested) frozen dataclass from a plain mapping.
+
+    Parameters
+    ----------
+    cls : type
+        The dataclass to build.
+    data : Mapping
+        Keys are field names; nested dataclass fields take sub-mappings.
+    where : str
+        Dotted path of ``data`` within the whole case, used in error messages.
+
+    Returns
+    -------
+    cls
+        The instance; missing keys take the field defaults.
+
+    Raises
+    ------
+    CaseError
+        Unknown or missing key, wrong type, or a value rejected by ``__post_init__``.
+    """
+    if not isinstance(data, Mapping):
+        raise CaseError(f"{where or '<case>'}: expected a table, got {_show(data)}")
+    hints = get_type_hints(cls)
+    fields = _init_fields(cls)
+    unknown = sorted(set(data) - set(fields))
+    if unknown:
+        raise CaseError(f"{_join(where, unknown[0])}: unknown key (known: {', '.join(sorted(fields))})")
+    kwargs = {}
+    for name, f in fields.items():
+        if name in data:
+            kwargs[name] = _coerce(hints[name], data[name], _join(where, name))
+        elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
+            raise CaseError(f"{_join(where, name)}: missing key")
+    try:
+        return cls(**kwargs)
+    except CaseError:
+        raise
+    except (ValueError, TypeError) as exc:
+        raise CaseError(_post_init_message(where, str(exc), list(fields))) from exc
+
+
+def _plain(value: Any) -> Any:
+    if dataclasses.is_dataclass(value):
+        return to_mapping(value)
+    if isinstance(value, tuple):
+        return [_plain(v) for v in value]
+    return value
+
+
+def to_mapping(obj: Any) -> dict:
+    """Nested dicts and lists of a case dataclass; None-valued fields are left out."""
+    return {
+        name: _plain(value)
+        for name in _init_fields(type(obj))
+        if (value := getattr(obj, name)) is not None
+    }
+
+
+def loads_case(cls: type, text: str, source: str = "<string>") -> Any:
+    """Build ``cls`` from TOML text; ``source`` names the text in a syntax error."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise CaseError(f"{source}: invalid TOML: {exc}") from exc
+    return from_mapping(cls, data)
+
+
+def read_case(cls: type, path: str | Path) -> Any:
+    """Build ``cls`` from a TOML file; a syntax error names the file and the line."""
+    return loads_case(cls, Path(path).read_text(encoding="utf-8"), source=str(path))
+
+
+def dumps_case(obj: Any) -> str:
+    """TOML text of a case: top-level scalars first, then tables; reads back equal."""
+    return tomli_w.dumps(to_mapping(obj))
+
+
+def write_case(obj: Any, path: str | Path) -> None:
+    """Write a case as TOML to ``path``."""
+    Path(path).write_text(dumps_case(obj), encoding="utf-8")
+
+
+def _parse_value(text: str) -> Any:
+    """A TOML value, or the raw text when it is not one (``dynamic_explicit``)."""
+    try:
+        return tomllib.loads("v = " + text)["v"]
+    except tomllib.TOMLDecodeError:
+        return text
+
+
+def _check_path(cls: type, parts: Sequence[str]) -> None:
+    """Raise CaseError unless ``parts`` names a field in the dataclass tree of ``cls``."""
+    for i, name in enumerate(parts):
+        where = ".".join(parts[: i + 1])
+        if not (isinstance(cls, type) and dataclasses.is_dataclass(cls)):
+            raise CaseError(f"{'.'.join(parts[:i])}: not a table, cannot set {where}")
+        fields = _init_fields(cls)
+        if name not in fields:
+            raise CaseError(f"{where}: unknown key (known: {', '.join(sorted(fields))})")
+        cls = _strip_optional(get_type_hints(cls)[name])
+
+
+def with_overrides(obj: Any, assignments: Sequence[str]) -> Any:
+    """Apply ``key.path=value`` assignments (command-line ``--set``) to a case.
+
+    Parameters
+    ----------
+    obj : dataclass instance
+        The case to modify.
+    assignments : sequence of str
+        Items like ``"top.n_modes=30"`` or ``"analysis.type=dynamic_explicit"``; the right-hand
+        side is read as a TOML value, and taken as a plain string when it is not valid TOML.
+
+    Returns
+    -------
+    dataclass instance
+        A new case, rebuilt with :func:`from_mapping` so that all validation runs again.
+    """
+    data = to_mapping(obj)
+    for item in assignments:
+        key, sep, rhs = item.partition("=")
+        if not sep:
+            raise CaseError(f"{item}: expected key=value")
+        parts = [p.strip() for p in key.strip().split(".")]
+        _check_path(type(obj), parts)
+        node = data
+        for name in parts[:-1]:
+            node = node.setdefault(name, {})  # a None-valued table is absent from the mapping
+        node[parts[-1]] = _parse_value(rhs.strip())
+    return from_mapping(type(obj), data)

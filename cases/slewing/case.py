@@ -1,0 +1,306 @@
+"""The slewing-ring case: what a run of the fast-reactor slewing ring (DESIGN §7.1) is made of.
+
+A case is a frozen dataclass tree, validated on creation and read from / written to TOML with
+:mod:`cases.config` (errors name the dotted key). SI units, with the unit in every key name;
+angles in degrees in case files. The tables of a case file:
+
+=============  ===================================================================================
+``geometry``   variant (full Ø6.69 m / 1 m / 2 m scaled) and the cross-sections chosen for the
+               races and the top-and-middle ring (TMR), which the thesis does not give
+``load``       dead load carried by the top structure (default: the variant's, §7.1) and gravity
+``undulation`` bottom-race axial undulation: ``scale`` × the §7.1 profile (periodic cubic spline)
+``thermal``    radial offset Δ of the top race over one sector and of the bottom race over another
+               (differential thermal expansion), smooth raised-cosine edges
+``contact``    ``hertz`` (exact Hertz constants of each groove, default) or ``thesis`` (the
+               thesis' RecurDyn values: K = 2 581 637 N/mm^1.5, c = K/1000 s), damping, friction
+``top``        fidelity of the top structure (top race, with the TMR bolted to it as one body)
+``bottom``     fidelity of the bottom race (rigid on its support, or modal, bolted at ``bolts``)
+``analysis``   ``quasi_static`` (load distribution; with ``travel_steps`` the balls roll through
+               one revolution of the top race as a sequence of equilibria) or ``dynamic_explicit``
+``study``      which study of §7.1 the run is, and the values it sweeps
+=============  ===================================================================================
+
+The dead load is carried as mass of the top structure (its density raised so that its weight is
+the dead load): the rotatable plug rests on the TMR all round and turns with it, so its weight is
+spread like the ring's and its inertia turns with the ring. A load spread like the mass does no
+work on the free–free elastic modes; the ring bends under the ball reactions only.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Literal
+
+from fem_rings.sections import SlewingSection
+
+__all__ = ["VARIANTS", "Geometry", "Load", "Undulation", "Thermal", "Contact", "BodyFidelity", "Analysis",
+           "Study", "SlewingCase", "UNDULATION_PROFILE_DEG_MM", "THESIS_CONTACT_STIFFNESS_N_PER_M1P5",
+           "REDUCED_E_PA"]
+
+#: variant → (pitch diameter m, load balls, spacer ball diameter m, dead load t incl. the top race), §7.1
+VARIANTS = {
+    "full": (6.69, 116, 85.25e-3, 503.25),
+    "1m": (1.0, 16, 85.25e-3, 68.9),
+    "2m": (2.0, 33, 92.0e-3, 140.0),
+}
+#: §7.1 undulation profile, (θ deg, h mm), peak-to-valley 1.0 mm; periodic cubic spline through it
+UNDULATION_PROFILE_DEG_MM = ((0.0, 0.0), (30.0, 0.5), (65.0, 0.0), (103.0, -0.5), (142.0, 0.0), (180.0, 0.5),
+                             (215.0, 0.2), (240.0, 0.0), (251.0, -0.4), (262.0, 0.0), (300.0, 0.3), (330.0, 0.5))
+#: the thesis' ball–race contact (Table 2): K = 2 581 637 N/mm^1.5 per contact, in N/m^1.5
+THESIS_CONTACT_STIFFNESS_N_PER_M1P5 = 2581637.0 * 1000.0**1.5
+#: the thesis' reduced modulus E·(2/6.69)⁴ that gives the 2 m ring the full-scale bending stiffness
+REDUCED_E_PA = 1.5975e9
+
+Variant = Literal["full", "1m", "2m"]
+
+
+def _positive(owner: str, **values) -> None:
+    for k, v in values.items():
+        if v is not None and not (math.isfinite(v) and v > 0.0):
+            raise ValueError(f"{k} must be a positive number, got {v!r}")
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """Bearing variant and the chosen cross-sections (defaults: :mod:`fem_rings.sections`)."""
+
+    variant: Variant = "2m"
+    ball_diameter_m: float = 95.25e-3
+    conformity: float = 0.525
+    contact_angle_deg: float = 60.0
+    groove_depth_m: float = 0.030
+    race_width_m: float = 0.220
+    race_height_m: float = 0.100
+    tmr_width_m: float = 0.500
+    tmr_height_m: float = 0.400
+    spacer_diameter_m: float | None = None  # None: the variant's (§7.1)
+
+    def __post_init__(self) -> None:
+        _positive("geometry", ball_diameter_m=self.ball_diameter_m, spacer_diameter_m=self.spacer_diameter_m)
+        if not 0.0 < self.contact_angle_deg < 90.0:
+            raise ValueError(f"contact_angle_deg must lie in (0, 90), got {self.contact_angle_deg}")
+        if not self.conformity > 0.5:
+            raise ValueError(f"conformity must be > 0.5 (the ball must be smaller than its groove), "
+                             f"got {self.conformity}")
+        if self.spacer_diameter_m is not None and not self.spacer_diameter_m < self.ball_diameter_m:
+            raise ValueError(f"spacer_diameter_m ({self.spacer_diameter_m}) must be below ball_diameter_m "
+                             f"({self.ball_diameter_m}): spacer balls touch the bottom race only")
+        self.section()  # the section checks its own sizes (groove depth, widths)
+        pitch, n, spacer, _ = VARIANTS[self.variant]
+        pair = self.ball_diameter_m + (spacer if self.spacer_diameter_m is None else self.spacer_diameter_m)
+        if n * pair > math.pi * pitch:
+            raise ValueError(f"spacer_diameter_m: {n} load and {n} spacer balls do not fit on the "
+                             f"{pitch} m pitch circle")
+
+    def section(self) -> SlewingSection:
+        return SlewingSection(self.ball_diameter_m, self.conformity, self.contact_angle_deg, self.groove_depth_m,
+                              self.race_width_m, self.race_height_m, self.tmr_width_m, self.tmr_height_m)
+
+    @property
+    def pitch_diameter_m(self) -> float:
+        return VARIANTS[self.variant][0]
+
+    @property
+    def n_balls(self) -> int:
+        return VARIANTS[self.variant][1]
+
+    @property
+    def spacer_m(self) -> float:
+        return VARIANTS[self.variant][2] if self.spacer_diameter_m is None else self.spacer_diameter_m
+
+
+@dataclass(frozen=True)
+class Load:
+    """Dead load on the balls (plug, TMR and top race), t; None: the variant's (§7.1)."""
+
+    dead_load_t: float | None = None
+    gravity_m_s2: float = 9.81
+
+    def __post_init__(self) -> None:
+        _positive("load", dead_load_t=self.dead_load_t, gravity_m_s2=self.gravity_m_s2)
+
+
+@dataclass(frozen=True)
+class Undulation:
+    """Axial undulation of the bottom race: h(θ) = scale × periodic cubic spline through the profile."""
+
+    scale: float = 0.0
+    profile_deg_mm: tuple[tuple[float, float], ...] = UNDULATION_PROFILE_DEG_MM
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.scale) and self.scale >= 0.0):
+            raise ValueError(f"scale must be ≥ 0, got {self.scale}")
+        deg = [p[0] for p in self.profile_deg_mm]
+        if len(deg) < 4 or deg[0] != 0.0 or any(b <= a for a, b in zip(deg, deg[1:])) or deg[-1] >= 360.0:
+            raise ValueError("profile_deg_mm must list ≥ 4 points (θ deg, h mm) with θ rising from 0 to "
+                             "below 360 (the spline closes at 360 ≡ 0)")
+
+
+@dataclass(frozen=True)
+class Thermal:
+    """Radial (outward) groove offset Δ of the top race over ``top_sector_deg`` (in the top race's
+    own angle, so it turns with it) and of the bottom race over ``bottom_sector_deg``; the offset
+    rises from 0 to Δ over ``edge_deg`` inside each sector by a raised cosine."""
+
+    offset_m: float = 0.0
+    top_sector_deg: tuple[float, float] = (80.0, 100.0)
+    bottom_sector_deg: tuple[float, float] = (260.0, 280.0)
+    edge_deg: float = 5.0
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.offset_m) and abs(self.offset_m) < 0.01):
+            raise ValueError(f"offset_m must be a finite offset below 10 mm, got {self.offset_m}")
+        for name in ("top_sector_deg", "bottom_sector_deg"):
+            a, b = getattr(self, name)
+            if not (0.0 <= a < b <= 360.0 and b - a >= 2.0 * self.edge_deg):
+                raise ValueError(f"{name} must be (start, end) in degrees, 0 ≤ start < end ≤ 360, at least "
+                                 f"2 × edge_deg = {2 * self.edge_deg} wide; got {(a, b)}")
+        if not self.edge_deg >= 0.0:
+            raise ValueError(f"edge_deg must be ≥ 0, got {self.edge_deg}")
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Ball contacts: stiffness preset, damping and friction (dynamic runs).
+
+    ``damping_ratio``: normal damping of each ball contact as a fraction of the critical damping
+    of a load ball on its linearised Hertz stiffness at the nominal load (the ``thesis`` preset
+    uses its c = K/1000 s instead). Friction (RecurDyn/Adams step law): μ_static at v_static,
+    μ_dynamic from v_dynamic on; the thesis' values by default.
+    """
+
+    preset: Literal["hertz", "thesis"] = "hertz"
+    damping_ratio: float = 0.2
+    mu_static: float = 0.24
+    mu_dynamic: float = 0.14
+    v_static_m_s: float = 1e-3
+    v_dynamic_m_s: float = 2e-3
+    friction: bool = True
+
+    def __post_init__(self) -> None:
+        if not 0.0 <= self.damping_ratio <= 2.0:
+            raise ValueError(f"damping_ratio must lie in [0, 2], got {self.damping_ratio}")
+        if not 0.0 <= self.mu_dynamic <= self.mu_static:
+            raise ValueError(f"mu_static ({self.mu_static}) must be ≥ mu_dynamic ({self.mu_dynamic}) ≥ 0")
+        if not 0.0 < self.v_static_m_s < self.v_dynamic_m_s:
+            raise ValueError(f"v_static_m_s ({self.v_static_m_s}) must be positive and below v_dynamic_m_s "
+                             f"({self.v_dynamic_m_s})")
+
+
+@dataclass(frozen=True)
+class BodyFidelity:
+    """How a ring is modelled: ``rigid`` or ``modal`` (n_modes normal modes + raceway load shapes up
+    to harmonic ``groove_harmonics``, −1: none). ``E_Pa`` is its Young's modulus (the thesis'
+    reduced-stiffness ring: 1.5975 GPa); ``element_size_m`` None takes a size from the variant."""
+
+    kind: Literal["rigid", "modal"] = "rigid"
+    n_modes: int = 20
+    groove_harmonics: int = 16
+    E_Pa: float = 200e9
+    damping_ratio: float = 0.02
+    element_size_m: float | None = None
+    include_tmr: bool = True      # top structure only: TMR bolted to the top race as one body
+    bolts: int = 12               # bottom race only: bolt patches on the support when modal
+
+    def __post_init__(self) -> None:
+        if self.n_modes < 1:
+            raise ValueError(f"n_modes must be ≥ 1, got {self.n_modes}")
+        if self.groove_harmonics < -1:
+            raise ValueError(f"groove_harmonics must be ≥ −1 (−1: no raceway load shapes), got {self.groove_harmonics}")
+        _positive("body", E_Pa=self.E_Pa, element_size_m=self.element_size_m)
+        if not 0.0 <= self.damping_ratio < 1.0:
+            raise ValueError(f"damping_ratio must lie in [0, 1), got {self.damping_ratio}")
+        if self.bolts < 3:
+            raise ValueError(f"bolts must be ≥ 3, got {self.bolts}")
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """``quasi_static``: equilibria with the balls held at their azimuths (``travel_steps`` > 0: the
+    top race turns through ``travel_revolutions`` and the balls with it at their orbit speed);
+    ``dynamic_explicit``: the top race driven at ``speed_rpm`` for ``duration_s`` from the static
+    equilibrium, spacer balls included when ``spacers``."""
+
+    type: Literal["quasi_static", "dynamic_explicit"] = "quasi_static"
+    speed_rpm: float = 6.55
+    travel_steps: int = 0
+    travel_revolutions: float = 2.0
+    duration_s: float = 10.0
+    timestep_s: float | None = None
+    record_every: int = 200
+    spacers: bool = True
+
+    def __post_init__(self) -> None:
+        _positive("analysis", speed_rpm=self.speed_rpm, duration_s=self.duration_s, timestep_s=self.timestep_s,
+                  travel_revolutions=self.travel_revolutions)
+        if self.travel_steps < 0:
+            raise ValueError(f"travel_steps must be ≥ 0, got {self.travel_steps}")
+        if self.record_every < 1:
+            raise ValueError(f"record_every must be ≥ 1, got {self.record_every}")
+
+
+Kind = Literal["single", "static", "rotation", "undulation", "thermal", "combined", "life", "full-scale"]
+
+
+@dataclass(frozen=True)
+class Study:
+    """The study of DESIGN §7.1 this run is, and the values it sweeps.
+
+    ``single``: one run of the case as it stands. ``static`` (a): rigid and modal top structure
+    against Q = W/(Z sin α). ``rotation`` (b): the top race turning. ``undulation`` (c): every
+    ``undulation_scales`` × every ``top_E_Pa``. ``thermal`` (d): every ``offsets_m``, balls
+    travelling. ``combined`` (e): undulation × ``combined_offsets_m``. ``life`` (f): the worst
+    ball of ``combined`` at ``life_offset_m``. ``full-scale`` (g): the Ø6.69 m ring with its own
+    stiffness beside the 2 m ring with E = ``top_E_Pa[-1]``.
+    """
+
+    kind: Kind = "single"
+    undulation_scales: tuple[float, ...] = (0.5, 1.0, 1.5)
+    top_E_Pa: tuple[float, ...] = (200e9, REDUCED_E_PA)
+    offsets_m: tuple[float, ...] = (0.3e-3, 0.4e-3, 0.5e-3)
+    combined_offsets_m: tuple[float, ...] = (0.4e-3, 1.11e-3)
+    life_offset_m: float = 0.4e-3
+    case_depth_m: float = 8e-3
+
+    def __post_init__(self) -> None:
+        for name in ("undulation_scales", "top_E_Pa", "offsets_m", "combined_offsets_m"):
+            values = getattr(self, name)
+            if not values or not all(math.isfinite(v) and v >= 0.0 for v in values):
+                raise ValueError(f"{name} must be a non-empty list of numbers ≥ 0, got {list(values)}")
+        if not all(e > 0.0 for e in self.top_E_Pa):
+            raise ValueError(f"top_E_Pa must be positive, got {list(self.top_E_Pa)}")
+        _positive("study", case_depth_m=self.case_depth_m)
+
+
+@dataclass(frozen=True)
+class SlewingCase:
+    """A run of the slewing ring (module docstring)."""
+
+    name: str = "slewing"
+    description: str = ""
+    geometry: Geometry = field(default_factory=Geometry)
+    load: Load = field(default_factory=Load)
+    undulation: Undulation = field(default_factory=Undulation)
+    thermal: Thermal = field(default_factory=Thermal)
+    contact: Contact = field(default_factory=Contact)
+    top: BodyFidelity = field(default_factory=BodyFidelity)
+    bottom: BodyFidelity = field(default_factory=BodyFidelity)
+    analysis: Analysis = field(default_factory=Analysis)
+    study: Study = field(default_factory=Study)
+
+    def __post_init__(self) -> None:
+        if not self.name or not all(c.isalnum() or c in "-_." for c in self.name):
+            raise ValueError(f"name must be a non-empty word of letters, digits, '-', '_' or '.', got {self.name!r}")
+
+    @property
+    def dead_load_t(self) -> float:
+        return VARIANTS[self.geometry.variant][3] if self.load.dead_load_t is None else self.load.dead_load_t
+
+    @property
+    def dead_load_N(self) -> float:
+        return 1000.0 * self.dead_load_t * self.load.gravity_m_s2
+
+    def with_(self, **tables) -> "SlewingCase":
+        """A copy with some tables changed: ``case.with_(top={"kind": "modal"}, undulation={"scale": 1})``."""
+        return replace(self, **{k: replace(getattr(self, k), **v) for k, v in tables.items()})

@@ -1,0 +1,76 @@
+"""The named sub-cases of the slewing ring (DESIGN §7.1 studies (a)–(g)) and their quick variants.
+
+``--quick`` keeps the question and shrinks the work: coarser ring meshes and fewer modes, fewer
+positions or a shorter simulated time. The quick case is a case like any other (its resolved
+TOML is saved with the run), and the tests run it.
+"""
+
+from __future__ import annotations
+
+from ..config import from_mapping
+from .case import REDUCED_E_PA, SlewingCase
+
+__all__ = ["PRESETS", "preset", "quick"]
+
+_MODAL = {"kind": "modal"}
+
+_PRESET_TABLES = {
+    "slewing-static": dict(
+        name="slewing-static", description="(a) full-scale ring under its dead load, flat races: load per ball "
+        "against Q = W/(Z sin α), rigid and modal top structure (top race + TMR)",
+        study={"kind": "static"}, geometry={"variant": "full"}),
+    "slewing-rotation": dict(
+        name="slewing-rotation", description="(b) 1 m ring, flat races, the top race turning at 6.55 rpm with "
+        "friction and spacer balls (explicit dynamics): the load per ball stays uniform",
+        study={"kind": "rotation"}, geometry={"variant": "1m"},
+        analysis={"type": "dynamic_explicit", "duration_s": 4.6}),
+    "slewing-undulation": dict(
+        name="slewing-undulation", description="(c) 2 m ring, undulated bottom race ×0.5/×1/×1.5, modal top "
+        "structure with E = 200 GPa and the thesis' reduced 1.5975 GPa: max ball load, unloaded balls",
+        study={"kind": "undulation"}, top=_MODAL),
+    "slewing-thermal": dict(
+        name="slewing-thermal", description="(d) 2 m ring, rigid races, radial offset Δ = 0.3/0.4/0.5 mm of the "
+        "top race over 80–100° and the bottom race over 260–280°: load on a ball over one revolution",
+        study={"kind": "thermal"}, analysis={"travel_steps": 288}),
+    "slewing-combined": dict(
+        name="slewing-combined", description="(e) 2 m ring, undulation ×1 and Δ = 0.4/1.11 mm, modal top "
+        "structure at both moduli: worst ball load over one revolution",
+        study={"kind": "combined"}, top=_MODAL, analysis={"travel_steps": 288}),
+    "slewing-life": dict(
+        name="slewing-life", description="(f) worst ball of (e) at Δ = 0.4 mm with the reduced stiffness: Hertz "
+        "pressure, subsurface shear and case depth, ISO 281 and case-depth corrected life",
+        study={"kind": "life"}, top=_MODAL, analysis={"travel_steps": 288}),
+    "slewing-full-scale": dict(
+        name="slewing-full-scale", description="(g) the Ø6.69 m ring with a modal top structure (top race + "
+        "TMR, E = 200 GPa) under the undulation, beside the 2 m ring with E = 1.5975 GPa",
+        study={"kind": "full-scale", "top_E_Pa": (200e9, REDUCED_E_PA)}, top=_MODAL),
+}
+
+PRESETS = {name: from_mapping(SlewingCase, tables) for name, tables in _PRESET_TABLES.items()}
+
+_QUICK = {
+    "static": dict(geometry={"variant": "1m"}, top={"element_size_m": 0.1, "n_modes": 12, "groove_harmonics": 8}),
+    "rotation": dict(analysis={"duration_s": 0.4, "record_every": 100}),
+    "undulation": dict(top={"element_size_m": 0.12, "n_modes": 12, "groove_harmonics": 8}),
+    "thermal": dict(study={"offsets_m": (0.5e-3,)}, analysis={"travel_steps": 144}),
+    "combined": dict(top={"element_size_m": 0.12, "n_modes": 12, "groove_harmonics": 8},
+                     study={"combined_offsets_m": (0.4e-3,), "top_E_Pa": (REDUCED_E_PA,)},
+                     analysis={"travel_steps": 72}),
+    "life": dict(top={"element_size_m": 0.12, "n_modes": 12, "groove_harmonics": 8}, analysis={"travel_steps": 72}),
+    "full-scale": dict(top={"element_size_m": 0.3, "n_modes": 12, "groove_harmonics": 8}),
+    "single": dict(top={"element_size_m": 0.12, "n_modes": 12, "groove_harmonics": 8},
+                   analysis={"duration_s": 0.4, "travel_steps": 36}),
+}
+
+
+def preset(name: str) -> SlewingCase:
+    if name not in PRESETS:
+        raise KeyError(name)
+    return PRESETS[name]
+
+
+def quick(case: SlewingCase) -> SlewingCase:
+    """The reduced variant of ``case`` that ``--quick`` runs (name gets a ``-quick`` suffix)."""
+    from dataclasses import replace
+
+    return replace(case.with_(**_QUICK[case.study.kind]), name=f"{case.name}-quick")

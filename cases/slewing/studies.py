@@ -1,0 +1,259 @@
+"""The studies of DESIGN §7.1 (a)–(g): each runs the scenes it needs and writes its figures.
+
+Every study takes the resolved case, a :class:`cases.results.RunOutput` and an optional progress
+wrapper, and fills the output's summary (key figures, SI) and report lines. Thesis values quoted
+for comparison are from seed 003, chapters 3–4 (loads in tonnes-force of 9.81 kN).
+"""
+
+from __future__ import annotations
+
+import math
+
+import meshio
+import numpy as np
+
+from fem_rings.output import write_vtu
+
+from . import scene
+from .case import SlewingCase
+from .life import plot_subsurface_shear, worst_ball_life
+from .plots import plot_ball_loads, plot_static, plot_travel
+from .quasistatic import analytic_ball_load_N, equilibrium, nominal_ball_load_N, travel
+
+__all__ = ["STUDIES", "run_study"]
+
+TONNE_N = 9810.0
+#: a ball counts as unloaded below this share of the nominal ball load
+UNLOADED_SHARE = 1e-3
+
+
+def _bodies(case: SlewingCase) -> scene.Bodies:
+    return scene.Bodies(scene.top_body(case), scene.bottom_body(case))
+
+
+def _fidelity(case: SlewingCase) -> str:
+    def one(f, name):
+        if f.kind == "rigid":
+            return f"{name} rigid"
+        return f"{name} modal ({f.n_modes} modes + groove shapes to harmonic {f.groove_harmonics}, E {f.E_Pa / 1e9:g} GPa)"
+    top = "top race + TMR" if case.top.include_tmr else "top race"
+    return f"{one(case.top, top)}; {one(case.bottom, 'bottom race')}"
+
+
+def _write_balls_vtu(out, name: str, case: SlewingCase, azimuth_rad, load_N) -> None:
+    r = 0.5 * case.geometry.pitch_diameter_m
+    pts = np.column_stack((r * np.cos(azimuth_rad), r * np.sin(azimuth_rad), np.zeros_like(azimuth_rad)))
+    meshio.Mesh(pts, [("vertex", np.arange(len(pts))[:, None])],
+                point_data={"ball_load_N": np.asarray(load_N, float)}).write(out.path(name))
+
+
+def _write_top_vtu(out, name: str, bodies: scene.Bodies, eta) -> None:
+    if bodies.top is not None and len(eta):
+        write_vtu(out.path(name), bodies.top.mesh(), {"displacement_m": bodies.top.displacement_m(eta)})
+
+
+def _distribution_figures(res) -> dict:
+    q = res.rows[0].load_N
+    return {"max_ball_load_N": float(q.max()), "min_ball_load_N": float(q.min()),
+            "unloaded_balls": int(np.sum(q < UNLOADED_SHARE * q.mean())),
+            "equilibrium_error": float(res.equilibrium_error)}
+
+
+# -- (a) static validation ---------------------------------------------------------------------
+def study_static(case: SlewingCase, out, progress=None) -> None:
+    """Flat races, pure axial dead load: every ball carries the analytic thrust load (Harris §7.2,
+    loaded contact angle) — rigid and modal top structure; also against the thesis' W/(Z sin α0)."""
+    Q, alpha = analytic_ball_load_N(case)
+    Q0 = nominal_ball_load_N(case)
+    curves, figures = {}, {}
+    for kind in ("rigid", "modal"):
+        c = case.with_(top={"kind": kind}, undulation={"scale": 0.0}, thermal={"offset_m": 0.0})
+        bodies = _bodies(c)
+        res = equilibrium(c, bodies)
+        q = res.rows[0].load_N
+        curves[kind] = q
+        figures[kind] = {"mean_ball_load_N": float(q.mean()), "max_error_vs_analytic": float(np.abs(q / Q - 1).max()),
+                         "max_error_vs_nominal_angle": float(np.abs(q / Q0 - 1).max()),
+                         "spread": float((q.max() - q.min()) / q.mean()),
+                         "axial_sum_over_load": float(res.reaction[2] / -c.dead_load_N),
+                         "loaded_contact_angle_deg": float(np.degrees(res.rows[0].contact_angle_rad.mean()))}
+        out.note(f"{kind:5s} top: mean ball load {q.mean() / 1e3:.3f} kN, largest error {100 * figures[kind]['max_error_vs_analytic']:.3f} % "
+                 f"against Q = {Q / 1e3:.3f} kN at the loaded angle {math.degrees(alpha):.3f}° "
+                 f"({100 * figures[kind]['max_error_vs_nominal_angle']:.2f} % against W/(Z sin α0) = {Q0 / 1e3:.3f} kN)")
+        _write_balls_vtu(out, f"balls_{kind}.vtu", c, res.rows[0].azimuth_rad, q)
+        if kind == "modal":
+            _write_top_vtu(out, "top_structure_modal.vtu", bodies, res.modal("top"))
+    out.summary.update(analytic_ball_load_N=Q, analytic_contact_angle_deg=math.degrees(alpha), nominal_ball_load_N=Q0,
+                       **{f"{k}_top": v for k, v in figures.items()})
+    out.write_csv("ball_loads.csv", ["ball", "rigid_load_N", "modal_load_N"],
+                  [(i, curves["rigid"][i], curves["modal"][i]) for i in range(len(curves["rigid"]))])
+    out.save_figure(plot_static(curves, Q, Q0, case), "ball_loads.png")
+
+
+# -- (c) undulation ----------------------------------------------------------------------------
+def study_undulation(case: SlewingCase, out, progress=None) -> None:
+    """Undulated bottom race, ``undulation_scales`` × ``top_E_Pa``: max load, unloaded balls."""
+    s = case.study
+    base = case.with_(top={"kind": "modal"} if case.top.kind == "rigid" else {})
+    top0 = scene.top_body(base.with_(top={"E_Pa": scene.REFERENCE_E_PA}))
+    table, curves = [], {}
+    items = [(E, h) for E in s.top_E_Pa for h in s.undulation_scales]
+    for E, h in (progress(items, "undulation cases") if progress else items):
+        c = base.with_(top={"E_Pa": E}, undulation={"scale": h})
+        bodies = scene.Bodies(scene.with_modulus(top0, E), scene.bottom_body(c))
+        res = equilibrium(c, bodies)
+        fig = _distribution_figures(res)
+        curves[(E, h)] = res.rows[0].load_N
+        table.append({"top_E_Pa": E, "undulation_scale": h, **fig})
+        out.note(f"E {E / 1e9:7.4g} GPa, undulation ×{h:g}: max ball load {fig['max_ball_load_N'] / TONNE_N:5.2f} t, "
+                 f"{fig['unloaded_balls']} balls unloaded")
+        _write_top_vtu(out, f"top_E{E / 1e9:g}GPa_x{h:g}.vtu", bodies, res.modal("top"))
+    azimuth = res.rows[0].azimuth_rad
+    out.summary["cases"] = table
+    out.write_csv("ball_loads.csv", ["ball", "azimuth_deg"] + [f"load_N_E{E / 1e9:g}GPa_x{h:g}" for E, h in curves],
+                  [(i, math.degrees(azimuth[i]), *(q[i] for q in curves.values())) for i in range(len(azimuth))])
+    for E in s.top_E_Pa:
+        sub = {h: curves[(E, h)] for h in s.undulation_scales}
+        out.save_figure(plot_ball_loads(sub, azimuth, case, f"top structure E = {E / 1e9:g} GPa"),
+                        f"ball_loads_E{E / 1e9:g}GPa.png")
+
+
+# -- (d) thermal offset and (e) combined -------------------------------------------------------
+def _travel_study(case: SlewingCase, out, offsets, stiffness, undulation: float, progress, prefix: str):
+    """Travels for every stiffness × offset: rows of key figures and, per case, the history
+    (azimuth deg, load N, top rotation deg) of the ball that meets the largest load."""
+    a = case.analysis
+    steps = a.travel_steps or 144
+    rows, histories = [], {}
+    for E in stiffness:
+        for d in offsets:
+            c = case.with_(thermal={"offset_m": d}, undulation={"scale": undulation},
+                           top={"E_Pa": E} if case.top.kind == "modal" else {})
+            tr = travel(c, _bodies(c), steps, a.travel_revolutions, progress)
+            k, b = tr.worst
+            # the ball that passes the worst place: its whole history
+            histories[(E, d)] = (np.degrees(np.mod(tr.ball_azimuth_rad[:, b], 2 * math.pi)), tr.load_N[:, b],
+                                 np.degrees(tr.top_rotation_rad))
+            rows.append({"top_E_Pa": E, "offset_m": d, "max_ball_load_N": float(tr.load_N.max()),
+                         "worst_ball": b, "worst_azimuth_deg": float(np.degrees(tr.ball_azimuth_rad[k, b]) % 360),
+                         "worst_top_rotation_deg": float(np.degrees(tr.top_rotation_rad[k])),
+                         "min_ball_load_N": float(tr.load_N.min())})
+            out.note(f"{prefix} Δ = {d * 1e3:.2f} mm" + (f", E {E / 1e9:g} GPa" if case.top.kind == "modal" else "")
+                     + f": worst ball load {tr.load_N.max() / TONNE_N:.2f} t at ψ = {rows[-1]['worst_azimuth_deg']:.0f}°")
+            out.write_csv(f"{prefix}_ball_history_{d * 1e3:g}mm_E{E / 1e9:g}GPa.csv",
+                          ["top_rotation_deg", "ball_azimuth_deg", "load_N"],
+                          zip(np.degrees(tr.top_rotation_rad), *histories[(E, d)][:2]))
+            _write_balls_vtu(out, f"{prefix}_balls_worst_{d * 1e3:g}mm_E{E / 1e9:g}GPa.vtu", c,
+                             tr.ball_azimuth_rad[k], tr.load_N[k])
+    return rows, histories
+
+
+def study_thermal(case: SlewingCase, out, progress=None) -> None:
+    """Radial offsets Δ of the top (80–100°, turning with it) and bottom (260–280°) race."""
+    rows, hist = _travel_study(case, out, case.study.offsets_m, (case.top.E_Pa,), 0.0, progress, "thermal")
+    out.summary["cases"] = rows
+    out.summary["nominal_ball_load_N"] = nominal_ball_load_N(case)
+    out.save_figure(plot_travel({f"Δ = {d * 1e3:g} mm": v for (E, d), v in hist.items()}, case,
+                                "Load on one ball over a revolution: differential thermal expansion"),
+                    "thermal_ball_load.png")
+
+
+def study_combined(case: SlewingCase, out, progress=None) -> None:
+    """Undulation × 1 with the thermal offsets ``combined_offsets_m``, modal top at each ``top_E_Pa``."""
+    c = case.with_(top={"kind": "modal"}) if case.top.kind == "rigid" else case
+    rows, hist = _travel_study(c, out, case.study.combined_offsets_m, case.study.top_E_Pa, 1.0, progress, "combined")
+    out.summary["cases"] = rows
+    label = {(E, d): f"Δ = {d * 1e3:g} mm, E = {E / 1e9:g} GPa" for (E, d) in hist}
+    out.save_figure(plot_travel({label[k]: v for k, v in hist.items()}, case,
+                                "Worst ball over a revolution: undulation + thermal offset"), "combined_worst_ball.png")
+
+
+# -- (f) worst ball life -----------------------------------------------------------------------
+def study_life(case: SlewingCase, out, progress=None) -> None:
+    """Worst ball of the combined case at ``life_offset_m`` (E = last of ``top_E_Pa``): Hertz,
+    subsurface shear with the case depth, ISO 281 life and the case-depth corrected life."""
+    s = case.study
+    c = case.with_(top={"kind": "modal"}) if case.top.kind == "rigid" else case
+    rows, hist = _travel_study(c, out, (s.life_offset_m,), (s.top_E_Pa[-1],), 1.0, progress, "combined")
+    Q = rows[0]["max_ball_load_N"]
+    life = worst_ball_life(Q, pitch_diameter_m=case.geometry.pitch_diameter_m, n_balls=case.geometry.n_balls,
+                           axial_load_N=case.dead_load_N, speed_rpm=case.analysis.speed_rpm,
+                           case_depth_m=s.case_depth_m)
+    out.summary.update(worst_case=rows[0], life=life.to_dict())
+    plot_subsurface_shear(life, out.path("subsurface_shear.png"))
+    out.save_figure(plot_travel({f"Δ = {s.life_offset_m * 1e3:g} mm, E = {s.top_E_Pa[-1] / 1e9:g} GPa": v
+                                 for v in hist.values()}, case, "Worst ball over a revolution"),
+                    "worst_ball_history.png")
+    out.note(f"worst ball {Q / TONNE_N:.2f} t: p0 {life.p0_inner_Pa / 1e6:.0f} MPa (top race), τ_max "
+             f"{life.tau_max_inner_Pa / 1e6:.0f} MPa at {life.depth_tau_max_inner_m * 1e3:.2f} mm; required case depth "
+             f"{life.required_case_depth_m * 1e3:.1f} mm; A_cd {life.A_cd:.3f} at {s.case_depth_m * 1e3:g} mm")
+    out.note(f"ISO 281: C_a {life.C_a_N / 1e3:.0f} kN, L10 {life.L10_nominal_Mrev:.4g} Mrev at the dead load, "
+             f"{life.L10_worst_Mrev:.4g} Mrev with the worst ball everywhere, case-depth corrected "
+             f"{life.L_cd_Mrev:.4g} Mrev")
+
+
+# -- (g) full scale ----------------------------------------------------------------------------
+def study_full_scale(case: SlewingCase, out, progress=None) -> None:
+    """The Ø6.69 m ring with its own stiffness beside the 2 m ring with E = ``top_E_Pa[-1]``
+    (the thesis' scaling), both undulated ×1 with a modal top structure."""
+    results = {}
+    scenes = [("full", scene.REFERENCE_E_PA), ("2m", case.study.top_E_Pa[-1])]
+    for variant, E in (progress(scenes, "bearings") if progress else scenes):
+        c = case.with_(geometry={"variant": variant}, top={"kind": "modal", "E_Pa": E,
+                                                             "element_size_m": None if variant != case.geometry.variant
+                                                             else case.top.element_size_m},
+                       undulation={"scale": 1.0})
+        bodies = _bodies(c)
+        res = equilibrium(c, bodies)
+        q = res.rows[0].load_N
+        results[variant] = (res.rows[0].azimuth_rad, q, nominal_ball_load_N(c))
+        fig = _distribution_figures(res)
+        fig.update(top_E_Pa=E, nominal_ball_load_N=nominal_ball_load_N(c), n_balls=c.geometry.n_balls,
+                   max_over_nominal=fig["max_ball_load_N"] / nominal_ball_load_N(c),
+                   unloaded_share=fig["unloaded_balls"] / c.geometry.n_balls,
+                   lowest_frequency_Hz=float(bodies.top.frequencies_Hz[0]), n_nodes=len(bodies.top.nodes_m))
+        out.summary[variant] = fig
+        out.note(f"{variant:4s} (E {E / 1e9:g} GPa): max ball load {fig['max_ball_load_N'] / TONNE_N:.2f} t = "
+                 f"{fig['max_over_nominal']:.2f} × nominal, {fig['unloaded_balls']} of {c.geometry.n_balls} balls unloaded")
+        _write_top_vtu(out, f"top_structure_{variant}.vtu", bodies, res.modal("top"))
+        out.write_csv(f"ball_loads_{variant}.csv", ["ball", "azimuth_deg", "load_N"],
+                      [(i, math.degrees(res.rows[0].azimuth_rad[i]), q[i]) for i in range(len(q))])
+    out.save_figure(plot_ball_loads({v: (az, q / Q) for v, (az, q, Q) in results.items()}, None, case,
+                                    "Full scale vs 2 m with reduced stiffness", normalised=True),
+                    "full_vs_2m.png")
+
+
+STUDIES = {"static": study_static, "undulation": study_undulation, "thermal": study_thermal,
+           "combined": study_combined, "life": study_life, "full-scale": study_full_scale}
+
+
+def run_study(case: SlewingCase, out, progress=None) -> None:
+    """Run the study the case names (``single`` with ``quasi_static``: one equilibrium or a travel)."""
+    out.note(f"modelled: {case.geometry.variant} ring, {case.geometry.n_balls} load balls, dead load "
+             f"{case.dead_load_t:g} t; {_fidelity(case)}; contact {case.contact.preset}")
+    kind = case.study.kind
+    if kind in STUDIES:
+        return STUDIES[kind](case, out, progress)
+    if kind == "rotation" or case.analysis.type != "quasi_static":
+        from .dynamic import run_dynamic
+
+        return run_dynamic(case, out, progress)
+    bodies = _bodies(case)
+    if case.analysis.travel_steps:
+        rows, hist = _travel_study(case, out, (case.thermal.offset_m,), (case.top.E_Pa,), case.undulation.scale,
+                                   progress, "travel")
+        out.summary["cases"] = rows
+        out.save_figure(plot_travel({"worst ball": v for v in hist.values()}, case, "Worst ball over the run",
+                                    thermal=bool(case.thermal.offset_m)),
+                        "worst_ball.png")
+        return None
+    res = equilibrium(case, bodies)
+    out.summary.update(_distribution_figures(res), nominal_ball_load_N=nominal_ball_load_N(case),
+                       ball_load_N=res.rows[0].load_N)
+    _write_balls_vtu(out, "balls.vtu", case, res.rows[0].azimuth_rad, res.rows[0].load_N)
+    if bodies.top is not None:
+        _write_top_vtu(out, "top_structure.vtu", bodies, res.modal("top"))
+    out.save_figure(plot_ball_loads({"": res.rows[0].load_N}, res.rows[0].azimuth_rad, case, case.name),
+                    "ball_loads.png")
+    out.note(f"max ball load {res.rows[0].load_N.max() / TONNE_N:.2f} t")
+    return None
