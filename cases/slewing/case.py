@@ -35,7 +35,7 @@ from typing import Literal
 from fem_rings.sections import SlewingSection
 
 __all__ = ["VARIANTS", "Geometry", "Load", "Undulation", "Thermal", "Contact", "BodyFidelity", "Analysis",
-           "Study", "SlewingCase", "UNDULATION_PROFILE_DEG_MM", "THESIS_CONTACT_STIFFNESS_N_PER_M1P5",
+           "Study", "SlewingCase", "UNDULATION_PROFILE_DEG_MM", "THESIS_CONTACT_STIFFNESS_N_PER_M1P5", "THESIS_CONTACT_DAMPING_N_S_PER_M",
            "REDUCED_E_PA"]
 
 #: variant → (pitch diameter m, load balls, spacer ball diameter m, dead load t incl. the top race), §7.1
@@ -49,6 +49,8 @@ UNDULATION_PROFILE_DEG_MM = ((0.0, 0.0), (30.0, 0.5), (65.0, 0.0), (103.0, -0.5)
                              (215.0, 0.2), (240.0, 0.0), (251.0, -0.4), (262.0, 0.0), (300.0, 0.3), (330.0, 0.5))
 #: the thesis' ball–race contact (Table 2): K = 2 581 637 N/mm^1.5 per contact, in N/m^1.5
 THESIS_CONTACT_STIFFNESS_N_PER_M1P5 = 2581637.0 * 1000.0**1.5
+#: and its damping c = K/1000 = 2581.637 N·s/mm, in N·s/m
+THESIS_CONTACT_DAMPING_N_S_PER_M = 2581.637e3
 #: the thesis' reduced modulus E·(2/6.69)⁴ that gives the 2 m ring the full-scale bending stiffness
 REDUCED_E_PA = 1.5975e9
 
@@ -167,15 +169,18 @@ class Contact:
     ``damping_ratio``: normal damping of each ball contact as a fraction of the critical damping
     of a load ball on its linearised Hertz stiffness at the nominal load (the ``thesis`` preset
     uses its c = K/1000 s instead). Friction (RecurDyn/Adams step law): μ_static at v_static,
-    μ_dynamic from v_dynamic on; the thesis' values by default.
+    μ_dynamic from v_dynamic on, the thesis' coefficients. Its transition speeds (1 and 2 mm/s)
+    make the friction force so steep in the slip that an explicit step has to stay below 4e-8 s
+    (measured: 12.9 million steps, 4 min for 0.4 s of the 1 m ring); the defaults 50/100 mm/s,
+    still well below the balls' rolling speed (0.34 m/s at 1 m, 6.55 rpm), allow 1.5e-6 s.
     """
 
     preset: Literal["hertz", "thesis"] = "hertz"
     damping_ratio: float = 0.2
     mu_static: float = 0.24
     mu_dynamic: float = 0.14
-    v_static_m_s: float = 1e-3
-    v_dynamic_m_s: float = 2e-3
+    v_static_m_s: float = 0.05
+    v_dynamic_m_s: float = 0.1
     friction: bool = True
 
     def __post_init__(self) -> None:

@@ -9,7 +9,7 @@ from ..results import plt
 from . import scene
 from .case import SlewingCase
 
-__all__ = ["plot_static", "plot_ball_loads", "plot_travel"]
+__all__ = ["plot_static", "plot_ball_loads", "plot_travel", "plot_dynamic"]
 
 TONNE_N = 9810.0
 
@@ -85,4 +85,25 @@ def plot_travel(histories: dict, case: SlewingCase, title: str, thermal: bool = 
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper left", fontsize=8)
     ax.set_title(title)
+    return fig
+
+
+def plot_dynamic(t_s, ball_loads_N, spacer_forces_N, analytic_N: float, case: SlewingCase):
+    """Ball loads (all balls, thin lines) and spacer–load ball forces over time."""
+    rows = 2 if spacer_forces_N is not None else 1
+    fig, axes = plt().subplots(rows, 1, figsize=(9, 3.2 * rows + 0.8), constrained_layout=True, squeeze=False)
+    ax = axes[0, 0]
+    ax.plot(t_s, ball_loads_N / 1e3, lw=0.6, alpha=0.7)
+    ax.axhline(analytic_N / 1e3, color="k", ls="--", lw=1, label=f"analytic {analytic_N / 1e3:.2f} kN")
+    ax.set_xlabel("time t (s)")
+    ax.set_ylabel("normal ball load (kN)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="lower right", fontsize=8)
+    ax.set_title(f"{case.geometry.variant} ring, top race at {case.analysis.speed_rpm:g} rpm: every load ball")
+    if spacer_forces_N is not None:
+        ax = axes[1, 0]
+        ax.plot(t_s, spacer_forces_N, lw=0.6, alpha=0.7)
+        ax.set_xlabel("time t (s)")
+        ax.set_ylabel("spacer–load ball force (N)")
+        ax.grid(True, alpha=0.3)
     return fig

@@ -1,0 +1,223 @@
+"""Dynamic runs of the slewing ring: the top race turning on its balls (explicit integration).
+
+Scene (thesis §3.1): the bottom race fixed (rigid, or modal bolted at its patches); the top
+structure spinning at the case speed about the axis, free to sink and tilt, loaded by gravity
+(its mass is the dead load, :mod:`.case`); load balls in both grooves with Hertz contacts,
+friction and damping; spacer balls in the bottom groove between them (touching the bottom race
+and their two neighbours only), which keep the balls apart instead of a cage.
+
+Start: the static equilibrium with every ball held at its azimuth
+(:func:`mbd_core.multibody.statics.static_equilibrium`), then the no-slip rolling velocities of
+the load balls (:func:`mbd_core.multibody.bearings.set_rolling_velocities`) and of the spacers
+(orbit speed of the load balls, rolling on the bottom race).
+
+Contact damping: ``damping_ratio`` × the critical damping 2√(k m) of a load ball on the
+linearised Hertz stiffness k = 1.5 K δ^0.5 of one contact at the nominal load (``thesis``
+preset: its c = K/1000 s, i.e. 2.58 MN·s/m).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+
+import numpy as np
+
+from mbd_core.contact import ball_on_groove
+from mbd_core.contact.friction import Coulomb
+from mbd_core.contact.hertz import sphere_on_sphere
+from mbd_core.materials import BEARING_STEEL
+from mbd_core.multibody import ModelBuilder
+from mbd_core.multibody.bearings import _rotate_back, add_ball_row, ball_mass_kg, set_rolling_velocities
+from mbd_core.multibody.builder import ContactLaw, Driven, Fixed
+from mbd_core.multibody.explicit import simulate
+from mbd_core.multibody.statics import static_equilibrium
+
+from . import scene
+from .case import THESIS_CONTACT_DAMPING_N_S_PER_M, SlewingCase
+from .quasistatic import analytic_ball_load_N
+
+__all__ = ["DynamicScene", "build_scene", "start_state", "integrate"]
+
+log = logging.getLogger(__name__)
+
+#: penetration over which the IMPACT damping ramps in (well below the 0.1 mm Hertz approach)
+D_MAX_M = 1e-6
+
+
+class DynamicScene:
+    """The model and the indices a run reads back: bodies and contact pairs."""
+
+    def __init__(self, model, state, top, balls, spacers, ball_pairs_top, ball_pairs_bottom, spacer_pairs):
+        self.model, self.state, self.top = model, state, top
+        self.balls, self.spacers = balls, spacers
+        self.ball_pairs_top, self.ball_pairs_bottom, self.spacer_pairs = ball_pairs_top, ball_pairs_bottom, spacer_pairs
+
+
+def _tables(case: SlewingCase):
+    th = 2.0 * math.pi * np.arange(scene.N_THETA) / scene.N_THETA
+    h = scene.undulation_m(case.undulation, th) if case.undulation.scale else None
+    dr_bottom = scene.thermal_offset_m(case, "bottom", th) if case.thermal.offset_m else None
+    dr_top = scene.thermal_offset_m(case, "top", th) if case.thermal.offset_m else None
+    return (None, dr_top), (h, dr_bottom)
+
+
+def _damping(case: SlewingCase, k_contact: float) -> float:
+    if case.contact.preset == "thesis":
+        return THESIS_CONTACT_DAMPING_N_S_PER_M
+    Q, _ = analytic_ball_load_N(case)
+    delta = (Q / k_contact) ** (2.0 / 3.0)
+    k_lin = 1.5 * k_contact * math.sqrt(delta)
+    m = ball_mass_kg(case.geometry.ball_diameter_m, BEARING_STEEL.density_kg_m3)
+    return case.contact.damping_ratio * 2.0 * math.sqrt(k_lin * m)
+
+
+def _friction(case: SlewingCase):
+    c = case.contact
+    return Coulomb(c.mu_static, c.mu_dynamic, c.v_static_m_s, c.v_dynamic_m_s) if c.friction else None
+
+
+def build_scene(case: SlewingCase, bodies: scene.Bodies) -> DynamicScene:
+    """The multibody model of the case at rest, before the static equilibrium."""
+    g = case.geometry
+    row = scene.ball_row(case)
+    omega = case.analysis.speed_rpm * 2.0 * math.pi / 60.0
+    b = ModelBuilder(gravity_m_s2=(0.0, 0.0, -case.load.gravity_m_s2))
+    drive = Driven(omega, translation_free=True, tilt_free=True)
+    R = 0.5 * g.pitch_diameter_m
+    if bodies.top is None:
+        m = 1000.0 * case.dead_load_t
+        top = b.add_body("top structure", m, (0.5 * m * R * R, 0.5 * m * R * R, m * R * R), motion=drive,
+                         omega_rad_s=(0.0, 0.0, omega))
+    else:
+        top = b.add_modal_body("top structure", bodies.top, motion=drive, omega_rad_s=(0.0, 0.0, omega))
+    if bodies.bottom is None:
+        bottom = b.add_body("bottom race", 1000.0, (1e3, 1e3, 2e3), motion=Fixed())
+    else:
+        bottom = b.add_modal_body("bottom race", bodies.bottom, motion=Fixed())
+    moving_tab, fixed_tab = _tables(case)
+    k = ball_on_groove(g.ball_diameter_m, g.conformity, g.pitch_diameter_m, row.contact_angle_rad, "inner",
+                       BEARING_STEEL, BEARING_STEEL).stiffness_N_per_m1p5
+    c = _damping(case, k if row.stiffness_N_per_m1p5 is None else row.stiffness_N_per_m1p5 * 2.0**1.5)
+    friction = _friction(case)
+    rb = add_ball_row(b, row, top, bottom, friction=friction, damping_N_s_m=c, d_max_m=D_MAX_M,
+                      moving_sample="groove" if bodies.top is not None else None,
+                      fixed_sample="groove" if bodies.bottom is not None else None,
+                      moving_groove_m=moving_tab, fixed_groove_m=fixed_tab)
+    spacers, spacer_pairs = [], []
+    if case.analysis.spacers:
+        spacers, spacer_pairs = _add_spacers(b, case, row, bottom, rb.elements, fixed_tab,
+                                             "groove" if bodies.bottom is not None else None, c, friction)
+    model, state = b.finalize()
+    return DynamicScene(model, state, top, rb.elements, spacers, rb.moving_pairs, rb.fixed_pairs, spacer_pairs)
+
+
+def _add_spacers(b, case: SlewingCase, row, bottom, balls, fixed_tab, sample, damping: float, friction):
+    """Spacer balls at the bottom of the bottom groove, half-way between the load balls."""
+    g = case.geometry
+    D, d = g.ball_diameter_m, g.spacer_m
+    a0 = row.contact_angle_rad
+    # bottom groove curvature centre (as in add_ball_row: the ball centre + (f D − D/2) u)
+    u = np.array([-math.cos(a0), math.sin(a0)])
+    c_f = np.array([0.5 * g.pitch_diameter_m, 0.0]) + (g.conformity * D - D / 2) * u
+    groove = b.add_groove(bottom, c_f[0], c_f[1], g.conformity * D, *(fixed_tab or (None, None)), raceway=sample)
+    r_centre, z_centre = c_f[0], c_f[1] - (g.conformity * D - d / 2)
+    k_groove = ball_on_groove(d, g.conformity * D / d, g.pitch_diameter_m, 0.5 * math.pi, "outer",
+                              BEARING_STEEL, BEARING_STEEL).stiffness_N_per_m1p5
+    k_ball = sphere_on_sphere(D, d).stiffness_N_per_m1p5
+    m = ball_mass_kg(d, BEARING_STEEL.density_kg_m3)
+    law_groove = ContactLaw(k_groove, 1.5, damping, D_MAX_M, friction=friction)
+    law_ball = ContactLaw(k_ball, 1.5, damping, D_MAX_M, friction=friction)
+    n = len(balls)
+    spacers, pairs = [], []
+    for j in range(n):
+        psi = row.first_azimuth_rad + 2.0 * math.pi * (j + 0.5) / n
+        s = b.add_body(f"spacer {j}", m, (0.1 * m * d * d,) * 3,
+                       position_m=(r_centre * math.cos(psi), r_centre * math.sin(psi), z_centre))
+        b.add_ball_groove(s, bottom, groove, d / 2, law_groove, name=f"spacer {j}–bottom")
+        pairs.append(b.add_ball_ball(balls[j], s, D / 2, d / 2, law_ball, name=f"ball {j}–spacer {j}"))
+        pairs.append(b.add_ball_ball(balls[(j + 1) % n], s, D / 2, d / 2, law_ball, name=f"ball {(j + 1) % n}–spacer {j}"))
+        spacers.append(s)
+    return spacers, pairs
+
+
+def start_state(sc: DynamicScene):
+    """Static equilibrium with the balls held at their azimuths, then rolling velocities."""
+    state = static_equilibrium(sc.model, sc.state, fixed_azimuth=list(sc.balls) + list(sc.spacers)).state
+    state.v[sc.top, 3:] = sc.state.v[sc.top, 3:]  # the drive's spin
+    set_rolling_velocities(sc.model, state, sc.balls, sc.top, sc.model.body("bottom race"))
+    if sc.spacers:
+        a = sc.model.arrays
+        w_orbit = np.mean([np.cross(state.q[i, :3], state.v[i, :3])[2] / np.dot(state.q[i, :2], state.q[i, :2])
+                           for i in sc.balls])
+        for s in sc.spacers:
+            v = w_orbit * np.cross([0.0, 0.0, 1.0], state.q[s, :3])
+            r_s = a.pair_radius[int(np.flatnonzero(a.pair_a == s)[0])]
+            state.v[s, :3] = v
+            # rolling on the groove bottom below it: ω × (−r_s ẑ) = −v
+            state.v[s, 3:] = _rotate_back(state.q[s, 3:], np.cross([0.0, 0.0, 1.0], v) / r_s)
+    return state
+
+
+def integrate(sc: DynamicScene, state, duration_s: float, record_every: int, progress=None, chunks: int = 40) -> dict:
+    """Explicit integration for ``duration_s`` from ``state`` in ``chunks`` pieces (for the progress bar)."""
+    t0 = state.t
+    ends = t0 + duration_s * np.arange(1, chunks + 1) / chunks
+    parts, h = [], None
+    for t_end in (progress(ends, "simulated") if progress else ends):
+        out = simulate(sc.model, state, float(t_end), timestep_s=h, record_every=record_every)
+        h = out["timestep_s"]
+        parts.append(out if not parts else {k: (v[1:] if isinstance(v, np.ndarray) else v) for k, v in out.items()})
+    return {k: (np.concatenate([p[k] for p in parts]) if isinstance(parts[0][k], np.ndarray) else parts[0][k])
+            for k in parts[0]}
+
+
+def _ball_orbit_rad_s(sc: DynamicScene, out: dict, index) -> np.ndarray:
+    """Mean orbit speed of the bodies ``index`` at each record sample, rad/s."""
+    q, v = out["q"][:, index, :3], out["v"][:, index, :3]
+    return np.mean((q[..., 0] * v[..., 1] - q[..., 1] * v[..., 0]) / (q[..., 0] ** 2 + q[..., 1] ** 2), axis=1)
+
+
+def run_dynamic(case: SlewingCase, out, progress=None) -> None:
+    """Run the dynamic scene, write its series, figures and key figures."""
+    from .plots import plot_dynamic
+    from .studies import _write_balls_vtu, _write_top_vtu
+
+    bodies = scene.Bodies(scene.top_body(case), scene.bottom_body(case))
+    sc = build_scene(case, bodies)
+    state = start_state(sc)
+    a = case.analysis
+    run = integrate(sc, state, a.duration_s, a.record_every, progress)
+    t = run["t"]
+    q = run["fn"][:, list(sc.ball_pairs_top)]
+    settled = t >= t[0] + 0.1 * (t[-1] - t[0])  # the first tenth: the start's small transient
+    spread = (q.max(axis=1) - q.min(axis=1)) / q.mean(axis=1)
+    Q, alpha = analytic_ball_load_N(case)
+    w_top = case.analysis.speed_rpm * 2.0 * math.pi / 60.0
+    orbit = _ball_orbit_rad_s(sc, run, list(sc.balls))
+    fig = {"timestep_s": run["timestep_s"], "steps": int(round(a.duration_s / run["timestep_s"])),
+           "max_ball_load_N": float(q[settled].max()), "min_ball_load_N": float(q[settled].min()),
+           "mean_ball_load_N": float(q[settled].mean()), "analytic_ball_load_N": Q,
+           "max_load_spread": float(spread[settled].max()),
+           "ball_orbit_over_kinematic": float(orbit[settled].mean() / (scene.orbit_ratio(case) * w_top))}
+    if sc.spacer_pairs:
+        fs = run["fn"][:, list(sc.spacer_pairs)]
+        fig["max_spacer_force_N"] = float(fs[settled].max())
+        fig["mean_spacer_force_N"] = float(fs[settled].mean())
+    out.summary.update(fig)
+    out.write_csv("ball_loads_time.csv", ["t_s"] + [f"ball_{i}_N" for i in range(q.shape[1])],
+                  (np.concatenate([[ti], qi]) for ti, qi in zip(t, q)))
+    if sc.spacer_pairs:
+        out.write_csv("spacer_forces_time.csv", ["t_s"] + [sc.model.pair_names[p] for p in sc.spacer_pairs],
+                      (np.concatenate([[ti], fi]) for ti, fi in zip(t, fs)))
+    az = np.arctan2(run["q"][-1, list(sc.balls), 1], run["q"][-1, list(sc.balls), 0])
+    _write_balls_vtu(out, "balls_end.vtu", case, az, q[-1])
+    if bodies.top is not None:
+        lo, hi = run["modal_ranges"]["top structure"]
+        _write_top_vtu(out, "top_structure_end.vtu", bodies, run["eta"][-1, lo:hi])
+    out.save_figure(plot_dynamic(t, q, run["fn"][:, list(sc.spacer_pairs)] if sc.spacer_pairs else None, Q, case),
+                    "ball_loads_time.png")
+    out.note(f"explicit step {run['timestep_s']:.3g} s, {fig['steps']} steps; ball load {q[settled].min() / 1e3:.2f}–"
+             f"{q[settled].max() / 1e3:.2f} kN (analytic {Q / 1e3:.2f} kN), largest spread "
+             f"{100 * fig['max_load_spread']:.2f} %; ball orbit speed {fig['ball_orbit_over_kinematic']:.4f} × kinematic"
+             + (f"; spacer–load ball force ≤ {fig['max_spacer_force_N']:.1f} N" if sc.spacer_pairs else ""))
