@@ -75,7 +75,7 @@ def study_static(case: SlewingCase, out, progress=None) -> None:
         figures[kind] = {"mean_ball_load_N": float(q.mean()), "max_error_vs_analytic": float(np.abs(q / Q - 1).max()),
                          "max_error_vs_nominal_angle": float(np.abs(q / Q0 - 1).max()),
                          "spread": float((q.max() - q.min()) / q.mean()),
-                         "axial_sum_over_load": float(res.reaction[2] / -c.dead_load_N),
+                         "axial_sum_over_load": float(res.reaction[2] / c.dead_load_N),
                          "loaded_contact_angle_deg": float(np.degrees(res.rows[0].contact_angle_rad.mean()))}
         out.note(f"{kind:5s} top: mean ball load {q.mean() / 1e3:.3f} kN, largest error {100 * figures[kind]['max_error_vs_analytic']:.3f} % "
                  f"against Q = {Q / 1e3:.3f} kN at the loaded angle {math.degrees(alpha):.3f}° "

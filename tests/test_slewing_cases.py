@@ -1,0 +1,111 @@
+"""The slewing-ring studies of DESIGN §7.1 in their --quick variants, through `flexbearing run`.
+
+References: the analytic thrust load of a ball ring (Harris & Kotzalas 2007, §7.2), the rolling
+kinematics (cage speed ω_i(1 − γ)/2, Harris & Kotzalas ch. 8), the Hertz contact module, and the
+orderings the physics must show (more undulation → more load on the worst ball; a softer top
+structure follows the undulation and spreads the load).
+"""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from cases.cli import main
+from cases.config import CaseError, dumps_case, loads_case
+from cases.run import resolve_case
+from cases.slewing import PRESETS, SlewingCase, quick
+from cases.slewing import scene
+from cases.slewing.quasistatic import analytic_ball_load_N, nominal_ball_load_N, travel
+from mbd_core.contact import ball_on_groove
+from mbd_core.materials import BEARING_STEEL
+
+
+def _run(name, tmp_path, *extra):
+    out = tmp_path / name
+    assert main(["run", name, "--quick", "--out", str(out), *extra]) == 0
+    return json.loads((out / "summary.json").read_text()), out
+
+
+def test_presets_round_trip_through_toml():
+    for case in list(PRESETS.values()) + [quick(c) for c in PRESETS.values()]:
+        assert loads_case(SlewingCase, dumps_case(case)) == case
+
+
+def test_bad_keys_and_values_are_named(tmp_path, capsys):
+    with pytest.raises(CaseError, match=r"^top\.n_mode: unknown key"):
+        resolve_case("slewing-undulation", overrides=["top.n_mode=3"])
+    with pytest.raises(CaseError, match=r"^geometry\.conformity must be > 0.5"):
+        resolve_case("slewing-undulation", overrides=["geometry.conformity=0.4"])
+    bad = tmp_path / "bad.toml"
+    bad.write_text('name = "x"\n[thermal]\noffset_m = 1e-3\ntop_sector_deg = [100.0, 80.0]\n')
+    assert main(["run", str(bad), "--out", str(tmp_path / "never")]) == 2
+    assert "thermal.top_sector_deg" in capsys.readouterr().err
+    assert not (tmp_path / "never").exists()  # rejected before any work, no partial folder
+
+
+def test_static_load_per_ball_matches_the_analytic_thrust_load(tmp_path):
+    s, out = _run("slewing-static", tmp_path)
+    case = loads_case(SlewingCase, (out / "case.toml").read_text())
+    Q, alpha = analytic_ball_load_N(case)
+    # Harris §7.2 with the loaded contact angle: 0.5 % acceptance (rigid: solver tolerance;
+    # modal: the ring's own deformation, 0.09 % measured)
+    for kind in ("rigid_top", "modal_top"):
+        assert s[kind]["max_error_vs_analytic"] < 0.005
+        assert s[kind]["axial_sum_over_load"] == pytest.approx(1.0, abs=1e-9)  # equilibrium
+    assert s["rigid_top"]["loaded_contact_angle_deg"] == pytest.approx(math.degrees(alpha), abs=1e-6)
+    # the thesis' W/(Z sin 60°) leaves out the contact-angle change under load (+0.93° here)
+    assert s["nominal_ball_load_N"] == pytest.approx(nominal_ball_load_N(case), rel=1e-12)
+    assert {p.name for p in out.iterdir()} >= {"case.toml", "summary.json", "ball_loads.csv", "ball_loads.png",
+                                                "balls_rigid.vtu", "top_structure_modal.vtu"}
+
+
+def test_rotation_keeps_the_ball_loads_uniform(tmp_path):
+    s, _ = _run("slewing-rotation", tmp_path)
+    assert s["max_load_spread"] < 0.01                                    # acceptance (b): 1 %
+    assert s["mean_ball_load_N"] == pytest.approx(s["analytic_ball_load_N"], rel=0.005)
+    assert s["ball_orbit_over_kinematic"] == pytest.approx(1.0, abs=0.01)  # Harris ch. 8 within 1 %
+
+
+def test_undulation_max_load_grows_with_height_and_falls_with_stiffness(tmp_path):
+    s, _ = _run("slewing-undulation", tmp_path)
+    by = {(c["top_E_Pa"], c["undulation_scale"]): c["max_ball_load_N"] for c in s["cases"]}
+    Es = sorted({e for e, _ in by})
+    scales = sorted({h for _, h in by})
+    for E in Es:
+        loads = [by[(E, h)] for h in scales]
+        assert all(b > a for a, b in zip(loads, loads[1:]))
+    for h in scales:
+        assert by[(Es[0], h)] < by[(Es[1], h)]  # reduced E (Es[0]) below inherent
+
+
+def test_thermal_offset_raises_load_under_the_top_sector_and_lowers_it_under_the_bottom_one():
+    case = quick(PRESETS["slewing-thermal"]).with_(thermal={"offset_m": 0.5e-3})
+    tr = travel(case, scene.Bodies(None, None), 144, 2.0)
+    Q0 = nominal_ball_load_N(case)
+    psi = np.degrees(np.mod(tr.ball_azimuth_rad, 2 * np.pi))
+    in_top = np.degrees(np.mod(tr.ball_azimuth_rad - tr.top_rotation_rad[:, None], 2 * np.pi))
+    top_only = (in_top > 85) & (in_top < 95) & ~((psi > 255) & (psi < 285))
+    bottom_only = (psi > 265) & (psi < 275) & ~((in_top > 75) & (in_top < 105))
+    assert top_only.sum() >= 5 and bottom_only.sum() >= 5
+    # top race offset outwards: the curvature centres move apart by Δ cos α → much more load
+    assert tr.load_N[top_only].min() > 1.5 * Q0
+    assert tr.load_N[bottom_only].max() < 0.5 * Q0
+    # and the ball entering the top sector: load rises from the sector edge to its middle
+    edge = (in_top > 70) & (in_top < 78) & ~((psi > 250) & (psi < 290))
+    assert tr.load_N[edge].mean() < tr.load_N[top_only].mean()
+
+
+def test_life_of_the_worst_ball_uses_the_hertz_contact_of_the_foundation(tmp_path):
+    s, out = _run("slewing-life", tmp_path)
+    case = loads_case(SlewingCase, (out / "case.toml").read_text())
+    Q = s["worst_case"]["max_ball_load_N"]
+    assert s["life"]["Q_N"] == Q
+    g = case.geometry
+    c = ball_on_groove(g.ball_diameter_m, g.conformity, g.pitch_diameter_m, math.radians(60), "inner",
+                       BEARING_STEEL, BEARING_STEEL)
+    assert s["life"]["p0_inner_Pa"] == pytest.approx(float(c.max_pressure_Pa(Q)), rel=1e-12)
+    # the worst ball of the undulated, thermally offset ring carries more than the uniform load
+    assert Q > 1.2 * nominal_ball_load_N(case)
+    assert (out / "subsurface_shear.png").stat().st_size > 0
