@@ -97,13 +97,19 @@ def plot_dynamic(t_s, ball_loads_N, spacer_forces_N, analytic_N: float, case: Sl
     ax.axhline(analytic_N / 1e3, color="k", ls="--", lw=1, label=f"analytic {analytic_N / 1e3:.2f} kN")
     ax.set_xlabel("time t (s)")
     ax.set_ylabel("normal ball load (kN)")
+    lo, hi = float(np.min(ball_loads_N)), float(np.max(ball_loads_N))
+    pad = max(0.03 * analytic_N, 0.05 * (hi - lo))  # at least ±3 % of the analytic load
+    ax.set_ylim(min(lo, analytic_N) / 1e3 - pad / 1e3, max(hi, analytic_N) / 1e3 + pad / 1e3)
+    ax.ticklabel_format(axis="y", useOffset=False)
     ax.grid(True, alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)
-    ax.set_title(f"{case.geometry.variant} ring, top race at {case.analysis.speed_rpm:g} rpm: every load ball")
+    ax.set_title(f"{case.geometry.variant} ring, top race at {case.analysis.speed_rpm:g} rpm: every load ball "
+                 "(y range at least ±3 %)")
     if spacer_forces_N is not None:
         ax = axes[1, 0]
         ax.plot(t_s, spacer_forces_N, lw=0.6, alpha=0.7)
         ax.set_xlabel("time t (s)")
         ax.set_ylabel("spacer–load ball force (N)")
+        ax.set_ylim(bottom=0.0, top=max(1.0, 1.1 * float(np.max(spacer_forces_N))))
         ax.grid(True, alpha=0.3)
     return fig
