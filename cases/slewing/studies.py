@@ -8,6 +8,7 @@ for comparison are from seed 003, chapters 3–4 (loads in tonnes-force of 9.81 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import meshio
 import numpy as np
@@ -37,6 +38,8 @@ def _fidelity(case: SlewingCase) -> str:
             return f"{name} rigid"
         return f"{name} modal ({f.n_modes} modes + groove shapes to harmonic {f.groove_harmonics}, E {f.E_Pa / 1e9:g} GPa)"
     top = "top race + TMR" if case.top.include_tmr else "top race"
+    if case.study.kind == "static":  # runs both
+        return f"{top} rigid, then {one(replace(case.top, kind='modal'), top)}; {one(case.bottom, 'bottom race')}"
     return f"{one(case.top, top)}; {one(case.bottom, 'bottom race')}"
 
 
