@@ -256,7 +256,8 @@ class Study:
     against Q = W/(Z sin α). ``rotation`` (b): the top race turning. ``undulation`` (c): every
     ``undulation_scales`` × every ``top_E_Pa``. ``thermal`` (d): every ``offsets_m``, balls
     travelling. ``combined`` (e): undulation × ``combined_offsets_m``. ``life`` (f): the worst
-    ball of ``combined`` at ``life_offset_m``. ``full-scale`` (g): the Ø6.69 m ring with its own
+    ball of ``combined`` at ``life_offset_m``. ``undulation`` also runs the undulated ring (×1, rigid
+    top structure) dynamically for ``spacer_run_s`` (0: not) for the spacer–load ball forces. ``full-scale`` (g): the Ø6.69 m ring with its own
     stiffness beside the 2 m ring with E = ``top_E_Pa[-1]``.
     """
 
@@ -267,6 +268,7 @@ class Study:
     combined_offsets_m: tuple[float, ...] = (0.4e-3, 1.11e-3)
     life_offset_m: float = 0.4e-3
     case_depth_m: float = 8e-3
+    spacer_run_s: float = 1.0
 
     def __post_init__(self) -> None:
         for name in ("undulation_scales", "top_E_Pa", "offsets_m", "combined_offsets_m"):
@@ -276,6 +278,8 @@ class Study:
         if not all(e > 0.0 for e in self.top_E_Pa):
             raise ValueError(f"top_E_Pa must be positive, got {list(self.top_E_Pa)}")
         _positive("study", case_depth_m=self.case_depth_m)
+        if not (math.isfinite(self.spacer_run_s) and self.spacer_run_s >= 0.0):
+            raise ValueError(f"spacer_run_s must be ≥ 0, got {self.spacer_run_s}")
 
 
 @dataclass(frozen=True)

@@ -51,7 +51,8 @@ PRESETS = {name: from_mapping(SlewingCase, tables) for name, tables in _PRESET_T
 _QUICK = {
     "static": dict(geometry={"variant": "1m"}, top={"element_size_m": 0.1, "n_modes": 12, "groove_harmonics": 8}),
     "rotation": dict(analysis={"duration_s": 0.4, "record_every": 100}),
-    "undulation": dict(top={"element_size_m": 0.12, "n_modes": 12, "groove_harmonics": 8}),
+    "undulation": dict(top={"element_size_m": 0.12, "n_modes": 12, "groove_harmonics": 8},
+                       study={"spacer_run_s": 0.05}),
     "thermal": dict(study={"offsets_m": (0.5e-3,)}, analysis={"travel_steps": 144}),
     "combined": dict(top={"element_size_m": 0.12, "n_modes": 12, "groove_harmonics": 8},
                      study={"combined_offsets_m": (0.4e-3,), "top_E_Pa": (REDUCED_E_PA,)},

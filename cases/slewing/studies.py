@@ -115,10 +115,30 @@ def study_undulation(case: SlewingCase, out, progress=None) -> None:
     out.summary["cases"] = table
     out.write_csv("ball_loads.csv", ["ball", "azimuth_deg"] + [f"load_N_E{E / 1e9:g}GPa_x{h:g}" for E, h in curves],
                   [(i, math.degrees(azimuth[i]), *(q[i] for q in curves.values())) for i in range(len(azimuth))])
+    if s.spacer_run_s > 0.0:
+        _spacer_run(base, out, progress)
     for E in s.top_E_Pa:
         sub = {h: curves[(E, h)] for h in s.undulation_scales}
         out.save_figure(plot_ball_loads(sub, azimuth, case, f"top structure E = {E / 1e9:g} GPa"),
                         f"ball_loads_E{E / 1e9:g}GPa.png")
+
+
+def _spacer_run(case: SlewingCase, out, progress) -> None:
+    """Spacer–load ball forces: the undulated ring (×1, rigid top structure, from its quasi-static
+    equilibrium) turning for ``spacer_run_s``, into the sub-folder ``spacer_run``."""
+    from ..results import RunOutput
+    from .dynamic import run_dynamic
+
+    c = case.with_(top={"kind": "rigid"}, undulation={"scale": 1.0},
+                   analysis={"type": "dynamic_explicit", "duration_s": case.study.spacer_run_s})
+    sub = RunOutput(out.path("spacer_run/summary.json").parent)
+    run_dynamic(c, sub, progress)
+    sub.write_summary()
+    fs = {k: sub.summary[k] for k in ("max_spacer_force_N", "mean_spacer_force_N", "p99_spacer_force_N")}
+    out.summary["spacer_run"] = {"duration_s": case.study.spacer_run_s, "top": "rigid", **fs}
+    out.note(f"dynamic, rigid top, undulation ×1, {case.study.spacer_run_s:g} s: spacer–load ball force "
+             f"peak {fs['max_spacer_force_N']:.0f} N (impacts of unloaded balls), 99th percentile "
+             f"{fs['p99_spacer_force_N']:.0f} N, mean {fs['mean_spacer_force_N']:.1f} N")
 
 
 # -- (d) thermal offset and (e) combined -------------------------------------------------------
