@@ -94,7 +94,7 @@ def plot_dynamic(t_s, ball_loads_N, spacer_forces_N, analytic_N: float, case: Sl
     fig, axes = plt().subplots(rows, 1, figsize=(9, 3.2 * rows + 0.8), constrained_layout=True, squeeze=False)
     ax = axes[0, 0]
     ax.plot(t_s, ball_loads_N / 1e3, lw=0.6, alpha=0.7)
-    ax.axhline(analytic_N / 1e3, color="k", ls="--", lw=1, label=f"analytic {analytic_N / 1e3:.2f} kN")
+    ax.axhline(analytic_N / 1e3, color="k", ls="--", lw=1, label=f"analytic, flat races: {analytic_N / 1e3:.2f} kN")
     ax.set_xlabel("time t (s)")
     ax.set_ylabel("normal ball load (kN)")
     lo, hi = float(np.min(ball_loads_N)), float(np.max(ball_loads_N))
