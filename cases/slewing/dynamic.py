@@ -112,14 +112,20 @@ def build_scene(case: SlewingCase, bodies: scene.Bodies) -> DynamicScene:
     return DynamicScene(model, state, top, rb.elements, spacers, rb.moving_pairs, rb.fixed_pairs, spacer_pairs)
 
 
+def _bottom_groove_centre_rz(case: SlewingCase) -> np.ndarray:
+    """(r, z) of the bottom groove's curvature centre, m: the ball centre + (f D − D/2) u, u the
+    unit vector towards the top-race contact at α0 (as in :func:`add_ball_row`)."""
+    g = case.geometry
+    a0 = math.radians(g.contact_angle_deg)
+    u = np.array([-math.cos(a0), math.sin(a0)])
+    return np.array([0.5 * g.pitch_diameter_m, 0.0]) + (g.conformity * g.ball_diameter_m - g.ball_diameter_m / 2) * u
+
+
 def _add_spacers(b, case: SlewingCase, row, bottom, balls, fixed_tab, sample, damping: float, friction):
     """Spacer balls at the bottom of the bottom groove, half-way between the load balls."""
     g = case.geometry
     D, d = g.ball_diameter_m, g.spacer_m
-    a0 = row.contact_angle_rad
-    # bottom groove curvature centre (as in add_ball_row: the ball centre + (f D − D/2) u)
-    u = np.array([-math.cos(a0), math.sin(a0)])
-    c_f = np.array([0.5 * g.pitch_diameter_m, 0.0]) + (g.conformity * D - D / 2) * u
+    c_f = _bottom_groove_centre_rz(case)
     groove = b.add_groove(bottom, c_f[0], c_f[1], g.conformity * D, *(fixed_tab or (None, None)), raceway=sample)
     r_centre, z_centre = c_f[0], c_f[1] - (g.conformity * D - d / 2)
     k_groove = ball_on_groove(d, g.conformity * D / d, g.pitch_diameter_m, 0.5 * math.pi, "outer",
@@ -167,7 +173,7 @@ def state_from_quasistatic(sc: DynamicScene, case: SlewingCase):
     angle = math.hypot(tx, ty)
     if angle > 0.0:
         state.q[sc.top, 3:] = quat_from_axis_angle((tx / angle, ty / angle, 0.0), angle)
-    c0 = np.array([0.5 * g.pitch_diameter_m, 0.0]) + (f * D - D / 2) * np.array([-math.cos(a0), math.sin(a0)])
+    c0 = _bottom_groove_centre_rz(case)
     r = res.rows[0]
     h = scene.undulation_m(case.undulation, r.azimuth_rad)
     dr = scene.thermal_offset_m(case, "bottom", r.azimuth_rad)
