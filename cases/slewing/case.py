@@ -33,6 +33,7 @@ from dataclasses import dataclass, field, replace
 from typing import Literal
 
 from fem_rings.sections import SlewingSection
+from mbd_core.contact.friction import Coulomb
 
 __all__ = ["VARIANTS", "Geometry", "Load", "Undulation", "Thermal", "Contact", "BodyFidelity", "Analysis",
            "Study", "SlewingCase", "UNDULATION_PROFILE_DEG_MM", "THESIS_CONTACT_STIFFNESS_N_PER_M1P5", "THESIS_CONTACT_DAMPING_N_S_PER_M",
@@ -186,11 +187,13 @@ class Contact:
     def __post_init__(self) -> None:
         if not 0.0 <= self.damping_ratio <= 2.0:
             raise ValueError(f"damping_ratio must lie in [0, 2], got {self.damping_ratio}")
-        if not 0.0 <= self.mu_dynamic <= self.mu_static:
-            raise ValueError(f"mu_static ({self.mu_static}) must be ≥ mu_dynamic ({self.mu_dynamic}) ≥ 0")
-        if not 0.0 < self.v_static_m_s < self.v_dynamic_m_s:
-            raise ValueError(f"v_static_m_s ({self.v_static_m_s}) must be positive and below v_dynamic_m_s "
-                             f"({self.v_dynamic_m_s})")
+        self.friction_law()  # the friction law checks its own parameters
+
+    def friction_law(self):
+        """The ball contacts' :class:`~mbd_core.contact.friction.Coulomb` law (None: frictionless)."""
+        if not self.friction:
+            return None
+        return Coulomb(self.mu_static, self.mu_dynamic, self.v_static_m_s, self.v_dynamic_m_s)
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,6 @@ import math
 import numpy as np
 
 from mbd_core.contact import ball_on_groove
-from mbd_core.contact.friction import Coulomb
 from mbd_core.contact.hertz import sphere_on_sphere
 from mbd_core.materials import BEARING_STEEL
 from mbd_core.multibody import ModelBuilder
@@ -72,11 +71,6 @@ def _damping(case: SlewingCase, k_contact: float) -> float:
     return case.contact.damping_ratio * 2.0 * math.sqrt(k_lin * m)
 
 
-def _friction(case: SlewingCase):
-    c = case.contact
-    return Coulomb(c.mu_static, c.mu_dynamic, c.v_static_m_s, c.v_dynamic_m_s) if c.friction else None
-
-
 def build_scene(case: SlewingCase, bodies: scene.Bodies) -> DynamicScene:
     """The multibody model of the case at rest, before the static equilibrium."""
     g = case.geometry
@@ -99,7 +93,7 @@ def build_scene(case: SlewingCase, bodies: scene.Bodies) -> DynamicScene:
     k = ball_on_groove(g.ball_diameter_m, g.conformity, g.pitch_diameter_m, row.contact_angle_rad, "inner",
                        BEARING_STEEL, BEARING_STEEL).stiffness_N_per_m1p5
     c = _damping(case, k if row.stiffness_N_per_m1p5 is None else row.stiffness_N_per_m1p5 * 2.0**1.5)
-    friction = _friction(case)
+    friction = case.contact.friction_law()
     rb = add_ball_row(b, row, top, bottom, friction=friction, damping_N_s_m=c, d_max_m=D_MAX_M,
                       moving_sample="groove" if bodies.top is not None else None,
                       fixed_sample="groove" if bodies.bottom is not None else None,
