@@ -1,0 +1,161 @@
+"""The case file of the 12 MW wind main bearing (DESIGN §7.2, paper seed 001): what a run needs.
+
+Tables: ``rollers`` (material, slices, rib and pocket play), ``contact`` (stiffness preset,
+damping, friction), ``loads`` (the synthetic 32-case spectrum of :mod:`.spectrum`, a user CSV, or
+one load case held constant), ``analysis`` (driving speed, simulated time) and ``study``. Every
+value is SI; construction checks each field and names it on error (see :mod:`cases.config`).
+
+Geometry (:class:`fem_rings.sections.ThreeRowGeometry`): 98 radial rollers Ø55 × 55 mm on pitch
+Ø1963 mm, 2 × 94 thrust rollers Ø60 × 60 mm on pitch Ø2182 mm, clearances in the middle of the
+stated ranges; +z points from the rotor (front) to the rear, y is vertical (up). The inner ring
+(both pieces as one body, 3971 kg) turns at the driving speed and is free to translate and tilt
+under the loads applied at its centre; the outer ring with the nose is fixed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Literal
+
+from mbd_core.contact.friction import Coulomb
+
+__all__ = ["Rollers", "Contact", "Loads", "Analysis", "Study", "WindCase", "INNER_RING_MASS_KG",
+           "OUTER_RING_MASS_KG", "RADIAL_CAGE_MASS_KG", "THRUST_CAGE_MASS_KG"]
+
+#: masses of the paper's Table 2, kg (first + second inner ring; outer ring; cages)
+INNER_RING_MASS_KG = 2271.0 + 1700.0
+OUTER_RING_MASS_KG = 3055.0
+THRUST_CAGE_MASS_KG = 90.2
+RADIAL_CAGE_MASS_KG = 70.0
+
+
+def _positive(**values) -> None:
+    for name, v in values.items():
+        if not v > 0:
+            raise ValueError(f"{name} must be positive, got {v!r}")
+
+
+@dataclass(frozen=True)
+class Rollers:
+    """Roller material (``steel`` or the paper's aluminium bronze E = 110 GPa, ν = 0.32), slices
+    per roller, the axial play of a radial roller between its guide ribs and the play of every
+    roller in its cage pocket, m."""
+
+    material: Literal["steel", "bronze"] = "steel"
+    n_slices: int = 10
+    rib_clearance_m: float = 0.5e-3
+    pocket_clearance_m: float = 0.5e-3
+
+    def __post_init__(self) -> None:
+        if self.n_slices < 1:
+            raise ValueError(f"n_slices must be ≥ 1, got {self.n_slices}")
+        _positive(rib_clearance_m=self.rib_clearance_m, pocket_clearance_m=self.pocket_clearance_m)
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Roller contacts: stiffness, damping and friction.
+
+    ``hertz`` (default): each slice follows the ISO/TS 16281 line-contact law of the roller
+    (exponent 10/9), damped at ``damping_ratio`` of the critical damping of a roller on the
+    linearised stiffness of one contact at the mean radial roller load. Friction (Adams step law):
+    μ_static at v_static, μ_dynamic from v_dynamic on, the paper's μ_s = 0.2, μ_d = 0.1. Its
+    transition speeds (10/100 mm/s) limit the explicit step through the slope of the friction law;
+    the defaults 50/100 mm/s are still far below the rollers' surface speed (3 m/s at 30 rpm).
+    """
+
+    preset: Literal["hertz"] = "hertz"
+    damping_ratio: float = 0.1
+    mu_static: float = 0.2
+    mu_dynamic: float = 0.1
+    v_static_m_s: float = 0.3
+    v_dynamic_m_s: float = 0.6
+    pocket_stiffness_N_per_m: float = 1e8
+
+    def __post_init__(self) -> None:
+        if not 0.0 <= self.damping_ratio <= 2.0:
+            raise ValueError(f"damping_ratio must lie in [0, 2], got {self.damping_ratio}")
+        _positive(pocket_stiffness_N_per_m=self.pocket_stiffness_N_per_m)
+        self.friction_law()  # the law checks its own parameters
+
+    def friction_law(self) -> Coulomb:
+        return Coulomb(self.mu_static, self.mu_dynamic, self.v_static_m_s, self.v_dynamic_m_s)
+
+
+@dataclass(frozen=True)
+class Loads:
+    """Loads at the inner-ring centre.
+
+    ``source``: ``synthetic`` (the documented 32-case spectrum, :mod:`.spectrum`), ``csv`` (a user
+    file at ``csv_path``, same columns, see :func:`.spectrum.read_csv`) or ``constant`` (load case
+    ``case_index`` of the synthetic spectrum held over the whole run). The cases are laid out
+    over ``spectrum_duration_s`` (the paper: 8 s) and joined by a cubic spline; ``scale``
+    multiplies every component; ``include_torque``: the driving torque Mz is applied (the driven
+    inner ring takes it up either way).
+    """
+
+    source: Literal["synthetic", "csv", "constant"] = "synthetic"
+    csv_path: str | None = None
+    case_index: int = 18
+    spectrum_duration_s: float = 8.0
+    scale: float = 1.0
+    include_torque: bool = False
+
+    def __post_init__(self) -> None:
+        if self.source == "csv" and not self.csv_path:
+            raise ValueError("csv_path is needed when source = 'csv'")
+        if not 0 <= self.case_index < 32:
+            raise ValueError(f"case_index must lie in 0…31, got {self.case_index}")
+        _positive(spectrum_duration_s=self.spectrum_duration_s)
+        if not self.scale >= 0:
+            raise ValueError(f"scale must be ≥ 0, got {self.scale}")
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """Driving speed of the inner ring (rpm), simulated time (s), the settling time excluded from
+    the averages (s) and how often a sample is recorded (steps)."""
+
+    speed_rpm: float = 30.0
+    duration_s: float = 8.0
+    settle_s: float = 0.5
+    record_every: int = 200
+
+    def __post_init__(self) -> None:
+        _positive(speed_rpm=self.speed_rpm, duration_s=self.duration_s, record_every=self.record_every)
+        if not 0 <= self.settle_s < self.duration_s:
+            raise ValueError(f"settle_s must lie in [0, duration_s), got {self.settle_s}")
+
+
+@dataclass(frozen=True)
+class Study:
+    """``static``: quasi-static load distribution under every load case, and the dynamic
+    equilibrium check; ``speeds``: roller and cage speeds against rolling kinematics;
+    ``driving-speed``: cage and raceway forces at each of ``speeds_rpm``; ``friction``: cage
+    forces for each (μ_dynamic, μ_static) of ``friction_sets``."""
+
+    kind: Literal["static", "speeds", "driving-speed", "friction"] = "speeds"
+    speeds_rpm: tuple[float, ...] = (20.0, 25.0, 30.0)
+    friction_sets: tuple[tuple[float, float], ...] = ((0.025, 0.05), (0.05, 0.1), (0.075, 0.15), (0.1, 0.2))
+
+    def __post_init__(self) -> None:
+        if not self.speeds_rpm or min(self.speeds_rpm) <= 0:
+            raise ValueError(f"speeds_rpm must be positive speeds, got {self.speeds_rpm}")
+        for mu_d, mu_s in self.friction_sets:
+            if not 0 <= mu_d <= mu_s:
+                raise ValueError(f"friction_sets: each pair is (μ_dynamic, μ_static) with 0 ≤ μ_d ≤ μ_s, got {(mu_d, mu_s)}")
+
+
+@dataclass(frozen=True)
+class WindCase:
+    name: str = "wind"
+    description: str = ""
+    rollers: Rollers = field(default_factory=Rollers)
+    contact: Contact = field(default_factory=Contact)
+    loads: Loads = field(default_factory=Loads)
+    analysis: Analysis = field(default_factory=Analysis)
+    study: Study = field(default_factory=Study)
+
+    def with_(self, **tables) -> "WindCase":
+        """A copy with some tables changed: ``case.with_(analysis={"speed_rpm": 20})``."""
+        return replace(self, **{k: replace(getattr(self, k), **v) for k, v in tables.items()})

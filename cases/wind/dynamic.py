@@ -1,0 +1,154 @@
+"""A dynamic run of the wind main bearing and the figures read from it.
+
+Roller speed: the spin about the roller's own axis relative to the cage frame (for the radial
+row the cage speed is taken off the absolute spin about z; a thrust roller's axis is radial, so its
+spin needs no correction), against the no-slip value of :func:`.scene.rolling_speeds`. A roller
+rolls only while it is loaded: the ``loaded`` figure averages over the samples in which the roller
+carries more than ``LOADED_SHARE`` of its row's largest raceway load; ``one roller`` is roller 0
+of the row over the whole run (it passes through the unloaded zone, as the paper's plots do).
+
+Equilibrium: the force and moment of the rollers' normal forces on the inner ring (raceway slices
+and guide ribs) against the applied load and the ring's weight, averaged over the run after
+``settle_s`` (the ring's mean acceleration is zero when it stays in place).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from cases.slewing.dynamic import integrate
+
+from .case import INNER_RING_MASS_KG, WindCase
+from .scene import G_M_S2, WindScene, build_scene, rolling_speeds
+
+__all__ = ["LOADED_SHARE", "run", "roller_speeds", "cage_speeds", "ring_reaction", "cage_forces", "applied_load"]
+
+#: a roller counts as loaded above this share of its row's largest raceway load at that instant
+LOADED_SHARE = 0.05
+
+
+def run(case: WindCase, progress=None) -> tuple[WindScene, dict]:
+    sc = build_scene(case)
+    a = case.analysis
+    return sc, integrate(sc, sc.state, a.duration_s, a.record_every, progress)
+
+
+def _settled(case: WindCase, rec: dict) -> np.ndarray:
+    return rec["t"] >= case.analysis.settle_s
+
+
+def _omega(case: WindCase) -> float:
+    return case.analysis.speed_rpm * 2.0 * math.pi / 60.0
+
+
+def roller_spin_rad_s(sc: WindScene, rec: dict, k: int) -> np.ndarray:
+    """(samples, rollers) spin of row k's rollers about their axes relative to the cage, rad/s."""
+    rb, row = sc.rows[k], sc.row_defs[k]
+    spin = rec["v"][:, list(rb.elements), 5]
+    if row.orientation == "radial":
+        spin = spin - rec["v"][:, rb.cage, 5][:, None]
+    return spin
+
+
+def roller_speeds(case: WindCase, sc: WindScene, rec: dict) -> dict:
+    """Per row: kinematic spin, mean spin of loaded rollers and of roller 0, their errors, rpm."""
+    ok = _settled(case, rec)
+    out = {}
+    for k, (rb, row) in enumerate(zip(sc.rows, sc.row_defs)):
+        _, w_s = rolling_speeds(row, _omega(case))
+        spin = roller_spin_rad_s(sc, rec, k)[ok]
+        fn = rec["fn"][ok][:, list(rb.moving_pairs)]
+        loaded = fn > LOADED_SHARE * fn.max(axis=1, keepdims=True)
+        one = spin[:, 0]
+        to_rpm = 60.0 / (2.0 * math.pi)
+        out[row.name] = {
+            "kinematic_rpm": abs(w_s) * to_rpm,
+            "loaded_mean_rpm": abs(spin[loaded].mean()) * to_rpm,
+            "loaded_error": float(spin[loaded].mean() / w_s - 1.0),
+            "one_roller_mean_rpm": abs(one.mean()) * to_rpm,
+            "one_roller_error": float(one.mean() / w_s - 1.0),
+            "one_roller_fluctuation_rpm": float(one.std() * to_rpm),
+            "loaded_share_of_samples": float(loaded.mean()),
+        }
+    return out
+
+
+def cage_speeds(case: WindCase, sc: WindScene, rec: dict) -> dict:
+    """Per row: mean cage speed about z against the no-slip orbit speed, rad/s."""
+    ok = _settled(case, rec)
+    out = {}
+    for rb, row in zip(sc.rows, sc.row_defs):
+        w_c, _ = rolling_speeds(row, _omega(case))
+        w = rec["v"][ok, rb.cage, 5]
+        out[row.name] = {"kinematic_rad_s": w_c, "mean_rad_s": float(w.mean()), "error": float(w.mean() / w_c - 1.0)}
+    return out
+
+
+def applied_load(sc: WindScene, t_s: np.ndarray) -> np.ndarray:
+    """(samples, 6) load on the inner ring at times t: the spline of the load history (as the
+    builder applies it) plus the ring's weight, N and N·m."""
+    from scipy.interpolate import CubicSpline
+
+    f = CubicSpline(sc.times_s, sc.loads, axis=0)(np.clip(t_s, sc.times_s[0], sc.times_s[-1]))
+    f[:, 1] -= INNER_RING_MASS_KG * G_M_S2
+    return f
+
+
+def ring_reaction(sc: WindScene, rec: dict) -> np.ndarray:
+    """(samples, 6) force and moment about the ring centre of the rollers' normal forces on the
+    inner ring, N and N·m (normals: −e_r on the inner raceway, ∓z on the thrust raceways, ±z on
+    the radial row's ribs)."""
+    q, fn = rec["q"], rec["fn"]
+    c = q[:, sc.inner, :3]
+    total = np.zeros((len(rec["t"]), 6))
+    for rb, row in zip(sc.rows, sc.row_defs):
+        x = q[:, list(rb.elements), :3]
+        e_r = x.copy()
+        e_r[..., 2] = 0.0
+        e_r /= np.linalg.norm(e_r, axis=-1, keepdims=True)
+        z = np.zeros_like(x)
+        z[..., 2] = 1.0
+        r = row.roller_diameter_m / 2
+        if row.orientation == "radial":
+            n = -e_r
+        else:
+            n = -row.load_sign * z
+        f = fn[:, list(rb.moving_pairs)][..., None] * n
+        p = x + r * n - c[:, None, :]
+        total[:, :3] += f.sum(axis=1)
+        total[:, 3:] += np.cross(p, f).sum(axis=1)
+        if rb.other_pairs:  # guide ribs: + end pushes the ring along +z, − end along −z
+            n_rib = len(rb.other_pairs) // len(rb.elements)
+            ribs = fn[:, list(rb.other_pairs)].reshape(len(rec["t"]), len(rb.elements), n_rib)
+            sign = np.array([1.0, -1.0][:n_rib])
+            fz = (ribs * sign).sum(axis=-1)
+            total[:, 2] += fz.sum(axis=1)
+            total[:, 3:] += np.cross(x - c[:, None, :], fz[..., None] * z).sum(axis=1)
+    return total
+
+
+def equilibrium_error(case: WindCase, sc: WindScene, rec: dict) -> dict:
+    """Mean residual of the inner ring's equilibrium after settling, relative to the load."""
+    ok = _settled(case, rec)
+    react = ring_reaction(sc, rec)[ok].mean(axis=0)
+    load = applied_load(sc, rec["t"][ok]).mean(axis=0)
+    load[5] = react[5] = 0.0  # the drive holds the spin
+    res = react + load
+    return {"reaction": react.tolist(), "applied": load.tolist(),
+            "force_error": float(np.linalg.norm(res[:3]) / np.linalg.norm(load[:3])),
+            "moment_error": float(np.linalg.norm(res[3:5]) / max(np.linalg.norm(load[3:5]), 1e-9))}
+
+
+def cage_forces(case: WindCase, sc: WindScene, rec: dict) -> dict:
+    """Per row: mean roller–pocket force over contacts in touch, mean over all pockets and time, peak, N."""
+    ok = _settled(case, rec)
+    out = {}
+    for rb, row in zip(sc.rows, sc.row_defs):
+        f = rec["fn"][ok][:, list(rb.pocket_pairs)]
+        touching = f > 0
+        out[row.name] = {"mean_in_contact_N": float(f[touching].mean()) if touching.any() else 0.0,
+                         "mean_N": float(f.mean()), "peak_N": float(f.max())}
+        out[row.name]["mean_raceway_N"] = float(rec["fn"][ok][:, list(rb.moving_pairs)].mean())
+    return out

@@ -1,0 +1,74 @@
+"""Figures of the wind main bearing studies (matplotlib, Agg)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from cases.results import plt
+
+from .dynamic import roller_spin_rad_s
+from .scene import rolling_speeds
+from .spectrum import plot_spectrum
+
+__all__ = ["spectrum_figure", "max_loads_figure", "roller_speed_figure", "sweep_figure"]
+
+RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)
+
+
+def spectrum_figure(times_s, loads, share, path):
+    return plot_spectrum(times_s, loads, share, path)
+
+
+def max_loads_figure(per_row: dict, share):
+    p = plt()
+    fig, ax = p.subplots(figsize=(8, 4.5))
+    k = np.arange(len(share))
+    for name, vals in per_row.items():
+        ax.plot(k, [v[0] / 1e3 for v in vals], marker="o", ms=3, label=name)
+    ax.set_xlabel("load case")
+    ax.set_ylabel("largest roller load, kN")
+    ax.set_title("Quasi-static roller loads (rigid rings) under the 32 load cases")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    return fig
+
+
+def roller_speed_figure(case, sc, rec):
+    """Spin of roller 0 of each row relative to the cage, with the no-slip value."""
+    p = plt()
+    fig, axes = p.subplots(3, 1, figsize=(8, 8), sharex=True)
+    w_i = case.analysis.speed_rpm * 2.0 * math.pi / 60.0
+    for k, ax in enumerate(axes):
+        row = sc.row_defs[k]
+        _, w_s = rolling_speeds(row, w_i)
+        spin = np.abs(roller_spin_rad_s(sc, rec, k)[:, 0]) * RPM_PER_RAD_S
+        ax.plot(rec["t"], spin, lw=0.8, label="roller 0 (relative to the cage)")
+        ax.axhline(abs(w_s) * RPM_PER_RAD_S, color="k", ls="--", lw=1, label=f"no slip {abs(w_s) * RPM_PER_RAD_S:.1f} r/min")
+        ax.set_ylabel("r/min")
+        ax.set_title(f"{row.name} row", fontsize=10)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, loc="lower right")
+    axes[-1].set_xlabel("time, s")
+    fig.suptitle(f"Roller spin at {case.analysis.speed_rpm:g} r/min (rigid rings)")
+    fig.tight_layout()
+    return fig
+
+
+def sweep_figure(results: dict, xlabel: str):
+    p = plt()
+    fig, (a, b) = p.subplots(1, 2, figsize=(10, 4))
+    keys = list(results)
+    x = np.arange(len(keys))
+    for name in ("radial", "front thrust", "rear thrust"):
+        a.plot(x, [results[k]["cage_forces"][name]["mean_N"] for k in keys], marker="o", label=name)
+        b.plot(x, [results[k]["cage_forces"][name]["peak_N"] for k in keys], marker="o", label=name)
+    for ax, what in ((a, "mean roller–cage force, N"), (b, "peak roller–cage force, N")):
+        ax.set_xticks(x, [str(k) for k in keys])
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(what)
+        ax.grid(alpha=0.3)
+        ax.legend()
+    fig.tight_layout()
+    return fig

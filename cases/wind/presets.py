@@ -1,0 +1,51 @@
+"""Named sub-cases of the wind main bearing (DESIGN §7.2 studies) and their quick variants.
+
+``--quick`` keeps the question and shrinks the work: 0.3 s simulated at 5 slices per roller with
+one load case held (the first 0.1 s excluded from the averages), two speeds or friction sets.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from ..config import from_mapping
+from .case import WindCase
+
+__all__ = ["PRESETS", "preset", "quick"]
+
+_PRESET_TABLES = {
+    "wind-static": dict(
+        name="wind-static", description="12 MW main bearing: quasi-static roller loads of the three rows under "
+        "each of the 32 synthetic load cases (rigid rings)", study={"kind": "static"}),
+    "wind-speeds": dict(
+        name="wind-speeds", description="12 MW main bearing, rigid rings, 30 r/min, 8 s of the load spectrum: "
+        "roller and cage speeds against rolling kinematics, inner-ring equilibrium", study={"kind": "speeds"}),
+    "wind-driving-speed": dict(
+        name="wind-driving-speed", description="12 MW main bearing at 20/25/30 r/min: roller–cage forces of "
+        "each row, front/rear thrust cage ratio", study={"kind": "driving-speed"}),
+    "wind-friction": dict(
+        name="wind-friction", description="12 MW main bearing at 30 r/min with (μd, μs) = (0.025, 0.05) … (0.1, "
+        "0.2): roller–cage forces of each row", study={"kind": "friction"}),
+}
+
+PRESETS = {name: from_mapping(WindCase, tables) for name, tables in _PRESET_TABLES.items()}
+
+_DYNAMIC_QUICK = dict(rollers={"n_slices": 5}, loads={"source": "constant"},
+                      analysis={"duration_s": 0.3, "settle_s": 0.1, "record_every": 100})
+_QUICK = {
+    "static": {},
+    "speeds": _DYNAMIC_QUICK,
+    "driving-speed": {**_DYNAMIC_QUICK, "study": {"speeds_rpm": (20.0, 30.0)}},
+    "friction": {**_DYNAMIC_QUICK, "study": {"friction_sets": ((0.025, 0.05), (0.1, 0.2))}},
+}
+
+
+def preset(name: str) -> WindCase:
+    if name not in PRESETS:
+        raise KeyError(name)
+    return PRESETS[name]
+
+
+def quick(case: WindCase) -> WindCase:
+    """The reduced variant of ``case`` that ``--quick`` runs (name gets a ``-quick`` suffix)."""
+    return replace(case.with_(**_QUICK[case.study.kind]), name=f"{case.name}-quick")

@@ -1,0 +1,121 @@
+"""The studies of the wind main bearing (DESIGN §7.2); each fills a :class:`cases.results.RunOutput`.
+
+Paper values quoted for comparison are from seed 001 (Pang et al., *Lubricants* 12 (2024) 252):
+Table 4 (roller speeds), §4.3.1 (driving speed) and §4.3.2 (friction).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
+
+from . import dynamic, plots
+from .case import INNER_RING_MASS_KG, WindCase
+from .scene import G_M_S2, load_history, rows
+from .spectrum import load_cases, write_csv
+
+__all__ = ["STUDIES", "run_study"]
+
+#: paper Table 4: theoretical roller speeds (r/min) and the rigid / rigid–flexible errors
+PAPER_ROLLER_ERRORS = {"radial": (0.0083, 0.0028), "rear thrust": (0.0070, 0.0042), "front thrust": (0.0079, 0.0021)}
+
+
+def _spectrum_files(case: WindCase, out) -> None:
+    t, f = load_history(case)
+    write_csv(out.path("load_history.csv"), t, f)
+    _, share = load_cases()
+    if case.loads.source == "synthetic":
+        plots.spectrum_figure(t, f, share, out.path("load_spectrum.png"))
+
+
+def study_static(case: WindCase, out, progress=None) -> None:
+    """Quasi-static load distribution (rigid rings) under each of the 32 load cases and the inner
+    ring's weight: largest roller load and loaded rollers per row; the equilibrium residual."""
+    loads, share = load_cases()
+    loads = loads * case.loads.scale
+    bearing = Bearing("three-row roller", rows(case))
+    per_row = {r.name: [] for r in bearing.rows}
+    worst = 0.0
+    for k in (progress(range(len(loads)), "load cases") if progress else range(len(loads))):
+        f = loads[k]
+        res = solve_load_distribution(bearing, RingLoad(Fx_N=f[0], Fy_N=f[1] - INNER_RING_MASS_KG * G_M_S2,
+                                                        Fz_N=f[2], Mx_Nm=f[3], My_Nm=f[4]))
+        worst = max(worst, float(res.equilibrium_error))
+        for r in res.rows:
+            per_row[r.name].append((float(r.load_N.max()), int(np.sum(r.load_N > 0))))
+    out.write_csv("max_roller_loads.csv", ["case", "time_share", *[f"{n} max load N" for n in per_row]],
+                  [(k, share[k], *[per_row[n][k][0] for n in per_row]) for k in range(len(loads))])
+    out.save_figure(plots.max_loads_figure(per_row, share), "max_roller_loads.png")
+    _spectrum_files(case, out)
+    out.summary.update(equilibrium_error_max=worst,
+                       max_roller_load_N={n: max(v[0] for v in vals) for n, vals in per_row.items()})
+    for n, vals in per_row.items():
+        out.note(f"{n:12s}: largest roller load {max(v[0] for v in vals) / 1e3:7.1f} kN over the 32 cases")
+
+
+def _one_run(case: WindCase, progress=None) -> tuple[dict, object, dict]:
+    sc, rec = dynamic.run(case, progress)
+    figures = {"speeds": dynamic.roller_speeds(case, sc, rec), "cages": dynamic.cage_speeds(case, sc, rec),
+               "equilibrium": dynamic.equilibrium_error(case, sc, rec),
+               "cage_forces": dynamic.cage_forces(case, sc, rec), "timestep_s": rec["timestep_s"]}
+    return figures, sc, rec
+
+
+def study_speeds(case: WindCase, out, progress=None) -> None:
+    """Roller and cage speeds against rolling kinematics, with the inner ring's equilibrium."""
+    fig, sc, rec = _one_run(case, progress)
+    _spectrum_files(case, out)
+    out.save_figure(plots.roller_speed_figure(case, sc, rec), "roller_speeds.png")
+    out.summary.update(fig)
+    for name, s in fig["speeds"].items():
+        out.note(f"{name:12s}: loaded rollers {s['loaded_mean_rpm']:.2f} r/min against {s['kinematic_rpm']:.2f} "
+                 f"({100 * s['loaded_error']:+.2f} %), roller 0 {s['one_roller_mean_rpm']:.1f} r/min "
+                 f"(±{s['one_roller_fluctuation_rpm']:.1f}); cage {100 * fig['cages'][name]['error']:+.2f} %; "
+                 f"paper (rigid/flexible) {100 * PAPER_ROLLER_ERRORS[name][0]:.2f} / {100 * PAPER_ROLLER_ERRORS[name][1]:.2f} %")
+    e = fig["equilibrium"]
+    out.note(f"inner ring equilibrium: force {100 * e['force_error']:.3f} %, moment {100 * e['moment_error']:.3f} % of the load")
+
+
+def _sweep(case: WindCase, out, variants, label: str, progress=None) -> dict:
+    results = {}
+    for key, c in variants:
+        fig, _, _ = _one_run(c, progress)
+        results[key] = fig
+        cf = fig["cage_forces"]
+        out.note(f"{label} {key}: mean roller–cage force radial {cf['radial']['mean_N']:.1f} N, front "
+                 f"{cf['front thrust']['mean_N']:.1f} N, rear {cf['rear thrust']['mean_N']:.1f} N; peak "
+                 f"{max(v['peak_N'] for v in cf.values()):.0f} N")
+    return results
+
+
+def study_driving_speed(case: WindCase, out, progress=None) -> None:
+    """Cage and raceway forces at each driving speed; front/rear thrust cage force ratio (paper 1.19–1.59)."""
+    variants = [(s, case.with_(analysis={"speed_rpm": s})) for s in case.study.speeds_rpm]
+    res = _sweep(case, out, variants, "speed (r/min)", progress)
+    ratio = {s: r["cage_forces"]["front thrust"]["mean_N"] / r["cage_forces"]["rear thrust"]["mean_N"] for s, r in res.items()}
+    out.summary.update(by_speed_rpm={str(s): r["cage_forces"] for s, r in res.items()},
+                       front_rear_cage_force_ratio={str(s): v for s, v in ratio.items()})
+    out.save_figure(plots.sweep_figure(res, "driving speed, r/min"), "cage_forces_vs_speed.png")
+    out.note("front/rear thrust cage force ratio: " + ", ".join(f"{s:g} r/min {v:.2f}" for s, v in ratio.items()))
+
+
+def study_friction(case: WindCase, out, progress=None) -> None:
+    """Cage forces for each (μ_dynamic, μ_static); drop from the highest to the lowest friction (paper 50–76 %)."""
+    variants = [(f"{md:g}/{ms:g}", case.with_(contact={"mu_dynamic": md, "mu_static": ms}))
+                for md, ms in case.study.friction_sets]
+    res = _sweep(case, out, variants, "friction μd/μs", progress)
+    keys = list(res)
+    hi = max(keys, key=lambda k: float(k.split("/")[0]))
+    lo = min(keys, key=lambda k: float(k.split("/")[0]))
+    drop = {n: 1.0 - res[lo]["cage_forces"][n]["mean_N"] / res[hi]["cage_forces"][n]["mean_N"] for n in res[hi]["cage_forces"]}
+    out.summary.update(by_friction={k: r["cage_forces"] for k, r in res.items()}, cage_force_drop=drop)
+    out.save_figure(plots.sweep_figure(res, "friction μd/μs"), "cage_forces_vs_friction.png")
+    out.note("drop of the mean cage force from μd " + f"{hi} to {lo}: " + ", ".join(f"{n} {100 * v:.0f} %" for n, v in drop.items()))
+
+
+STUDIES = {"static": study_static, "speeds": study_speeds, "driving-speed": study_driving_speed, "friction": study_friction}
+
+
+def run_study(case: WindCase, out, progress=None) -> None:
+    STUDIES[case.study.kind](case, out, progress)
