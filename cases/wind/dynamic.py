@@ -4,8 +4,9 @@ Roller speed: the spin about the roller's own axis relative to the cage frame (f
 row the cage speed is taken off the absolute spin about z; a thrust roller's axis is radial, so its
 spin needs no correction), against the no-slip value of :func:`.scene.rolling_speeds`. A roller
 rolls only while it is loaded: the ``loaded`` figure averages over the samples in which the roller
-carries more than ``LOADED_SHARE`` of its row's largest raceway load; ``one roller`` is roller 0
-of the row over the whole run (it passes through the unloaded zone, as the paper's plots do).
+carries more than ``LOADED_SHARE`` of its row's largest raceway load; ``one roller`` is the most
+loaded roller of the row at the start (:func:`watched_roller`) over the whole run (it passes
+through the unloaded zone in a long run, as the paper's plots do).
 
 Equilibrium: the force and moment of the rollers' normal forces on the inner ring (raceway slices
 and guide ribs) against the applied load and the ring's weight, averaged over the run after
@@ -52,6 +53,11 @@ def roller_spin_rad_s(sc: WindScene, rec: dict, k: int) -> np.ndarray:
     return spin
 
 
+def watched_roller(sc: WindScene, rec: dict, k: int) -> int:
+    """Index within row k of the roller with the largest raceway load at the first sample."""
+    return int(np.argmax(rec["fn"][0, list(sc.rows[k].moving_pairs)]))
+
+
 def roller_speeds(case: WindCase, sc: WindScene, rec: dict) -> dict:
     """Per row: kinematic spin, mean spin of loaded rollers and of roller 0, their errors, rpm."""
     ok = _settled(case, rec)
@@ -61,12 +67,14 @@ def roller_speeds(case: WindCase, sc: WindScene, rec: dict) -> dict:
         spin = roller_spin_rad_s(sc, rec, k)[ok]
         fn = rec["fn"][ok][:, list(rb.moving_pairs)]
         loaded = fn > LOADED_SHARE * fn.max(axis=1, keepdims=True)
-        one = spin[:, 0]
+        j = watched_roller(sc, rec, k)
+        one = spin[:, j]
         to_rpm = 60.0 / (2.0 * math.pi)
         out[row.name] = {
             "kinematic_rpm": abs(w_s) * to_rpm,
             "loaded_mean_rpm": abs(spin[loaded].mean()) * to_rpm,
             "loaded_error": float(spin[loaded].mean() / w_s - 1.0),
+            "one_roller": j,
             "one_roller_mean_rpm": abs(one.mean()) * to_rpm,
             "one_roller_error": float(one.mean() / w_s - 1.0),
             "one_roller_fluctuation_rpm": float(one.std() * to_rpm),

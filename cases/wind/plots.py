@@ -8,7 +8,7 @@ import numpy as np
 
 from cases.results import plt
 
-from .dynamic import roller_spin_rad_s
+from .dynamic import roller_spin_rad_s, watched_roller
 from .scene import rolling_speeds
 from .spectrum import plot_spectrum
 
@@ -36,15 +36,16 @@ def max_loads_figure(per_row: dict, share):
 
 
 def roller_speed_figure(case, sc, rec):
-    """Spin of roller 0 of each row relative to the cage, with the no-slip value."""
+    """Spin of the most loaded roller of each row at the start, relative to the cage, with the no-slip value."""
     p = plt()
     fig, axes = p.subplots(3, 1, figsize=(8, 8), sharex=True)
     w_i = case.analysis.speed_rpm * 2.0 * math.pi / 60.0
     for k, ax in enumerate(axes):
         row = sc.row_defs[k]
         _, w_s = rolling_speeds(row, w_i)
-        spin = np.abs(roller_spin_rad_s(sc, rec, k)[:, 0]) * RPM_PER_RAD_S
-        ax.plot(rec["t"], spin, lw=0.8, label="roller 0 (relative to the cage)")
+        j = watched_roller(sc, rec, k)
+        spin = np.abs(roller_spin_rad_s(sc, rec, k)[:, j]) * RPM_PER_RAD_S
+        ax.plot(rec["t"], spin, lw=0.8, label=f"roller {j} (relative to the cage)")
         ax.axhline(abs(w_s) * RPM_PER_RAD_S, color="k", ls="--", lw=1, label=f"no slip {abs(w_s) * RPM_PER_RAD_S:.1f} r/min")
         ax.set_ylabel("r/min")
         ax.set_title(f"{row.name} row", fontsize=10)

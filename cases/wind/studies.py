@@ -70,7 +70,7 @@ def study_speeds(case: WindCase, out, progress=None) -> None:
     out.summary.update(fig)
     for name, s in fig["speeds"].items():
         out.note(f"{name:12s}: loaded rollers {s['loaded_mean_rpm']:.2f} r/min against {s['kinematic_rpm']:.2f} "
-                 f"({100 * s['loaded_error']:+.2f} %), roller 0 {s['one_roller_mean_rpm']:.1f} r/min "
+                 f"({100 * s['loaded_error']:+.2f} %), roller {s['one_roller']} {s['one_roller_mean_rpm']:.1f} r/min "
                  f"(±{s['one_roller_fluctuation_rpm']:.1f}); cage {100 * fig['cages'][name]['error']:+.2f} %; "
                  f"paper (rigid/flexible) {100 * PAPER_ROLLER_ERRORS[name][0]:.2f} / {100 * PAPER_ROLLER_ERRORS[name][1]:.2f} %")
     e = fig["equilibrium"]

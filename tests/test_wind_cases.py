@@ -1,0 +1,83 @@
+"""The wind main-bearing studies of DESIGN §7.2 in their --quick variants, through `flexbearing run`.
+
+References: rolling kinematics without slip (Harris & Kotzalas, *Essential Concepts*, ch. 8:
+roller spin (d_m/2D)(1 − γ²) ω_i relative to the cage, cage ω_i(1 − γ)/2; the paper's Table 4
+gives 535 and 545.5 r/min at 30 r/min), Newton's second law for the inner ring (its mean
+acceleration over the run is zero, so the rollers' forces balance the applied load and its
+weight), and the masses of the paper's Table 2.
+"""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from cases.cli import main
+from cases.config import CaseError, dumps_case, loads_case
+from cases.run import resolve_case
+from cases.wind.case import WindCase
+from cases.wind.presets import PRESETS, quick
+from cases.wind.scene import rolling_speeds, rows
+
+
+def _run(name, tmp_path, *extra):
+    out = tmp_path / name
+    assert main(["run", name, "--quick", "--out", str(out), *extra]) == 0
+    return json.loads((out / "summary.json").read_text()), out
+
+
+def test_presets_round_trip_through_toml(tmp_path):
+    for case in list(PRESETS.values()) + [quick(c) for c in PRESETS.values()]:
+        assert loads_case(WindCase, dumps_case(case)) == case
+    f = tmp_path / "c.toml"
+    f.write_text(dumps_case(quick(PRESETS["wind-static"])))
+    assert resolve_case(str(f)) == quick(PRESETS["wind-static"])  # a file with [rollers] is a wind case
+
+
+def test_bad_values_are_named():
+    with pytest.raises(CaseError, match=r"^contact\.mu_dynami: unknown key"):
+        resolve_case("wind-speeds", overrides=["contact.mu_dynami=0.1"])
+    with pytest.raises(CaseError, match=r"^loads.*csv_path is needed"):
+        resolve_case("wind-speeds", overrides=["loads.source=csv"])
+    with pytest.raises(CaseError, match=r"^study.*friction_sets"):
+        resolve_case("wind-friction", overrides=["study.friction_sets=[[0.2, 0.1]]"])
+
+
+def test_kinematic_roller_speeds_are_the_papers():
+    # paper Table 4 (calculated values at 30 r/min): radial 535 r/min, thrust 545.5 r/min
+    w = 30 * 2 * math.pi / 60
+    radial, front, rear = rows(WindCase())
+    to_rpm = 60 / (2 * math.pi)
+    assert abs(rolling_speeds(radial, w)[1]) * to_rpm == pytest.approx(535.0, abs=0.1)
+    assert abs(rolling_speeds(front, w)[1]) * to_rpm == pytest.approx(545.5, abs=1e-9)
+    assert abs(rolling_speeds(rear, w)[1]) * to_rpm == pytest.approx(545.5, abs=1e-9)
+    # cage (orbit) speed ω_i(1 − γ)/2, γ = D/d_m (Harris & Kotzalas ch. 8)
+    assert rolling_speeds(radial, w)[0] == pytest.approx(w * (1 - 55 / 1963) / 2, rel=1e-12)
+    assert rolling_speeds(front, w)[0] == pytest.approx(w / 2, rel=1e-12)
+
+
+def test_static_load_cases(tmp_path):
+    s, out = _run("wind-static", tmp_path)
+    assert s["equilibrium_error_max"] < 1e-6  # Newton residual of the quasi-static solver
+    # the radial row carries the weights (−1.275 MN + the inner ring): Stribeck's 4.37 F_r/Z
+    # estimate for zero clearance (Harris & Kotzalas §7.1) bounds the largest roller load from below
+    f_r = 1.2753e6 + 3971 * 9.81
+    assert s["max_roller_load_N"]["radial"] > 4.37 * f_r / 98
+    assert {p.name for p in out.iterdir()} >= {"load_spectrum.png", "max_roller_loads.png", "load_history.csv"}
+
+
+def test_rigid_run_speeds_and_equilibrium(tmp_path):
+    s, _ = _run("wind-speeds", tmp_path)
+    # inner ring equilibrium: the rollers' normal forces balance the applied load and the ring's
+    # weight (0.5 % acceptance; 0.05 % force and 0.11 % moment measured)
+    assert s["equilibrium"]["force_error"] < 0.005
+    assert s["equilibrium"]["moment_error"] < 0.005
+    # loaded rollers roll at the kinematic speed within 1 % (measured −0.08 / +0.41 / −0.20 %)
+    for name in ("radial", "front thrust", "rear thrust"):
+        assert abs(s["speeds"][name]["loaded_error"]) < 0.01, name
+    # the cage of the fully loaded front thrust row turns at ω_i/2 within 1 % (measured +0.33 %);
+    # the radial and rear cages lag (unloaded rollers dragging their cages, see the case README)
+    assert abs(s["cages"]["front thrust"]["error"]) < 0.01
+    for name in ("radial", "rear thrust"):
+        assert s["cages"][name]["error"] < 0.0
