@@ -337,3 +337,25 @@ def test_static_equilibrium_carries_a_caged_bearing_under_gravity():
     weight = 9.81 * (1.0 + 12 * model.arrays.body_mass[bodies.elements[0]] + 0.05)
     axial = sum(w.contact_fn[c] * math.sin(w.contact_angle[c]) for c in bodies.fixed_pairs)
     assert axial == pytest.approx(2000.0 - weight, rel=1e-6)
+
+
+@pytest.mark.parametrize("load_sign", [1, -1])
+def test_thrust_roller_ribs_sit_beyond_both_roller_ends(load_sign):
+    """A thrust roller (axis radial) between ribs on the moving ring: at its nominal place each end is
+    c/2 from its rib (penetration −c/2), and moved outward by u the outer end's penetration is
+    u − c/2 and the inner end's −u − c/2 (geometry: ends at R ± L/2, ribs at R ± (L/2 + c/2))."""
+    c, u = 0.4e-3, 0.1e-3
+    row = RollerRow("thrust", 12, 20e-3, 20e-3, 0.3, "thrust", load_sign=load_sign, gap_m=10e-6, n_slices=4)
+    b = ModelBuilder()
+    inner = b.add_body("inner ring", 1.0, (1e-2, 1e-2, 2e-2), motion=Fixed())
+    outer = b.add_body("outer ring", 1.0, (1e-2, 1e-2, 2e-2), motion=Fixed())
+    bodies = add_roller_row(b, row, inner, outer, rib_clearance_m=c)
+    model, state = b.finalize()
+    ribs = np.array(bodies.other_pairs).reshape(len(bodies.elements), 2)  # (end +, end −) per roller
+    w = evaluate_forces(model, state)
+    np.testing.assert_allclose(w.contact_delta[ribs], -c / 2, atol=1e-12)
+    e = bodies.elements[3]
+    x = state.q[e, :3]
+    state.q[e, :3] = x + u * np.array([x[0], x[1], 0.0]) / math.hypot(x[0], x[1])
+    w = evaluate_forces(model, state)
+    np.testing.assert_allclose(w.contact_delta[ribs[3]], [u - c / 2, -u - c / 2], atol=1e-12)

@@ -1,6 +1,7 @@
 """The case file of the 12 MW wind main bearing (DESIGN §7.2, paper seed 001): what a run needs.
 
-Tables: ``rollers`` (material, slices, rib and pocket play), ``contact`` (stiffness preset,
+Tables: ``rollers`` (material, slices, rib and pocket play), ``bodies`` (rigid or modal rings
+and cages), ``contact`` (stiffness preset,
 damping, friction), ``loads`` (the synthetic 32-case spectrum of :mod:`.spectrum`, a user CSV, or
 one load case held constant), ``analysis`` (driving speed, simulated time) and ``study``. Every
 value is SI; construction checks each field and names it on error (see :mod:`cases.config`).
@@ -19,7 +20,7 @@ from typing import Literal
 
 from mbd_core.contact.friction import Coulomb
 
-__all__ = ["Rollers", "Contact", "Loads", "Analysis", "Study", "WindCase", "INNER_RING_MASS_KG",
+__all__ = ["Rollers", "Bodies", "Contact", "Loads", "Analysis", "Study", "WindCase", "ADAMS_CONTACT", "INNER_RING_MASS_KG",
            "OUTER_RING_MASS_KG", "RADIAL_CAGE_MASS_KG", "THRUST_CAGE_MASS_KG"]
 
 #: masses of the paper's Table 2, kg (first + second inner ring; outer ring; cages)
@@ -38,18 +39,65 @@ def _positive(**values) -> None:
 @dataclass(frozen=True)
 class Rollers:
     """Roller material (``steel`` or the paper's aluminium bronze E = 110 GPa, ν = 0.32), slices
-    per roller, the axial play of a radial roller between its guide ribs and the play of every
-    roller in its cage pocket, m."""
+    per roller, the play of a roller along its axis between its ribs on the inner ring (radial
+    row: guide ribs; thrust rows: end stops, wider because a flat roller end against the
+    cylindrical rib of radius R ± L/2 touches it with its rim first — the rim sits ρ²/(2R) ≈ 0.26 mm
+    deeper at ρ = 24 mm — and a tight stop would drag the rollers with the ring), and the play of
+    every roller in its cage pocket, m."""
 
     material: Literal["steel", "bronze"] = "steel"
     n_slices: int = 10
     rib_clearance_m: float = 0.5e-3
+    thrust_rib_clearance_m: float = 2e-3
     pocket_clearance_m: float = 0.5e-3
 
     def __post_init__(self) -> None:
         if self.n_slices < 1:
             raise ValueError(f"n_slices must be ≥ 1, got {self.n_slices}")
-        _positive(rib_clearance_m=self.rib_clearance_m, pocket_clearance_m=self.pocket_clearance_m)
+        _positive(rib_clearance_m=self.rib_clearance_m, thrust_rib_clearance_m=self.thrust_rib_clearance_m,
+                  pocket_clearance_m=self.pocket_clearance_m)
+
+
+@dataclass(frozen=True)
+class Bodies:
+    """Rigid or modal rings and cages (DESIGN §7.2; the paper: 20 modes each).
+
+    Modal rings: the inner ring floats on free–free modes (its frame carries the drive, the loads
+    and gravity), the outer ring is held at ``bolts`` patches of its rear (bolt) face; their
+    raceways are sampled on ``n_theta`` × ``n_across`` grids (roller slices interpolate between
+    them). Modal cages: free–free modes, pocket walls sampled. Meshes: quadratic hexahedra of
+    ``ring_element_size_m`` for the rings, quadratic tetrahedra of ``cage_element_size_m`` for
+    the cages; ``modal_damping_ratio`` of critical on every mode.
+    """
+
+    rings: Literal["rigid", "modal"] = "rigid"
+    cages: Literal["rigid", "modal"] = "rigid"
+    n_modes: int = 20
+    modal_damping_ratio: float = 0.02
+    n_theta: int = 360
+    n_across: int = 3
+    bolts: int = 48
+    ring_element_size_m: float = 0.06
+    cage_element_size_m: float = 0.02
+
+    def __post_init__(self) -> None:
+        if self.n_modes < 1:
+            raise ValueError(f"n_modes must be ≥ 1, got {self.n_modes}")
+        if not 0.0 <= self.modal_damping_ratio < 1.0:
+            raise ValueError(f"modal_damping_ratio must lie in [0, 1), got {self.modal_damping_ratio}")
+        if self.n_theta < 8 or self.n_across < 2 or self.bolts < 3:
+            raise ValueError(f"n_theta ≥ 8, n_across ≥ 2 and bolts ≥ 3 are needed, got {self.n_theta}, "
+                             f"{self.n_across}, {self.bolts}")
+        _positive(ring_element_size_m=self.ring_element_size_m, cage_element_size_m=self.cage_element_size_m)
+
+    @property
+    def any_modal(self) -> bool:
+        return "modal" in (self.rings, self.cages)
+
+
+#: the paper's Adams IMPACT settings for every roller contact (seed 001, §3): K = 1e5 N/mm^1.5,
+#: n = 1.5, c = 70 N·s/mm, d_max = 0.1 mm — in SI
+ADAMS_CONTACT = dict(stiffness_N_per_m1p5=1e5 * 1e3**1.5, exponent=1.5, damping_N_s_m=70e3, d_max_m=0.1e-3)
 
 
 @dataclass(frozen=True)
@@ -58,13 +106,15 @@ class Contact:
 
     ``hertz`` (default): each slice follows the ISO/TS 16281 line-contact law of the roller
     (exponent 10/9), damped at ``damping_ratio`` of the critical damping of a roller on the
-    linearised stiffness of one contact at the mean radial roller load. Friction (Adams step law):
+    linearised stiffness of one contact at the mean radial roller load. ``adams``: the paper's
+    IMPACT values (:data:`ADAMS_CONTACT`) for each whole roller contact, shared by its slices
+    (``damping_ratio`` unused). Friction (Adams step law):
     μ_static at v_static, μ_dynamic from v_dynamic on, the paper's μ_s = 0.2, μ_d = 0.1. Its
     transition speeds (10/100 mm/s) limit the explicit step through the slope of the friction law;
     the defaults 50/100 mm/s are still far below the rollers' surface speed (3 m/s at 30 rpm).
     """
 
-    preset: Literal["hertz"] = "hertz"
+    preset: Literal["hertz", "adams"] = "hertz"
     damping_ratio: float = 0.1
     mu_static: float = 0.2
     mu_dynamic: float = 0.1
@@ -130,11 +180,12 @@ class Analysis:
 @dataclass(frozen=True)
 class Study:
     """``static``: quasi-static load distribution under every load case, and the dynamic
-    equilibrium check; ``speeds``: roller and cage speeds against rolling kinematics;
+    equilibrium check; ``speeds``: roller and cage speeds against rolling kinematics; ``rigid-flexible``: the
+    same with rigid and with modal rings and cages, and the ratio of their errors;
     ``driving-speed``: cage and raceway forces at each of ``speeds_rpm``; ``friction``: cage
     forces for each (μ_dynamic, μ_static) of ``friction_sets``."""
 
-    kind: Literal["static", "speeds", "driving-speed", "friction"] = "speeds"
+    kind: Literal["static", "speeds", "rigid-flexible", "driving-speed", "friction"] = "speeds"
     speeds_rpm: tuple[float, ...] = (20.0, 25.0, 30.0)
     friction_sets: tuple[tuple[float, float], ...] = ((0.025, 0.05), (0.05, 0.1), (0.075, 0.15), (0.1, 0.2))
 
@@ -151,6 +202,7 @@ class WindCase:
     name: str = "wind"
     description: str = ""
     rollers: Rollers = field(default_factory=Rollers)
+    bodies: Bodies = field(default_factory=Bodies)
     contact: Contact = field(default_factory=Contact)
     loads: Loads = field(default_factory=Loads)
     analysis: Analysis = field(default_factory=Analysis)

@@ -9,7 +9,7 @@ loaded roller of the row at the start (:func:`watched_roller`) over the whole ru
 through the unloaded zone in a long run, as the paper's plots do).
 
 Equilibrium: the force and moment of the rollers' normal forces on the inner ring (raceway slices
-and guide ribs) against the applied load and the ring's weight, averaged over the run after
+and guide ribs, in the rigid geometry's directions) against the applied load and the ring's weight, averaged over the run after
 ``settle_s`` (the ring's mean acceleration is zero when it stays in place).
 """
 
@@ -106,8 +106,8 @@ def applied_load(sc: WindScene, t_s: np.ndarray) -> np.ndarray:
 
 def ring_reaction(sc: WindScene, rec: dict) -> np.ndarray:
     """(samples, 6) force and moment about the ring centre of the rollers' normal forces on the
-    inner ring, N and N·m (normals: −e_r on the inner raceway, ∓z on the thrust raceways, ±z on
-    the radial row's ribs)."""
+    inner ring, N and N·m (normals: −e_r on the inner raceway, ∓z on the thrust raceways, ± the roller axis
+    at the guide ribs)."""
     q, fn = rec["q"], rec["fn"]
     c = q[:, sc.inner, :3]
     total = np.zeros((len(rec["t"]), 6))
@@ -127,13 +127,14 @@ def ring_reaction(sc: WindScene, rec: dict) -> np.ndarray:
         p = x + r * n - c[:, None, :]
         total[:, :3] += f.sum(axis=1)
         total[:, 3:] += np.cross(p, f).sum(axis=1)
-        if rb.other_pairs:  # guide ribs: + end pushes the ring along +z, − end along −z
-            n_rib = len(rb.other_pairs) // len(rb.elements)
-            ribs = fn[:, list(rb.other_pairs)].reshape(len(rec["t"]), len(rb.elements), n_rib)
-            sign = np.array([1.0, -1.0][:n_rib])
-            fz = (ribs * sign).sum(axis=-1)
-            total[:, 2] += fz.sum(axis=1)
-            total[:, 3:] += np.cross(x - c[:, None, :], fz[..., None] * z).sum(axis=1)
+        if rb.other_pairs:  # guide ribs: the + end pushes the ring along +a, the − end along −a
+            a = z if row.orientation == "radial" else e_r
+            half = 0.5 * row.roller_length_m
+            ribs = fn[:, list(rb.other_pairs)].reshape(len(rec["t"]), len(rb.elements), 2)
+            for j, sign in enumerate((1.0, -1.0)):
+                f = (sign * ribs[..., j])[..., None] * a
+                total[:, :3] += f.sum(axis=1)
+                total[:, 3:] += np.cross(x + sign * half * a - c[:, None, :], f).sum(axis=1)
     return total
 
 

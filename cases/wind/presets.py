@@ -20,6 +20,14 @@ _PRESET_TABLES = {
     "wind-speeds": dict(
         name="wind-speeds", description="12 MW main bearing, rigid rings, 30 r/min, 8 s of the load spectrum: "
         "roller and cage speeds against rolling kinematics, inner-ring equilibrium", study={"kind": "speeds"}),
+    "wind-speeds-adams": dict(
+        name="wind-speeds-adams", description="12 MW main bearing as wind-speeds with the paper's Adams contact "
+        "settings (K = 1e5 N/mm^1.5, n = 1.5, c = 70 N·s/mm, d_max = 0.1 mm)", contact={"preset": "adams"},
+        study={"kind": "speeds"}),
+    "wind-rigid-flexible": dict(
+        name="wind-rigid-flexible", description="12 MW main bearing, 30 r/min, 8 s of the load spectrum with rigid "
+        "and with modal rings and cages (20 modes each): roller speed errors of both models and their ratio",
+        study={"kind": "rigid-flexible"}),
     "wind-driving-speed": dict(
         name="wind-driving-speed", description="12 MW main bearing at 20/25/30 r/min: roller–cage forces of "
         "each row, front/rear thrust cage ratio", study={"kind": "driving-speed"}),
@@ -35,6 +43,8 @@ _DYNAMIC_QUICK = dict(rollers={"n_slices": 5}, loads={"source": "constant"},
 _QUICK = {
     "static": {},
     "speeds": _DYNAMIC_QUICK,
+    "rigid-flexible": {**_DYNAMIC_QUICK, "analysis": {"duration_s": 0.1, "settle_s": 0.05, "record_every": 100},
+                       "bodies": {"n_modes": 8, "ring_element_size_m": 0.1, "cage_element_size_m": 0.03}},
     "driving-speed": {**_DYNAMIC_QUICK, "study": {"speeds_rpm": (20.0, 30.0)}},
     "friction": {**_DYNAMIC_QUICK, "study": {"friction_sets": ((0.025, 0.05), (0.1, 0.2))}},
 }

@@ -4,8 +4,15 @@ Bodies (DESIGN §7.2): the inner ring (3971 kg, the paper's two pieces as one bo
 driving speed about z and is free to translate and tilt under the spectrum loads at its centre
 and gravity (−y); the outer ring with the nose is fixed. Each row (radial 98 × Ø55 mm, front and
 rear thrust 94 × Ø60 mm) has sliced roller–raceway contacts on both rings, a free cage with slot
-pockets (radial cage 70 kg, thrust cages 90.2 kg) and, on the radial row, guide ribs on the inner
-ring at both roller ends. Rollers are steel or aluminium bronze (paper Table 2).
+pockets (radial cage 70 kg, thrust cages 90.2 kg) and guide ribs on the inner ring at both roller
+ends (a slot pocket holds a roller only round the circumference: without ribs the thrust
+rollers, axis radial, would drift outwards under their orbit's centrifugal force). Each cage is
+guided along the axis and in tilt by its land on the outer ring (:func:`guide_cage`). Rollers are steel or aluminium bronze (paper Table 2).
+
+With ``bodies.rings = "modal"`` the rings are the reduced bodies of :mod:`.bodies` (the inner
+ring's frame carries the drive, loads and gravity; the outer ring's modes are integrated
+implicitly) and the rollers' slices follow the sampled raceway grids; with ``bodies.cages =
+"modal"`` each cage is a floating modal body whose pocket walls deform with it.
 
 Start: the inner ring is placed at the quasi-static equilibrium of the first load (rigid rings,
 :func:`mbd_core.quasistatic.solve_load_distribution`, the inner ring's weight included) with the
@@ -25,10 +32,12 @@ from cases.catalog import three_row_roller
 from mbd_core.materials import BEARING_STEEL, ElasticMaterial
 from mbd_core.multibody import ModelBuilder
 from mbd_core.multibody.bearings import LINE_EXPONENT, _rotate, _rotate_back, add_roller_row, roller_mass_kg
-from mbd_core.multibody.builder import Driven, Fixed, quat_from_axis_angle
+from mbd_core.multibody.builder import Driven, Fixed, Free, quat_from_axis_angle
 from mbd_core.quasistatic import RingLoad, solve_load_distribution
 
-from .case import INNER_RING_MASS_KG, OUTER_RING_MASS_KG, RADIAL_CAGE_MASS_KG, THRUST_CAGE_MASS_KG, WindCase
+from .bodies import RACEWAYS, ModalBodies, modal_bodies, rib_grids
+from .case import (ADAMS_CONTACT, INNER_RING_MASS_KG, OUTER_RING_MASS_KG, RADIAL_CAGE_MASS_KG, THRUST_CAGE_MASS_KG,
+                   WindCase)
 from .spectrum import load_cases, read_csv, sequence
 
 __all__ = ["ALUMINIUM_BRONZE", "G_M_S2", "WindScene", "rows", "load_history", "build_scene"]
@@ -41,11 +50,15 @@ D_MAX_M = 1e-6
 #: radius of gyration of the inner ring section about the axis (mean of bore 0.855 m and flange 1.15 m), m
 INNER_RING_GYRATION_M = 1.0
 CAGE_MASSES_KG = (RADIAL_CAGE_MASS_KG, THRUST_CAGE_MASS_KG, THRUST_CAGE_MASS_KG)
+#: axial stiffness of a cage's land guidance (all three springs, :func:`guide_cage`), N/m, and its damping ratio
+CAGE_GUIDE_STIFFNESS_N_PER_M = 1e7
+CAGE_GUIDE_DAMPING_RATIO = 0.3
 
 
 @dataclass
 class WindScene:
-    """The model and what a run reads back: the rings, each row's :class:`RowBodies`, the loads."""
+    """The model and what a run reads back: the rings, each row's :class:`RowBodies`, the loads,
+    the reduced bodies of the modal ones."""
 
     model: object
     state: object
@@ -55,6 +68,7 @@ class WindScene:
     row_defs: tuple
     times_s: np.ndarray
     loads: np.ndarray
+    modal: ModalBodies
 
 
 def rows(case: WindCase):
@@ -79,6 +93,14 @@ def load_history(case: WindCase) -> tuple[np.ndarray, np.ndarray]:
     if not lc.include_torque:
         f[:, 5] = 0.0
     return np.asarray(t, float), f
+
+
+def _roller_law(case: WindCase, row) -> tuple[tuple[float, float] | None, float, float]:
+    """(roller_law, damping per slice N·s/m, d_max m) of a row under the case's contact preset."""
+    if case.contact.preset == "adams":
+        a = ADAMS_CONTACT
+        return (a["stiffness_N_per_m1p5"], a["exponent"]), a["damping_N_s_m"] / row.n_slices, a["d_max_m"]
+    return None, _damping(case, row), D_MAX_M
 
 
 def _damping(case: WindCase, row) -> float:
@@ -108,23 +130,39 @@ def build_scene(case: WindCase) -> WindScene:
     t, f = load_history(case)
     q0 = initial_displacement(case, row_defs, f[0])
     omega = case.analysis.speed_rpm * 2.0 * math.pi / 60.0
+    mb = modal_bodies(case) if case.bodies.any_modal else ModalBodies(None, None, (None, None, None))
     b = ModelBuilder(gravity_m_s2=(0.0, -G_M_S2, 0.0))
-    m, r = INNER_RING_MASS_KG, INNER_RING_GYRATION_M
     tilt = math.hypot(q0[3], q0[4])
     orient = quat_from_axis_angle((q0[3], q0[4], 0.0), tilt) if tilt > 0 else (1.0, 0.0, 0.0, 0.0)
-    inner = b.add_body("inner ring", m, (0.5 * m * r * r, 0.5 * m * r * r, m * r * r), position_m=tuple(q0[:3]),
-                       orientation=orient, motion=Driven(omega, translation_free=True, tilt_free=True),
-                       omega_rad_s=(0.0, 0.0, omega))
-    outer = b.add_body("outer ring", OUTER_RING_MASS_KG, (1e3, 1e3, 2e3), motion=Fixed())
+    drive = Driven(omega, translation_free=True, tilt_free=True)
+    if mb.inner is None:
+        m, r = INNER_RING_MASS_KG, INNER_RING_GYRATION_M
+        inner = b.add_body("inner ring", m, (0.5 * m * r * r, 0.5 * m * r * r, m * r * r), position_m=tuple(q0[:3]),
+                           orientation=orient, motion=drive, omega_rad_s=(0.0, 0.0, omega))
+        outer = b.add_body("outer ring", OUTER_RING_MASS_KG, (1e3, 1e3, 2e3), motion=Fixed())
+    else:
+        inner = b.add_modal_body("inner ring", mb.inner, position_m=tuple(q0[:3]), orientation=orient, motion=drive,
+                                 omega_rad_s=(0.0, 0.0, omega))
+        outer = b.add_modal_body("outer ring", mb.outer, motion=Fixed(), implicit_modes=True)
     friction = case.contact.friction_law()
     added = []
-    for row, cage_kg in zip(row_defs, CAGE_MASSES_KG):
-        c = _damping(case, row)
+    for k, (row, cage_kg) in enumerate(zip(row_defs, CAGE_MASSES_KG)):
+        law, c, d_max = _roller_law(case, row)
+        grids = dict(moving_raceway=RACEWAYS[k], fixed_raceway=RACEWAYS[k]) if mb.inner is not None else {}
+        play = case.rollers.rib_clearance_m if row.orientation == "radial" else case.rollers.thrust_rib_clearance_m
+        if mb.inner is not None:
+            grids["rib_raceways"] = rib_grids(mb.inner, row, case.bodies.n_theta, play)
+        cage = None
+        if mb.cages[k] is not None:
+            cage = b.add_modal_body(f"{row.name} cage", mb.cages[k], motion=Free(), omega_rad_s=(0.0, 0.0, 0.0))
         added.append(add_roller_row(
-            b, row, inner, outer, friction=friction, damping_N_s_m=c, d_max_m=D_MAX_M,
-            rib_clearance_m=case.rollers.rib_clearance_m if row.orientation == "radial" else None,
+            b, row, inner, outer, friction=friction, damping_N_s_m=c, d_max_m=d_max, roller_law=law,
+            rib_clearance_m=play,
             cage_mass_kg=cage_kg, pocket_clearance_m=case.rollers.pocket_clearance_m,
-            cage_stiffness_N_per_m=case.contact.pocket_stiffness_N_per_m, pocket_friction=friction))
+            cage_stiffness_N_per_m=case.contact.pocket_stiffness_N_per_m, pocket_friction=friction,
+            cage=cage, pocket_walls=cage is not None, **grids))
+    for rb, row, cage_kg in zip(added, row_defs, CAGE_MASSES_KG):
+        guide_cage(b, outer, rb.cage, row, cage_kg)
     b.add_load_history(inner, t, f)
     model, state = b.finalize()
     rot = np.array([q0[3], q0[4], 0.0])
@@ -135,7 +173,23 @@ def build_scene(case: WindCase) -> WindScene:
     for rb, row in zip(added, row_defs):
         w_c = set_rolling(state, rb.elements, row, omega)
         state.v[rb.cage, 3:] = (0.0, 0.0, w_c)
-    return WindScene(model, state, inner, outer, tuple(added), row_defs, t, f)
+    return WindScene(model, state, inner, outer, tuple(added), row_defs, t, f, mb)
+
+
+def guide_cage(b: ModelBuilder, outer: int, cage: int, row, cage_kg: float) -> None:
+    """Axial and tilt guidance of a cage by its land on the outer ring: three axial springs at 120°
+    on the cage's pitch circle (``CAGE_GUIDE_STIFFNESS_N_PER_M`` together, ``CAGE_GUIDE_DAMPING_RATIO``
+    of critical for the cage's mass), free round the circumference and radially.
+
+    A slot pocket pushes a roller only round the circumference, so nothing else holds a cage along
+    the axis; the friction of the spinning rollers on the pocket walls of a thrust cage all points
+    the same way along z (their surface moves axially there) and would push the cage off its row."""
+    R, z0 = row.pitch_diameter_m / 2, row.axial_position_m
+    k = CAGE_GUIDE_STIFFNESS_N_PER_M / 3.0
+    c = CAGE_GUIDE_DAMPING_RATIO * 2.0 * math.sqrt(CAGE_GUIDE_STIFFNESS_N_PER_M * cage_kg) / 3.0
+    for phi in 2.0 * math.pi * np.arange(3) / 3.0:
+        b.add_bushing(outer, cage, (R * math.cos(phi), R * math.sin(phi), z0), (0.0, 0.0, k, 0.0, 0.0, 0.0),
+                      (0.0, 0.0, c, 0.0, 0.0, 0.0))
 
 
 def rolling_speeds(row, omega_inner_rad_s: float) -> tuple[float, float]:

@@ -6,11 +6,14 @@ Table 4 (roller speeds), §4.3.1 (driving speed) and §4.3.2 (friction).
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
 from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
 
 from . import dynamic, plots
+from .bodies import stress_maps
 from .case import INNER_RING_MASS_KG, WindCase
 from .scene import G_M_S2, load_history, rows
 from .spectrum import load_cases, write_csv
@@ -55,11 +58,24 @@ def study_static(case: WindCase, out, progress=None) -> None:
 
 
 def _one_run(case: WindCase, progress=None) -> tuple[dict, object, dict]:
+    t0 = time.perf_counter()
     sc, rec = dynamic.run(case, progress)
     figures = {"speeds": dynamic.roller_speeds(case, sc, rec), "cages": dynamic.cage_speeds(case, sc, rec),
                "equilibrium": dynamic.equilibrium_error(case, sc, rec),
-               "cage_forces": dynamic.cage_forces(case, sc, rec), "timestep_s": rec["timestep_s"]}
+               "cage_forces": dynamic.cage_forces(case, sc, rec), "timestep_s": rec["timestep_s"],
+               "wall_time_s": time.perf_counter() - t0}
     return figures, sc, rec
+
+
+def _speed_notes(out, fig: dict, label: str = "") -> None:
+    for name, s in fig["speeds"].items():
+        out.note(f"{label}{name:12s}: loaded rollers {s['loaded_mean_rpm']:.2f} r/min against {s['kinematic_rpm']:.2f} "
+                 f"({100 * s['loaded_error']:+.2f} %), roller {s['one_roller']} {s['one_roller_mean_rpm']:.1f} r/min "
+                 f"(±{s['one_roller_fluctuation_rpm']:.1f}); cage {100 * fig['cages'][name]['error']:+.2f} %; "
+                 f"paper (rigid/flexible) {100 * PAPER_ROLLER_ERRORS[name][0]:.2f} / {100 * PAPER_ROLLER_ERRORS[name][1]:.2f} %")
+    e = fig["equilibrium"]
+    out.note(f"{label}inner ring equilibrium: force {100 * e['force_error']:.3f} %, moment {100 * e['moment_error']:.3f} % "
+             f"of the load; {fig['wall_time_s']:.0f} s wall")
 
 
 def study_speeds(case: WindCase, out, progress=None) -> None:
@@ -68,13 +84,29 @@ def study_speeds(case: WindCase, out, progress=None) -> None:
     _spectrum_files(case, out)
     out.save_figure(plots.roller_speed_figure(case, sc, rec), "roller_speeds.png")
     out.summary.update(fig)
-    for name, s in fig["speeds"].items():
-        out.note(f"{name:12s}: loaded rollers {s['loaded_mean_rpm']:.2f} r/min against {s['kinematic_rpm']:.2f} "
-                 f"({100 * s['loaded_error']:+.2f} %), roller {s['one_roller']} {s['one_roller_mean_rpm']:.1f} r/min "
-                 f"(±{s['one_roller_fluctuation_rpm']:.1f}); cage {100 * fig['cages'][name]['error']:+.2f} %; "
-                 f"paper (rigid/flexible) {100 * PAPER_ROLLER_ERRORS[name][0]:.2f} / {100 * PAPER_ROLLER_ERRORS[name][1]:.2f} %")
-    e = fig["equilibrium"]
-    out.note(f"inner ring equilibrium: force {100 * e['force_error']:.3f} %, moment {100 * e['moment_error']:.3f} % of the load")
+    _speed_notes(out, fig)
+
+
+def study_rigid_flexible(case: WindCase, out, progress=None) -> None:
+    """The speeds study with rigid bodies and with modal rings and cages; the ratio of the two
+    models' roller speed errors (paper Table 4: 1.67–3.76)."""
+    figs = {}
+    for label, kind in (("rigid", "rigid"), ("flexible", "modal")):
+        c = case.with_(bodies={"rings": kind, "cages": kind})
+        fig, sc, rec = _one_run(c, progress)
+        out.save_figure(plots.roller_speed_figure(c, sc, rec), f"roller_speeds_{label}.png")
+        _speed_notes(out, fig, f"{label:8s} ")
+        figs[label] = fig
+        if kind == "modal":
+            fig["stress"] = stress_maps(sc, rec, out.folder)
+            for name, v in fig["stress"].items():
+                out.note(f"{name:18s}: peak von Mises {v['peak_von_mises_MPa']:.1f} MPa at t = {v['time_s']:.3f} s")
+    _spectrum_files(case, out)
+    ratio = {n: abs(figs["rigid"]["speeds"][n]["loaded_error"]) / max(abs(figs["flexible"]["speeds"][n]["loaded_error"]), 1e-12)
+             for n in figs["rigid"]["speeds"]}
+    out.summary.update(figs, error_ratio_rigid_over_flexible=ratio)
+    out.note("roller speed error, rigid over flexible: " + ", ".join(f"{n} {v:.2f}" for n, v in ratio.items())
+             + " (paper 1.67–3.76)")
 
 
 def _sweep(case: WindCase, out, variants, label: str, progress=None) -> dict:
@@ -114,7 +146,7 @@ def study_friction(case: WindCase, out, progress=None) -> None:
     out.note("drop of the mean cage force from μd " + f"{hi} to {lo}: " + ", ".join(f"{n} {100 * v:.0f} %" for n, v in drop.items()))
 
 
-STUDIES = {"static": study_static, "speeds": study_speeds, "driving-speed": study_driving_speed, "friction": study_friction}
+STUDIES = {"static": study_static, "speeds": study_speeds, "rigid-flexible": study_rigid_flexible, "driving-speed": study_driving_speed, "friction": study_friction}
 
 
 def run_study(case: WindCase, out, progress=None) -> None:

@@ -136,50 +136,59 @@ def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_rin
                    damping_N_s_m: float = 0.0, d_max_m: float = 1e-6, rib_clearance_m: float | None = None,
                    edge_radius_m: float | None = None, cage_mass_kg: float | None = None,
                    pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8,
-                   pocket_friction=None) -> RowBodies:
+                   pocket_friction=None, roller_law: tuple[float, float] | None = None, moving_raceway=None,
+                   fixed_raceway=None, rib_raceways=(None, None), cage=None, pocket_walls: bool = False) -> RowBodies:
     """Add the rollers of ``row`` with their sliced raceway contacts.
 
     ``rib_clearance_m``: ribs on the moving ring at both roller ends with this axial play (None:
     no ribs); ``cage_mass_kg``: a cage with slot pockets. ``damping_N_s_m`` is the IMPACT damping
     of one slice (ribs and pockets use it too); ``friction`` acts at raceways and ribs,
-    ``pocket_friction`` in the pockets (None: frictionless).
+    ``pocket_friction`` in the pockets (None: frictionless). ``roller_law``: (K, n) of one
+    roller–raceway contact, N/m^n, in place of the ISO/TS 16281 line law (each slice gets K/n_s).
+
+    Modal rings and cages: ``moving_raceway`` / ``fixed_raceway`` / ``rib_raceways`` (end +, end −)
+    are the sampled (θ, s) grids of those surfaces (``raceway`` of :meth:`ModelBuilder.add_surface`);
+    ``cage``: an existing cage body (e.g. modal) in place of a rigid one of ``cage_mass_kg``, its
+    pocket k at roller k; ``pocket_walls``: the pockets deform with the cage's stored ``"pockets"``
+    sample (:meth:`ModelBuilder.add_pocket`).
     """
     D, L, R, ns = row.roller_diameter_m, row.roller_length_m, row.pitch_diameter_m / 2, row.n_slices
     g2 = row.gap_m / 2
     x = -0.5 * L + (np.arange(ns) + 0.5) * L / ns
     drop = row.crown_drop_m * (2.0 * x / L) ** 2
-    k_slice = row.contact_stiffness() * 2.0**LINE_EXPONENT / ns
-    law = _law(k_slice, LINE_EXPONENT, damping_N_s_m, d_max_m, friction)
+    if roller_law is None:
+        law = _law(row.contact_stiffness() * 2.0**LINE_EXPONENT / ns, LINE_EXPONENT, damping_N_s_m, d_max_m, friction)
+    else:
+        law = _law(roller_law[0] / ns, roller_law[1], damping_N_s_m, d_max_m, friction)
     z0 = row.axial_position_m
     if row.orientation == "radial":
         inner, outer = R - D / 2 - g2, R + D / 2 + g2
         moving_is_inner = row.load_sign > 0
         s_m = builder.add_surface(moving_ring, "inner_cylinder" if moving_is_inner else "outer_cylinder",
-                                  inner if moving_is_inner else outer)
+                                  inner if moving_is_inner else outer, raceway=moving_raceway)
         s_f = builder.add_surface(fixed_ring, "outer_cylinder" if moving_is_inner else "inner_cylinder",
-                                  outer if moving_is_inner else inner)
+                                  outer if moving_is_inner else inner, raceway=fixed_raceway)
     else:
         below, above = z0 - D / 2 - g2, z0 + D / 2 + g2
         s_m = builder.add_surface(moving_ring, "plane_up" if row.load_sign > 0 else "plane_down",
-                                  below if row.load_sign > 0 else above)
+                                  below if row.load_sign > 0 else above, raceway=moving_raceway)
         s_f = builder.add_surface(fixed_ring, "plane_down" if row.load_sign > 0 else "plane_up",
-                                  above if row.load_sign > 0 else below)
+                                  above if row.load_sign > 0 else below, raceway=fixed_raceway)
     ribs = ()
     e_r = edge_radius_m if edge_radius_m is not None else 0.1 * D
     if rib_clearance_m is not None:
         h = L / 2 + rib_clearance_m / 2
-        if row.orientation == "radial":
-            ribs = ((builder.add_surface(moving_ring, "plane_down", z0 + h), 1),
-                    (builder.add_surface(moving_ring, "plane_up", z0 - h), -1))
-        else:
-            ribs = ((builder.add_surface(moving_ring, "inner_cylinder", R + h), 1),
-                    (builder.add_surface(moving_ring, "outer_cylinder", R - h), -1))
+        # the rib's material lies beyond the roller end: above/below it (radial row), outside the
+        # outer end and inside the inner end (thrust rows; "outer_cylinder" has its material at r > value)
+        kinds = (("plane_down", z0 + h), ("plane_up", z0 - h)) if row.orientation == "radial" else (
+            ("outer_cylinder", R + h), ("inner_cylinder", R - h))
+        ribs = tuple((builder.add_surface(moving_ring, kind, value, raceway=grid), end)
+                     for (kind, value), grid, end in zip(kinds, rib_raceways, (1, -1)))
     density = row.roller_material.density_kg_m3
     mass = roller_mass_kg(D, L, density)
     i_axis = mass * D * D / 8
     i_trans = mass * (3 * (D / 2) ** 2 + L * L) / 12
-    cage = None
-    if cage_mass_kg is not None:
+    if cage is None and cage_mass_kg is not None:
         cage = _cage_body(builder, f"{row.name} cage", cage_mass_kg, R, None)
     rollers, mov, fix, pockets, other = [], [], [], [], []
     for j, psi in enumerate(_azimuths(row.n_rollers, row.first_azimuth_rad)):
@@ -197,7 +206,7 @@ def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_rin
                 b, moving_ring, surface, D / 2, L, end, e_r, _rib_law(e_r, row, damping_N_s_m, d_max_m, friction),
                 name=f"{row.name} roller {j}–rib {'+' if end > 0 else '-'}"))
         if cage is not None:
-            p = builder.add_pocket(cage, "slot", psi, R, z0, pocket_clearance_m)
+            p = builder.add_pocket(cage, "slot", psi, R, z0, pocket_clearance_m, walls=j if pocket_walls else None)
             pockets.append(builder.add_element_pocket(
                 b, cage, p, D / 2, _law(cage_stiffness_N_per_m, 1.0, damping_N_s_m, d_max_m, pocket_friction), length_m=L,
                 name=f"{row.name} roller {j}–pocket"))
