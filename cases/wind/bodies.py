@@ -2,7 +2,7 @@
 
 Each body is meshed and reduced once and cached by its inputs (:func:`cms_reduction.reduced_body`):
 the inner ring (42CrMo, floating: free–free modes), the outer ring (42CrMo, held at ``bolts``
-patches of 30 mm half-width on its bolt face, fixed-interface modes) and the three cages (cage
+patches of 30 mm half-width (at least 0.75 element) on its bolt face, fixed-interface modes) and the three cages (cage
 steel, free–free modes, pocket walls sampled). Sections and pockets: :mod:`fem_rings.sections`,
 :mod:`fem_rings.cages` (the parts of ``flexbearing modes``). No load-mode augmentation: as in the
 paper, the rings keep ``n_modes`` normal modes; the contact law carries the local deformation.
@@ -67,7 +67,8 @@ def inner_ring_body(case: WindCase):
 def outer_ring_body(case: WindCase):
     b = case.bodies
     bolts = tuple(360.0 * (k + 0.5) / b.bolts for k in range(b.bolts))
-    spec = ReductionSpec(n_modes=b.n_modes, interfaces=(InterfaceSpec("bolt_face", bolts, BOLT_HALF_WIDTH_M),),
+    half_width = max(BOLT_HALF_WIDTH_M, 0.75 * b.ring_element_size_m)  # a patch spans ≥ 2 node columns
+    spec = ReductionSpec(n_modes=b.n_modes, interfaces=(InterfaceSpec("bolt_face", bolts, half_width),),
                          raceways=_raceways(case), damping_ratio=b.modal_damping_ratio, stress_modes=True)
     return reduced_body(three_row_outer_ring(), MeshSpec(b.ring_element_size_m, "hex27"), STEEL_42CRMO, spec)
 

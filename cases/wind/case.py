@@ -40,21 +40,24 @@ def _positive(**values) -> None:
 class Rollers:
     """Roller material (``steel`` or the paper's aluminium bronze E = 110 GPa, ν = 0.32), slices
     per roller, the play of a roller along its axis between its ribs on the inner ring (radial
-    row: guide ribs; thrust rows: end stops, wider because a flat roller end against the
-    cylindrical rib of radius R ± L/2 touches it with its rim first — the rim sits ρ²/(2R) ≈ 0.26 mm
-    deeper at ρ = 24 mm — and a tight stop would drag the rollers with the ring), and the play of
-    every roller in its cage pocket, m."""
+    row: guide ribs at z0 ± h; thrust rows: stops at R ± h), the radius of the thrust rollers'
+    domed end faces and the play of every roller in its cage pocket, m.
+
+    Thrust roller ends are domed (end radius 27 mm on a Ø60 mm roller, a flat rim of 3 mm): a flat
+    end against the cylindrical stop of radius R ± L/2 would touch it with its rim first (the rim
+    sits ρ²/(2R) ≈ 0.26 mm deeper at ρ = 24 mm) and wedge between the two stops once skewed.
+    Radial rollers keep flat ends with a 5.5 mm edge radius (0.1 D) against their flat ribs."""
 
     material: Literal["steel", "bronze"] = "steel"
     n_slices: int = 10
     rib_clearance_m: float = 0.5e-3
-    thrust_rib_clearance_m: float = 2e-3
+    thrust_end_radius_m: float = 0.027
     pocket_clearance_m: float = 0.5e-3
 
     def __post_init__(self) -> None:
         if self.n_slices < 1:
             raise ValueError(f"n_slices must be ≥ 1, got {self.n_slices}")
-        _positive(rib_clearance_m=self.rib_clearance_m, thrust_rib_clearance_m=self.thrust_rib_clearance_m,
+        _positive(rib_clearance_m=self.rib_clearance_m, thrust_end_radius_m=self.thrust_end_radius_m,
                   pocket_clearance_m=self.pocket_clearance_m)
 
 

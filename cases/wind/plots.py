@@ -52,7 +52,8 @@ def roller_speed_figure(case, sc, rec):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8, loc="lower right")
     axes[-1].set_xlabel("time, s")
-    fig.suptitle(f"Roller spin at {case.analysis.speed_rpm:g} r/min (rigid rings)")
+    b = case.bodies
+    fig.suptitle(f"Roller spin at {case.analysis.speed_rpm:g} r/min ({b.rings} rings, {b.cages} cages)")
     fig.tight_layout()
     return fig
 

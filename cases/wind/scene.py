@@ -149,7 +149,7 @@ def build_scene(case: WindCase) -> WindScene:
     for k, (row, cage_kg) in enumerate(zip(row_defs, CAGE_MASSES_KG)):
         law, c, d_max = _roller_law(case, row)
         grids = dict(moving_raceway=RACEWAYS[k], fixed_raceway=RACEWAYS[k]) if mb.inner is not None else {}
-        play = case.rollers.rib_clearance_m if row.orientation == "radial" else case.rollers.thrust_rib_clearance_m
+        play = case.rollers.rib_clearance_m
         if mb.inner is not None:
             grids["rib_raceways"] = rib_grids(mb.inner, row, case.bodies.n_theta, play)
         cage = None
@@ -158,6 +158,7 @@ def build_scene(case: WindCase) -> WindScene:
         added.append(add_roller_row(
             b, row, inner, outer, friction=friction, damping_N_s_m=c, d_max_m=d_max, roller_law=law,
             rib_clearance_m=play,
+            edge_radius_m=case.rollers.thrust_end_radius_m if row.orientation != "radial" else None,
             cage_mass_kg=cage_kg, pocket_clearance_m=case.rollers.pocket_clearance_m,
             cage_stiffness_N_per_m=case.contact.pocket_stiffness_N_per_m, pocket_friction=friction,
             cage=cage, pocket_walls=cage is not None, **grids))
