@@ -83,8 +83,16 @@ def study_speeds(case: WindCase, out, progress=None) -> None:
     fig, sc, rec = _one_run(case, progress)
     _spectrum_files(case, out)
     out.save_figure(plots.roller_speed_figure(case, sc, rec), "roller_speeds.png")
+    if case.bodies.any_modal:
+        _stress(out, fig, sc, rec)
     out.summary.update(fig)
     _speed_notes(out, fig)
+
+
+def _stress(out, fig: dict, sc, rec) -> None:
+    fig["stress"] = stress_maps(sc, rec, out.folder)
+    for name, v in fig["stress"].items():
+        out.note(f"{name:18s}: peak von Mises {v['peak_von_mises_MPa']:.1f} MPa at t = {v['time_s']:.3f} s")
 
 
 def study_rigid_flexible(case: WindCase, out, progress=None) -> None:
@@ -98,9 +106,7 @@ def study_rigid_flexible(case: WindCase, out, progress=None) -> None:
         _speed_notes(out, fig, f"{label:8s} ")
         figs[label] = fig
         if kind == "modal":
-            fig["stress"] = stress_maps(sc, rec, out.folder)
-            for name, v in fig["stress"].items():
-                out.note(f"{name:18s}: peak von Mises {v['peak_von_mises_MPa']:.1f} MPa at t = {v['time_s']:.3f} s")
+            _stress(out, fig, sc, rec)
     _spectrum_files(case, out)
     ratio = {n: abs(figs["rigid"]["speeds"][n]["loaded_error"]) / max(abs(figs["flexible"]["speeds"][n]["loaded_error"]), 1e-12)
              for n in figs["rigid"]["speeds"]}
