@@ -8,9 +8,10 @@ steel, free–free modes, pocket walls sampled). Sections and pockets: :mod:`fem
 paper, the rings keep ``n_modes`` normal modes; the contact law carries the local deformation.
 Each body carries its stress modes, so the von Mises field of any recorded instant is one product.
 
-Guide ribs on the inner ring (every row): the section has no ribs, so a rib is a surface at the
-roller ends that moves with the ring's material just behind the row's raceway (two circles, 2 and
-12 mm behind it; the fields are held beyond them).
+Radial-row guide ribs on the inner ring: the section has no ribs, so a rib is a plane at the
+roller ends that moves with the ring's material just under the radial raceway (two circles, 2 and
+12 mm below it; the fields are held beyond them). Thrust rollers are held along their axis by
+the ends of their cage's window pockets, which move with the cage ring beyond them.
 """
 
 from __future__ import annotations
@@ -41,6 +42,8 @@ CAGE_KEYS = ("radial", "front_thrust", "rear_thrust")
 BOLT_HALF_WIDTH_M = 0.03
 #: depths below the radial raceway of the two circles a guide rib moves with, m
 RIB_DEPTHS_M = (0.002, 0.012)
+#: half the axial distance between the two circles a thrust roller's pocket-end stop moves with, m
+CAGE_STOP_HALF_SPAN_M = 0.007
 
 
 @dataclass(frozen=True)
@@ -93,12 +96,12 @@ def modal_bodies(case: WindCase) -> ModalBodies:
     return ModalBodies(inner, outer, cages)
 
 
-def rib_grids(inner_body, row, n_theta: int, rib_clearance_m: float) -> tuple:
-    """(end +, end −) sampled circles of a row's guide ribs on the modal inner ring (module
-    docstring); each a list of two :class:`cms_reduction.sampling.RacewaySample` in the ring's
-    material just behind the row's raceway: for the radial row at radii under the raceway on the
-    rib planes z0 ± h, for a thrust row at heights behind the raceway face on the rib cylinders
-    R ± h (h = L/2 + c/2)."""
+def rib_grids(body, row, n_theta: int, rib_clearance_m: float) -> tuple:
+    """(end +, end −) sampled circles of a row's end guides on a modal body (module docstring), each
+    a list of two :class:`cms_reduction.sampling.RacewaySample`: for the radial row the ribs of
+    the inner ring, circles under the raceway on the rib planes z0 ± h; for a thrust row the
+    pocket ends of its cage, circles in the cage ring 5 mm beyond the stop cylinders R ± h, at
+    z0 ± 7 mm (h = L/2 + c/2)."""
     R, D = row.pitch_diameter_m / 2, row.roller_diameter_m
     h = row.roller_length_m / 2 + rib_clearance_m / 2
     th = 2.0 * math.pi * np.arange(n_theta) / n_theta
@@ -106,12 +109,11 @@ def rib_grids(inner_body, row, n_theta: int, rib_clearance_m: float) -> tuple:
     out = []
     for sign in (1, -1):
         circles = []
-        for k, depth in enumerate(RIB_DEPTHS_M):
+        for k, depth in enumerate(RIB_DEPTHS_M):  # k: circle index
             if row.orientation == "radial":
                 r, z = R - D / 2 - row.gap_m / 2 - depth, row.axial_position_m + sign * h
-            else:  # the moving raceway faces the rollers from below (load sign +1) or above
-                face = row.axial_position_m - row.load_sign * (D / 2 + row.gap_m / 2)
-                r, z = R + sign * h, face - row.load_sign * depth
+            else:  # the stops are the pocket ends: circles in the cage ring beyond them, across its width
+                r, z = R + sign * (h + 5e-3), row.axial_position_m + (2 * k - 1) * CAGE_STOP_HALF_SPAN_M
             pts = np.column_stack((r * c, r * s, np.full(n_theta, z)))
             name = f"{row.name} rib {'+' if sign > 0 else '-'}@s{k}"
             circles.append(sample_points(inner_body, name, pts, th, True))

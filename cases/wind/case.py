@@ -1,10 +1,10 @@
 """The case file of the 12 MW wind main bearing (DESIGN §7.2, paper seed 001): what a run needs.
 
-Tables: ``rollers`` (material, slices, rib and pocket play), ``bodies`` (rigid or modal rings
-and cages), ``contact`` (stiffness preset,
-damping, friction), ``loads`` (the synthetic 32-case spectrum of :mod:`.spectrum`, a user CSV, or
-one load case held constant), ``analysis`` (driving speed, simulated time) and ``study``. Every
-value is SI; construction checks each field and names it on error (see :mod:`cases.config`).
+Tables: ``rollers`` (material, slices, rib and pocket play, thrust roller ends), ``bodies``
+(rigid or modal rings and cages), ``contact`` (stiffness preset, damping, friction), ``loads``
+(the synthetic 32-case spectrum of :mod:`.spectrum`, a user CSV, or one load case held constant),
+``analysis`` (driving speed, simulated time) and ``study``. Every value is SI; construction checks
+each field and names it on error (see :mod:`cases.config`).
 
 Geometry (:class:`fem_rings.sections.ThreeRowGeometry`): 98 radial rollers Ø55 × 55 mm on pitch
 Ø1963 mm, 2 × 94 thrust rollers Ø60 × 60 mm on pitch Ø2182 mm, clearances in the middle of the

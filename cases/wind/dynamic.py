@@ -106,8 +106,8 @@ def applied_load(sc: WindScene, t_s: np.ndarray) -> np.ndarray:
 
 def ring_reaction(sc: WindScene, rec: dict) -> np.ndarray:
     """(samples, 6) force and moment about the ring centre of the rollers' normal forces on the
-    inner ring, N and N·m (normals: −e_r on the inner raceway, ∓z on the thrust raceways, ± the roller axis
-    at the guide ribs)."""
+    inner ring, N and N·m (normals: −e_r on the inner raceway, ∓z on the thrust raceways, ±z at the radial
+    row's guide ribs)."""
     q, fn = rec["q"], rec["fn"]
     c = q[:, sc.inner, :3]
     total = np.zeros((len(rec["t"]), 6))
@@ -127,8 +127,8 @@ def ring_reaction(sc: WindScene, rec: dict) -> np.ndarray:
         p = x + r * n - c[:, None, :]
         total[:, :3] += f.sum(axis=1)
         total[:, 3:] += np.cross(p, f).sum(axis=1)
-        if rb.other_pairs:  # guide ribs: the + end pushes the ring along +a, the − end along −a
-            a = z if row.orientation == "radial" else e_r
+        if rb.other_pairs and row.orientation == "radial":  # ribs: the + end pushes the ring along +z
+            a = z  # (thrust rollers' end guides are on their cage)
             half = 0.5 * row.roller_length_m
             ribs = fn[:, list(rb.other_pairs)].reshape(len(rec["t"]), len(rb.elements), 2)
             for j, sign in enumerate((1.0, -1.0)):

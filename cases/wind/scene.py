@@ -4,10 +4,13 @@ Bodies (DESIGN §7.2): the inner ring (3971 kg, the paper's two pieces as one bo
 driving speed about z and is free to translate and tilt under the spectrum loads at its centre
 and gravity (−y); the outer ring with the nose is fixed. Each row (radial 98 × Ø55 mm, front and
 rear thrust 94 × Ø60 mm) has sliced roller–raceway contacts on both rings, a free cage with slot
-pockets (radial cage 70 kg, thrust cages 90.2 kg) and guide ribs on the inner ring at both roller
-ends (a slot pocket holds a roller only round the circumference: without ribs the thrust
-rollers, axis radial, would drift outwards under their orbit's centrifugal force). Each cage is
-guided along the axis and in tilt by its land on the outer ring (:func:`guide_cage`). Rollers are steel or aluminium bronze (paper Table 2).
+pockets (radial cage 70 kg, thrust cages 90.2 kg) and end guides at both roller ends: ribs on the
+inner ring for the radial rollers, the ends of the window pockets of their cage for the thrust
+rollers (a slot pocket holds a roller only round the circumference: unguided, the thrust rollers,
+axis radial, would drift outwards under their orbit's centrifugal force; their ends face no ring
+in the section, and stops on the inner ring would drag them at the ring's speed). Each cage is
+guided along the axis and in tilt by its land on the outer ring (:func:`guide_cage`). Rollers
+are steel or aluminium bronze (paper Table 2).
 
 With ``bodies.rings = "modal"`` the rings are the reduced bodies of :mod:`.bodies` (the inner
 ring's frame carries the drive, loads and gravity; the outer ring's modes are integrated
@@ -148,17 +151,20 @@ def build_scene(case: WindCase) -> WindScene:
     added = []
     for k, (row, cage_kg) in enumerate(zip(row_defs, CAGE_MASSES_KG)):
         law, c, d_max = _roller_law(case, row)
-        grids = dict(moving_raceway=RACEWAYS[k], fixed_raceway=RACEWAYS[k]) if mb.inner is not None else {}
-        play = case.rollers.rib_clearance_m
+        play, radial = case.rollers.rib_clearance_m, row.orientation == "radial"
+        grids = {}
         if mb.inner is not None:
-            grids["rib_raceways"] = rib_grids(mb.inner, row, case.bodies.n_theta, play)
+            grids = dict(moving_raceway=RACEWAYS[k], fixed_raceway=RACEWAYS[k])
         cage = None
         if mb.cages[k] is not None:
             cage = b.add_modal_body(f"{row.name} cage", mb.cages[k], motion=Free(), omega_rad_s=(0.0, 0.0, 0.0))
+        guide = mb.inner if radial else mb.cages[k]  # radial: ribs on the inner ring; thrust: pocket ends
+        if guide is not None:
+            grids["rib_raceways"] = rib_grids(guide, row, case.bodies.n_theta, play)
         added.append(add_roller_row(
             b, row, inner, outer, friction=friction, damping_N_s_m=c, d_max_m=d_max, roller_law=law,
             rib_clearance_m=play,
-            edge_radius_m=case.rollers.thrust_end_radius_m if row.orientation != "radial" else None,
+            edge_radius_m=None if radial else case.rollers.thrust_end_radius_m, ribs_on="moving" if radial else "cage",
             cage_mass_kg=cage_kg, pocket_clearance_m=case.rollers.pocket_clearance_m,
             cage_stiffness_N_per_m=case.contact.pocket_stiffness_N_per_m, pocket_friction=friction,
             cage=cage, pocket_walls=cage is not None, **grids))
@@ -178,19 +184,24 @@ def build_scene(case: WindCase) -> WindScene:
 
 
 def guide_cage(b: ModelBuilder, outer: int, cage: int, row, cage_kg: float) -> None:
-    """Axial and tilt guidance of a cage by its land on the outer ring: three axial springs at 120°
-    on the cage's pitch circle (``CAGE_GUIDE_STIFFNESS_N_PER_M`` together, ``CAGE_GUIDE_DAMPING_RATIO``
-    of critical for the cage's mass), free round the circumference and radially.
+    """Guidance of a cage by its land on the outer ring: three axial springs at 120° on the cage's
+    pitch circle (``CAGE_GUIDE_STIFFNESS_N_PER_M`` together, ``CAGE_GUIDE_DAMPING_RATIO`` of
+    critical for the cage's mass) hold it along the axis and in tilt, and a radial spring of the
+    same stiffness at its centre holds it on the axis; it turns freely. Land friction is left out.
 
     A slot pocket pushes a roller only round the circumference, so nothing else holds a cage along
     the axis; the friction of the spinning rollers on the pocket walls of a thrust cage all points
-    the same way along z (their surface moves axially there) and would push the cage off its row."""
+    the same way along z (their surface moves axially there) and would push the cage off its row.
+    Radially, a thrust cage carries its rollers' weight through the pocket ends and would sink."""
     R, z0 = row.pitch_diameter_m / 2, row.axial_position_m
     k = CAGE_GUIDE_STIFFNESS_N_PER_M / 3.0
     c = CAGE_GUIDE_DAMPING_RATIO * 2.0 * math.sqrt(CAGE_GUIDE_STIFFNESS_N_PER_M * cage_kg) / 3.0
     for phi in 2.0 * math.pi * np.arange(3) / 3.0:
         b.add_bushing(outer, cage, (R * math.cos(phi), R * math.sin(phi), z0), (0.0, 0.0, k, 0.0, 0.0, 0.0),
                       (0.0, 0.0, c, 0.0, 0.0, 0.0))
+    # radially: one spring pair at the centre, a point that the cage's turning does not move
+    k, c = 3.0 * k, 3.0 * c
+    b.add_bushing(outer, cage, (0.0, 0.0, z0), (k, k, 0.0, 0.0, 0.0, 0.0), (c, c, 0.0, 0.0, 0.0, 0.0))
 
 
 def rolling_speeds(row, omega_inner_rad_s: float) -> tuple[float, float]:

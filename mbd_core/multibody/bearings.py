@@ -137,11 +137,13 @@ def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_rin
                    edge_radius_m: float | None = None, cage_mass_kg: float | None = None,
                    pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8,
                    pocket_friction=None, roller_law: tuple[float, float] | None = None, moving_raceway=None,
-                   fixed_raceway=None, rib_raceways=(None, None), cage=None, pocket_walls: bool = False) -> RowBodies:
+                   fixed_raceway=None, rib_raceways=(None, None), cage=None, pocket_walls: bool = False,
+                   ribs_on: str = "moving") -> RowBodies:
     """Add the rollers of ``row`` with their sliced raceway contacts.
 
-    ``rib_clearance_m``: ribs on the moving ring at both roller ends with this axial play (None:
-    no ribs); ``cage_mass_kg``: a cage with slot pockets. ``damping_N_s_m`` is the IMPACT damping
+    ``rib_clearance_m``: ribs at both roller ends with this axial play (None: no ribs), on the
+    moving ring (``ribs_on="moving"``) or on the cage (``"cage"``: the ends of window pockets, which
+    hold a roller along its axis and turn with it); ``cage_mass_kg``: a cage with slot pockets. ``damping_N_s_m`` is the IMPACT damping
     of one slice (ribs and pockets use it too); ``friction`` acts at raceways and ribs,
     ``pocket_friction`` in the pockets (None: frictionless). ``roller_law``: (K, n) of one
     roller–raceway contact, N/m^n, in place of the ISO/TS 16281 line law (each slice gets K/n_s).
@@ -174,6 +176,11 @@ def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_rin
                                   below if row.load_sign > 0 else above, raceway=moving_raceway)
         s_f = builder.add_surface(fixed_ring, "plane_down" if row.load_sign > 0 else "plane_up",
                                   above if row.load_sign > 0 else below, raceway=fixed_raceway)
+    if cage is None and cage_mass_kg is not None:
+        cage = _cage_body(builder, f"{row.name} cage", cage_mass_kg, R, None)
+    if ribs_on not in ("moving", "cage") or (ribs_on == "cage" and cage is None):
+        raise ValueError(f"add_roller_row: ribs_on must be 'moving' or 'cage' (with a cage), got {ribs_on!r}")
+    rib_body = moving_ring if ribs_on == "moving" else cage
     ribs = ()
     e_r = edge_radius_m if edge_radius_m is not None else 0.1 * D
     if rib_clearance_m is not None:
@@ -182,14 +189,13 @@ def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_rin
         # outer end and inside the inner end (thrust rows; "outer_cylinder" has its material at r > value)
         kinds = (("plane_down", z0 + h), ("plane_up", z0 - h)) if row.orientation == "radial" else (
             ("outer_cylinder", R + h), ("inner_cylinder", R - h))
-        ribs = tuple((builder.add_surface(moving_ring, kind, value, raceway=grid), end)
+        ribs = tuple((builder.add_surface(rib_body, kind, value, raceway=grid), end)
                      for (kind, value), grid, end in zip(kinds, rib_raceways, (1, -1)))
     density = row.roller_material.density_kg_m3
     mass = roller_mass_kg(D, L, density)
     i_axis = mass * D * D / 8
     i_trans = mass * (3 * (D / 2) ** 2 + L * L) / 12
-    if cage is None and cage_mass_kg is not None:
-        cage = _cage_body(builder, f"{row.name} cage", cage_mass_kg, R, None)
+    rib_friction = friction if ribs_on == "moving" else pocket_friction
     rollers, mov, fix, pockets, other = [], [], [], [], []
     for j, psi in enumerate(_azimuths(row.n_rollers, row.first_azimuth_rad)):
         e = np.array([math.cos(psi), math.sin(psi), 0.0])
@@ -203,7 +209,7 @@ def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_rin
                                               name=f"{row.name} roller {j}–fixed"))
         for surface, end in ribs:
             other.append(builder.add_roller_rib(
-                b, moving_ring, surface, D / 2, L, end, e_r, _rib_law(e_r, row, damping_N_s_m, d_max_m, friction),
+                b, rib_body, surface, D / 2, L, end, e_r, _rib_law(e_r, row, damping_N_s_m, d_max_m, rib_friction),
                 name=f"{row.name} roller {j}–rib {'+' if end > 0 else '-'}"))
         if cage is not None:
             p = builder.add_pocket(cage, "slot", psi, R, z0, pocket_clearance_m, walls=j if pocket_walls else None)
