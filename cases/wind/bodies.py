@@ -100,7 +100,7 @@ def rib_grids(body, row, n_theta: int, rib_clearance_m: float) -> tuple:
     """(end +, end −) sampled circles of a row's end guides on a modal body (module docstring), each
     a list of two :class:`cms_reduction.sampling.RacewaySample`: for the radial row the ribs of
     the inner ring, circles under the raceway on the rib planes z0 ± h; for a thrust row the
-    pocket ends of its cage, circles in the cage ring 5 mm beyond the stop cylinders R ± h, at
+    pocket ends of its cage, circles in the cage ring 15 mm beyond the stop cylinders R ± h, at
     z0 ± 7 mm (h = L/2 + c/2)."""
     R, D = row.pitch_diameter_m / 2, row.roller_diameter_m
     h = row.roller_length_m / 2 + rib_clearance_m / 2
@@ -113,10 +113,10 @@ def rib_grids(body, row, n_theta: int, rib_clearance_m: float) -> tuple:
             if row.orientation == "radial":
                 r, z = R - D / 2 - row.gap_m / 2 - depth, row.axial_position_m + sign * h
             else:  # the stops are the pocket ends: circles in the cage ring beyond them, across its width
-                r, z = R + sign * (h + 5e-3), row.axial_position_m + (2 * k - 1) * CAGE_STOP_HALF_SPAN_M
+                r, z = R + sign * (h + 15e-3), row.axial_position_m + (2 * k - 1) * CAGE_STOP_HALF_SPAN_M
             pts = np.column_stack((r * c, r * s, np.full(n_theta, z)))
             name = f"{row.name} rib {'+' if sign > 0 else '-'}@s{k}"
-            circles.append(sample_points(inner_body, name, pts, th, True))
+            circles.append(sample_points(body, name, pts, th, True))
         out.append(circles)
     return tuple(out)
 
