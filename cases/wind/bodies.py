@@ -2,8 +2,8 @@
 
 Each body is meshed and reduced once and cached by its inputs (:func:`cms_reduction.reduced_body`):
 the inner ring (42CrMo, floating: free–free modes), the outer ring (42CrMo, held at ``bolts``
-patches of 30 mm half-width (at least 0.75 element) on its bolt face, fixed-interface modes) and the three cages (cage
-steel, free–free modes, pocket walls sampled). Sections and pockets: :mod:`fem_rings.sections`,
+patches on its bolt face, 30 mm half-width but at least 0.75 element; fixed-interface modes) and
+the three cages (cage steel, free–free modes, pocket walls sampled). Sections and pockets: :mod:`fem_rings.sections`,
 :mod:`fem_rings.cages` (the parts of ``flexbearing modes``). No load-mode augmentation: as in the
 paper, the rings keep ``n_modes`` normal modes; the contact law carries the local deformation.
 Each body carries its stress modes, so the von Mises field of any recorded instant is one product.
@@ -127,12 +127,11 @@ def stress_maps(sc, rec: dict, folder) -> dict:
     and an off-screen PNG of the body at that instant, ``von_mises_<body>.png`` in ``folder``."""
     from cms_reduction.stress_history import worst_time
     from cms_reduction.stress_modes import render_modal_state
-    from mbd_core.multibody.recorder import _modal_ranges
 
     bodies = {"inner ring": sc.modal.inner, "outer ring": sc.modal.outer,
               **{f"{row.name} cage": c for row, c in zip(sc.row_defs, sc.modal.cages)}}
     out = {}
-    for name, first, stop in _modal_ranges(sc.model):
+    for name, (first, stop) in rec["modal_ranges"].items():
         body = bodies[name]
         eta = rec["eta"][:, first:stop]
         w = worst_time(body, rec["t"], eta)

@@ -152,7 +152,8 @@ def study_friction(case: WindCase, out, progress=None) -> None:
     out.note("drop of the mean cage force from μd " + f"{hi} to {lo}: " + ", ".join(f"{n} {100 * v:.0f} %" for n, v in drop.items()))
 
 
-STUDIES = {"static": study_static, "speeds": study_speeds, "rigid-flexible": study_rigid_flexible, "driving-speed": study_driving_speed, "friction": study_friction}
+STUDIES = {"static": study_static, "speeds": study_speeds, "rigid-flexible": study_rigid_flexible,
+           "driving-speed": study_driving_speed, "friction": study_friction}
 
 
 def run_study(case: WindCase, out, progress=None) -> None:
