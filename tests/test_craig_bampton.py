@@ -143,5 +143,7 @@ def test_grounded_averaging_pads_static_deflection_against_lagrange_solution(rin
     body = reduce_model(ring, 12, [Interface(f"pad {k}", p, kind="averaging") for k, p in enumerate(pads)],
                         (Augmentation(curve, ("axial", "radial"), 4),))
     ur = body.displacement_m((body.shapes.T @ f) / body.omega_rad_s**2)
-    assert np.abs(ur[:, 2]).max() == pytest.approx(np.abs(u[:, 2]).max(), rel=1e-6)
+    # peak deflection: seen 5.9e-6 with NumPy 2.4 / SciPy 1.17 (earlier below 1e-6), the level of the
+    # whole-field difference below; 1e-5 holds it with the same margin
+    assert np.abs(ur[:, 2]).max() == pytest.approx(np.abs(u[:, 2]).max(), rel=1e-5)
     assert np.linalg.norm(ur - u) < 1e-4 * np.linalg.norm(u)     # seen 8e-6 (saddle-point LU round-off)
