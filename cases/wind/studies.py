@@ -84,13 +84,13 @@ def study_speeds(case: WindCase, out, progress=None) -> None:
     _spectrum_files(case, out)
     out.save_figure(plots.roller_speed_figure(case, sc, rec), "roller_speeds.png")
     if case.bodies.any_modal:
-        _stress(out, fig, sc, rec)
+        _stress(case, out, fig, sc, rec)
     out.summary.update(fig)
     _speed_notes(out, fig)
 
 
-def _stress(out, fig: dict, sc, rec) -> None:
-    fig["stress"] = stress_maps(sc, rec, out.folder)
+def _stress(case: WindCase, out, fig: dict, sc, rec) -> None:
+    fig["stress"] = stress_maps(sc, rec, out.folder, after_s=case.analysis.settle_s)
     for name, v in fig["stress"].items():
         out.note(f"{name:18s}: peak von Mises {v['peak_von_mises_MPa']:.1f} MPa at t = {v['time_s']:.3f} s")
 
@@ -106,7 +106,7 @@ def study_rigid_flexible(case: WindCase, out, progress=None) -> None:
         _speed_notes(out, fig, f"{label:8s} ")
         figs[label] = fig
         if kind == "modal":
-            _stress(out, fig, sc, rec)
+            _stress(case, out, fig, sc, rec)
     _spectrum_files(case, out)
     ratio = {n: abs(figs["rigid"]["speeds"][n]["loaded_error"]) / max(abs(figs["flexible"]["speeds"][n]["loaded_error"]), 1e-12)
              for n in figs["rigid"]["speeds"]}
