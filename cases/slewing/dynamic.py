@@ -209,17 +209,26 @@ def start_state(sc: DynamicScene, case: SlewingCase | None = None):
     return state
 
 
-def integrate(sc: DynamicScene, state, duration_s: float, record_every: int, progress=None, chunks: int = 40) -> dict:
-    """Explicit integration for ``duration_s`` from ``state`` in ``chunks`` pieces (for the progress bar)."""
+def integrate(sc: DynamicScene, state, duration_s: float, record_every: int, progress=None, chunks: int = 40,
+              adaptive: bool = False) -> dict:
+    """Explicit integration for ``duration_s`` from ``state`` in ``chunks`` pieces (for the progress bar).
+
+    The first piece's automatic step is kept for all, or (``adaptive``) each piece takes the
+    automatic step of its own start, for scenes whose loads grow far beyond the start's (the
+    step of a regularised friction law shrinks with the normal force); ``timestep_s`` of the
+    result is then the smallest."""
     t0 = state.t
     ends = t0 + duration_s * np.arange(1, chunks + 1) / chunks
-    parts, h = [], None
+    parts, h, h_min = [], None, math.inf
     for t_end in (progress(ends, "simulated") if progress else ends):
-        out = simulate(sc.model, state, float(t_end), timestep_s=h, record_every=record_every)
+        out = simulate(sc.model, state, float(t_end), timestep_s=None if adaptive else h, record_every=record_every)
         h = out["timestep_s"]
+        h_min = min(h_min, h)
         parts.append(out if not parts else {k: (v[1:] if isinstance(v, np.ndarray) else v) for k, v in out.items()})
-    return {k: (np.concatenate([p[k] for p in parts]) if isinstance(parts[0][k], np.ndarray) else parts[0][k])
-            for k in parts[0]}
+    run = {k: (np.concatenate([p[k] for p in parts]) if isinstance(parts[0][k], np.ndarray) else parts[0][k])
+           for k in parts[0]}
+    run["timestep_s"] = h_min
+    return run
 
 
 def _ball_orbit_rad_s(sc: DynamicScene, out: dict, index) -> np.ndarray:

@@ -64,8 +64,8 @@ def _azimuths(n: int, first_rad: float) -> np.ndarray:
     return first_rad + 2.0 * math.pi * np.arange(n) / n
 
 
-def _law(stiffness: float, exponent: float, damping: float, d_max_m: float, friction) -> ContactLaw:
-    return ContactLaw(stiffness, exponent, damping, d_max_m, "impact", friction)
+def _law(stiffness: float, exponent: float, damping: float, d_max_m: float, friction, max_penetration_m=None) -> ContactLaw:
+    return ContactLaw(stiffness, exponent, damping, d_max_m, "impact", friction, max_penetration_m)
 
 
 def _cage_body(builder, name, mass_kg, radius_m, motion):
@@ -161,7 +161,9 @@ def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_rin
     if roller_law is None:
         law = _law(row.contact_stiffness() * 2.0**LINE_EXPONENT / ns, LINE_EXPONENT, damping_N_s_m, d_max_m, friction)
     else:
-        law = _law(roller_law[0] / ns, roller_law[1], damping_N_s_m, d_max_m, friction)
+        # a user law may be much softer than Hertz (the divergence bound, 2 % of the roller radius by
+        # default, would then stop a sound run): bound the approach at 10 % of the diameter instead
+        law = _law(roller_law[0] / ns, roller_law[1], damping_N_s_m, d_max_m, friction, 0.1 * D)
     z0 = row.axial_position_m
     if row.orientation == "radial":
         inner, outer = R - D / 2 - g2, R + D / 2 + g2
