@@ -20,8 +20,8 @@ from typing import Literal
 
 from mbd_core.contact.friction import Coulomb
 
-__all__ = ["Rollers", "Bodies", "Contact", "Loads", "Analysis", "Study", "WindCase", "ADAMS_CONTACT", "INNER_RING_MASS_KG",
-           "OUTER_RING_MASS_KG", "RADIAL_CAGE_MASS_KG", "THRUST_CAGE_MASS_KG"]
+__all__ = ["Rollers", "Bodies", "Contact", "Loads", "Analysis", "Study", "WindCase", "ADAMS_CONTACT",
+           "INNER_RING_MASS_KG", "OUTER_RING_MASS_KG", "RADIAL_CAGE_MASS_KG", "THRUST_CAGE_MASS_KG"]
 
 #: masses of the paper's Table 2, kg (first + second inner ring; outer ring; cages)
 INNER_RING_MASS_KG = 2271.0 + 1700.0
@@ -39,9 +39,10 @@ def _positive(**values) -> None:
 @dataclass(frozen=True)
 class Rollers:
     """Roller material (``steel`` or the paper's aluminium bronze E = 110 GPa, ν = 0.32), slices
-    per roller, the play of a roller along its axis between its ribs on the inner ring (radial
-    row: guide ribs at z0 ± h; thrust rows: stops at R ± h), the radius of the thrust rollers'
-    domed end faces and the play of every roller in its cage pocket, m.
+    per roller, the play of a roller along its axis between its end guides (radial row: ribs of
+    the inner ring at z0 ± h; thrust rows: the ends of the cage's window pockets at R ± h), the
+    radius of the thrust rollers' domed end faces and the play of every roller in its cage
+    pocket, m.
 
     Thrust roller ends are domed (end radius 27 mm on a Ø60 mm roller, a flat rim of 3 mm): a flat
     end against the cylindrical stop of radius R ± L/2 would touch it with its rim first (the rim

@@ -9,8 +9,9 @@ loaded roller of the row at the start (:func:`watched_roller`) over the whole ru
 through the unloaded zone in a long run, as the paper's plots do).
 
 Equilibrium: the force and moment of the rollers' normal forces on the inner ring (raceway slices
-and guide ribs, in the rigid geometry's directions) against the applied load and the ring's weight, averaged over the run after
-``settle_s`` (the ring's mean acceleration is zero when it stays in place).
+and the radial row's guide ribs, in the rigid geometry's directions) against the applied load and
+the ring's weight, averaged over the run after ``settle_s`` (the ring's mean acceleration is zero
+when it stays in place).
 """
 
 from __future__ import annotations

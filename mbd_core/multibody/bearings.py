@@ -64,7 +64,8 @@ def _azimuths(n: int, first_rad: float) -> np.ndarray:
     return first_rad + 2.0 * math.pi * np.arange(n) / n
 
 
-def _law(stiffness: float, exponent: float, damping: float, d_max_m: float, friction, max_penetration_m=None) -> ContactLaw:
+def _law(stiffness: float, exponent: float, damping: float, d_max_m: float, friction,
+         max_penetration_m=None) -> ContactLaw:
     return ContactLaw(stiffness, exponent, damping, d_max_m, "impact", friction, max_penetration_m)
 
 
