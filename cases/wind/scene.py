@@ -134,7 +134,7 @@ def build_scene(case: WindCase) -> WindScene:
     q0 = initial_displacement(case, row_defs, f[0])
     omega = case.analysis.speed_rpm * 2.0 * math.pi / 60.0
     mb = modal_bodies(case) if case.bodies.any_modal else ModalBodies(None, None, (None, None, None))
-    b = ModelBuilder(gravity_m_s2=(0.0, -G_M_S2, 0.0))
+    b = ModelBuilder(gravity_m_s2=(0.0, -G_M_S2, 0.0), implicit_friction=case.contact.implicit_friction)
     tilt = math.hypot(q0[3], q0[4])
     orient = quat_from_axis_angle((q0[3], q0[4], 0.0), tilt) if tilt > 0 else (1.0, 0.0, 0.0, 0.0)
     drive = Driven(omega, translation_free=True, tilt_free=True)

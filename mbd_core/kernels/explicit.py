@@ -13,6 +13,23 @@ One step of size h (velocity Verlet in kick–drift–kick form; DESIGN §5.4):
 Modal bodies follow the same kick–drift–kick with their own kick and drift (:mod:`.modal_step`;
 first kick and drift after the rigid ones, which do not depend on them).
 
+Implicit friction (bodies with ``m.body_fric_implicit``, all six components free): the friction of
+each contact point is F_t = −c v_t with the secant coefficient c = μ(u) F_n / u ≥ 0 of the force
+evaluation (u = |v_t| there), and its velocity dependence is taken implicitly in both kicks, c frozen:
+
+    (M + (h/2) C) Δu = (h/2) (F − C (u − u_e)),     u = (v, ω) world, M = diag(m, R I Rᵀ),
+
+C = Σ c Jᵀ(I − m mᵀ)J over the body's contact points (:mod:`.forces`), u_e the velocity at the force
+evaluation; ω is stored in the body frame (Δω_B = Rᵀ Δω). For a lone damper m u̇ = −c u the two kicks
+give u ← u / (1 + hc/2m)²: no step is too large for the friction, and the slip never reverses within
+a step (the secant form, unlike the tangent dμ/du, also holds for a sliding contact, where μ is flat;
+a linearly implicit treatment in the style of the Rosenbrock methods, Hairer & Wanner, *Solving ODEs
+II*, §IV.7, with a frozen secant instead of the Jacobian). Steady rolling and sliding are unchanged:
+at a fixed point u = u_e. The other body of a pair enters with its velocity of the evaluation (a
+block-Jacobi split; for two bodies the relative slip then changes by a factor 1 − α_a − α_b,
+α = hc/(2m + hc) ∈ (0, 1), per kick). Bodies with prescribed components, modal bodies and models
+built without ``implicit_friction`` are kicked explicitly.
+
 Bodies whose rotation is only partly free (a ring driven about its axis but free to tilt) get the
 gyroscopic term −ω × Iω explicitly in the kick of their free components, evaluated at the current
 ω: that part is first order and lets a tilt rate grow by about (1 + h²Ω²/4) per step at spin Ω —
@@ -30,14 +47,16 @@ from __future__ import annotations
 
 from numba import njit
 
-from .forces import STATUS_ENERGY, STATUS_MODAL, STATUS_OK, compute_forces, rotate_back
-from .modal_step import modal_drift, modal_energy, modal_kick
+from .forces import STATUS_ENERGY, STATUS_MODAL, STATUS_OK, compute_forces, rotate, rotate_back
+from .modal_step import cholesky_in_place, cholesky_solve, modal_drift, modal_energy, modal_kick
 from .rigid import free_rotation_step, turn_quaternion
 
 
 @njit(cache=True)
-def _kick(q, v, body_f, body_t, body_mass, body_inertia, body_free, hh):
+def _kick(q, v, body_f, body_t, body_mass, body_inertia, body_free, implicit, hh):
     for i in range(body_mass.shape[0]):
+        if implicit[i] != 0:  # _friction_kick
+            continue
         free = body_free[i]
         inv_m = hh / body_mass[i]
         for j in range(3):
@@ -60,6 +79,56 @@ def _kick(q, v, body_f, body_t, body_mass, body_inertia, body_free, hh):
             v[i, 4] += hh * ty / inertia[1]
         if free[5]:
             v[i, 5] += hh * tz / inertia[2]
+
+
+@njit(cache=True)
+def _friction_kick(q, v, w, body_mass, body_inertia, implicit, hh):
+    """Kick of the bodies with implicit friction (module docstring), all six components free."""
+    A, r = w.fric_a, w.fric_r
+    for i in range(body_mass.shape[0]):
+        if implicit[i] == 0:
+            continue
+        C, ve = w.fric_c[i], w.fric_v[i]
+        if C[0, 0] + C[1, 1] + C[2, 2] == 0.0:  # no friction on it (each point adds 2c to this trace)
+            for j in range(3):
+                v[i, j] += hh * w.body_f[i, j] / body_mass[i]
+            tx, ty, tz = rotate_back(q, i, w.body_t[i, 0], w.body_t[i, 1], w.body_t[i, 2])
+            v[i, 3] += hh * tx / body_inertia[i, 0]
+            v[i, 4] += hh * ty / body_inertia[i, 1]
+            v[i, 5] += hh * tz / body_inertia[i, 2]
+            continue
+        # velocity change since the evaluation, world (v, ω)
+        dwx, dwy, dwz = rotate(q, i, v[i, 3] - ve[3], v[i, 4] - ve[4], v[i, 5] - ve[5])
+        r[0], r[1], r[2] = v[i, 0] - ve[0], v[i, 1] - ve[1], v[i, 2] - ve[2]
+        r[3], r[4], r[5] = dwx, dwy, dwz
+        for j in range(6):  # A = (h/2) C, rhs = (h/2)(F − C du) (kept in a column of A's scratch)
+            s = 0.0
+            for k in range(6):
+                A[j, k] = hh * C[j, k]
+                s += C[j, k] * r[k]
+                w.fric_g[j] = -hh * s
+        for j in range(3):
+            w.fric_g[j] += hh * w.body_f[i, j]
+            w.fric_g[3 + j] += hh * w.body_t[i, j]
+            A[j, j] += body_mass[i]
+        # rotational mass R I Rᵀ, column by column: R I Rᵀ e_k
+        inertia = body_inertia[i]
+        for k in range(3):
+            bx, by, bz = rotate_back(q, i, 1.0 if k == 0 else 0.0, 1.0 if k == 1 else 0.0, 1.0 if k == 2 else 0.0)
+            cx, cy, cz = rotate(q, i, inertia[0] * bx, inertia[1] * by, inertia[2] * bz)
+            A[3, 3 + k] += cx
+            A[4, 3 + k] += cy
+            A[5, 3 + k] += cz
+        cholesky_in_place(A, 6)
+        cholesky_solve(A, 6, w.fric_g)
+        g = w.fric_g
+        v[i, 0] += g[0]
+        v[i, 1] += g[1]
+        v[i, 2] += g[2]
+        ox, oy, oz = rotate_back(q, i, g[3], g[4], g[5])
+        v[i, 3] += ox
+        v[i, 4] += oy
+        v[i, 5] += oz
 
 
 @njit(cache=True)
@@ -151,11 +220,17 @@ def run_explicit(m, q, v, eta, eta_dot, w, t_origin, step0, n_steps, h, every, r
     """
     k = 0
     mass, inertia, free, f, tau = m.body_mass, m.body_inertia, m.body_free, w.body_f, w.body_t
+    imp = m.body_fric_implicit
     modal = m.modal_body.shape[0] > 0
+    implicit = False
+    for i in range(imp.shape[0]):
+        implicit = implicit or imp[i] != 0
     for s in range(n_steps):
         step = step0 + s + 1
         t = t_origin + step * h
-        _kick(q, v, f, tau, mass, inertia, free, 0.5 * h)
+        _kick(q, v, f, tau, mass, inertia, free, imp, 0.5 * h)
+        if implicit:
+            _friction_kick(q, v, w, mass, inertia, imp, 0.5 * h)
         _drift(q, v, inertia, free, m.body_modal, w.pi, h)
         if modal:
             if not (modal_kick(m, q, v, eta, eta_dot, w, 0.5 * h, False)
@@ -164,7 +239,9 @@ def run_explicit(m, q, v, eta, eta_dot, w, t_origin, step0, n_steps, h, every, r
         status, index = compute_forces(m, t, q, v, eta, eta_dot, w)
         if status != STATUS_OK:
             return status, index, s, k
-        _kick(q, v, f, tau, mass, inertia, free, 0.5 * h)
+        _kick(q, v, f, tau, mass, inertia, free, imp, 0.5 * h)
+        if implicit:
+            _friction_kick(q, v, w, mass, inertia, imp, 0.5 * h)
         if modal and not modal_kick(m, q, v, eta, eta_dot, w, 0.5 * h, True):
             return STATUS_MODAL, -1, s, k
         if step % 16 == 0:

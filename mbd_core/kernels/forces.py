@@ -37,6 +37,11 @@ to the modes by the transpose, Q += Σ_c w_c (D_cᵀ g + Ω_cᵀ((p − p_s) × 
 (the weights, n and p depend on the element's pose only). The sampled fields of each row are computed
 once per pair and the loads gathered per row before they are projected (``w.flex_*``, a small cache of
 rows that is flushed when full): the slices of a roller share a few rows.
+
+Bodies that integrate their friction implicitly (``m.body_fric_implicit``) also get, per contact
+point, the damping matrix c Jᵀ(I − m mᵀ)J of the friction in (v, ω) world, c = |F_t|/|v_t| the secant
+coefficient (``w.fric_c``), and the velocity of this evaluation (``w.fric_v``), for the kick of
+:mod:`.explicit`.
 """
 
 from __future__ import annotations
@@ -103,6 +108,61 @@ def _add_force(q, bf, bt, i, fx, fy, fz, px, py, pz):
     bt[i, 0] += ry * fz - rz * fy
     bt[i, 1] += rz * fx - rx * fz
     bt[i, 2] += rx * fy - ry * fx
+
+
+@njit(cache=True)
+def _friction_damping(q, fc, g, i, c, mx, my, mz, px, py, pz):
+    """Add c Jᵀ(I − m mᵀ)J to body i's friction damping fc[i] (world (v, ω), 6 × 6): the friction
+    c v_t of a contact at world point p with unit normal m, J = [I, −[r]×] the velocity of the body's
+    material point at p (r = p − centre) per (v, ω), so that JᵀPJ = JᵀJ − (Jᵀm)(Jᵀm)ᵀ with
+    Jᵀm = (m, r × m); g is scratch (6,)."""
+    rx, ry, rz = px - q[i, 0], py - q[i, 1], pz - q[i, 2]
+    g[0], g[1], g[2] = mx, my, mz
+    g[3], g[4], g[5] = ry * mz - rz * my, rz * mx - rx * mz, rx * my - ry * mx
+    f = fc[i]
+    for j in range(6):
+        cg = c * g[j]
+        for k in range(6):
+            f[j, k] -= cg * g[k]
+    r2 = rx * rx + ry * ry + rz * rz
+    f[0, 0] += c
+    f[1, 1] += c
+    f[2, 2] += c
+    f[3, 3] += c * (r2 - rx * rx)
+    f[4, 4] += c * (r2 - ry * ry)
+    f[5, 5] += c * (r2 - rz * rz)
+    f[3, 4] -= c * rx * ry
+    f[4, 3] -= c * rx * ry
+    f[3, 5] -= c * rx * rz
+    f[5, 3] -= c * rx * rz
+    f[4, 5] -= c * ry * rz
+    f[5, 4] -= c * ry * rz
+    # upper right −[r]×, lower left [r]×
+    f[0, 4] += c * rz
+    f[4, 0] += c * rz
+    f[0, 5] -= c * ry
+    f[5, 0] -= c * ry
+    f[1, 3] -= c * rz
+    f[3, 1] -= c * rz
+    f[1, 5] += c * rx
+    f[5, 1] += c * rx
+    f[2, 3] += c * ry
+    f[3, 2] += c * ry
+    f[2, 4] -= c * rx
+    f[4, 2] -= c * rx
+
+
+@njit(cache=True)
+def _implicit_friction(q, imp, fc, g, a, b, u, ft, mx, my, mz, px, py, pz):
+    """The friction of one contact point (slip speed u, force ft) as a damper of secant coefficient
+    ft / u on whichever of bodies a and b integrate their friction implicitly."""
+    if (imp[a] == 0 and imp[b] == 0) or not (u > 0.0 and ft > 0.0):
+        return
+    c = ft / u
+    if imp[a] != 0:
+        _friction_damping(q, fc, g, a, c, mx, my, mz, px, py, pz)
+    if imp[b] != 0:
+        _friction_damping(q, fc, g, b, c, mx, my, mz, px, py, pz)
 
 
 # Hot per-contact functions take plain arrays and scalars, never the model namedtuple: passing a
@@ -212,6 +272,7 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
             fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                          m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
                                          px, py, pz)
+            _implicit_friction(q, m.body_fric_implicit, w.fric_c, w.fric_g, a, b, u, ft, mx, my, mz, px, py, pz)
         else:
             # a groove on a modal ring (see _nearest_deformed_centre); the arrays are sliced here so
             # that no per-contact function takes the model tuple
@@ -246,6 +307,7 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
                                                        vaz - vbz - vz)
                 _add_force(q, bf, bt, a, fx, fy, fz, px, py, pz)
                 _add_force(q, bf, bt, b, -fx, -fy, -fz, px, py, pz)
+                _implicit_friction(q, m.body_fric_implicit, w.fric_c, w.fric_g, a, b, u, ft, mx, my, mz, px, py, pz)
                 gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
                 _add_section_force(disp, rot, i0, i1, w0, w1, gx, gy, gz, by * gz - bz * gy, bz * gx - bx * gz,
                                    bx * gy - by * gx, w.modal_f[o0:o1])
@@ -510,10 +572,12 @@ def _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta, lx, ly,
     δ + n·d, |v_t|, |F_t|, energy)."""
     sd, sp, sn = w.slice_delta, w.slice_point, w.slice_normal
     sd[0], sp[0, 0], sp[0, 1], sp[0, 2], sn[0, 0], sn[0, 1], sn[0, 2] = delta, lx, ly, lz, nx, ny, nz
-    n, fn, delta, u, ft, e, _, _, _, _, _, _ = _flexible_contact(
+    n, fn, delta, u, ft, e, px, py, pz, mx, my, mz = _flexible_contact(
         q, v, w.body_f, w.body_t, m.samp_disp, m.samp_rot, m.samp_point, eta[o0:o1], eta_dot[o0:o1], w.flex_row,
         w.flex_field, w.flex_corner, w.flex_weight, n, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
         m.pair_dmax[c], m.pair_fric[c], m.pair_fric_p[c], sd, sp, sn, 0)
+    if ft > 0.0:
+        _implicit_friction(q, m.body_fric_implicit, w.fric_c, w.fric_g, a, b, u, ft, mx, my, mz, px, py, pz)
     return n, fn, delta, u, ft, e
 
 
@@ -534,6 +598,7 @@ def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns):
     periodic, kind = m.race_periodic[g] == 1, m.race_kind[g]
     law, k_c, n_exp, damp, d_mx = m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c]
     fric, fp_c = m.pair_fric[c], m.pair_fric_p[c]
+    imp, fc, fg = m.body_fric_implicit, w.fric_c, w.fric_g
     fn_sum, dmax, u_at_max, ft_sum, f_max, angle, e_sum = 0.0, -math.inf, 0.0, 0.0, -1.0, 0.0, 0.0
     n = 0
     for k in range(ns):
@@ -548,6 +613,7 @@ def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns):
             dmax = delta
         if delta <= 0.0:
             continue
+        _implicit_friction(q, imp, fc, fg, a, b, u, ft, mx, my, mz, px, py, pz)
         fn_sum += fn
         ft_sum += ft
         e_sum += e
@@ -569,6 +635,7 @@ def _ball_ball_pairs(m, q, v, w):
         delta, mx, my, mz, px, py, pz = ball_ball(q[a], q[b], m.pair_radius[c], m.pair_radius_b[c])
         fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                      m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
+        _implicit_friction(q, m.body_fric_implicit, w.fric_c, w.fric_g, a, b, u, ft, mx, my, mz, px, py, pz)
         _store(w, c, fn, delta, u, ft)
         w.contact_angle[c] = 0.0
         e_sum += e
@@ -604,6 +671,7 @@ def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
         obx, oby, obz = rotate(q, b, v[b, 3], v[b, 4], v[b, 5])
         law, k_s, n_exp, damp, d_mx, fric = m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c], m.pair_fric[c]
         p0, p1, p2, p3 = fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3]
+        imp, fc, fg = m.body_fric_implicit, w.fric_c, w.fric_g
         fxs = fys = fzs = tax = tay = taz = tbx = tby = tbz = 0.0
         for k in range(ns):
             delta = sd[k]
@@ -620,6 +688,7 @@ def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
                 v[a, 0] + oay * raz - oaz * ray - v[b, 0] - (oby * rbz - obz * rby),
                 v[a, 1] + oaz * rax - oax * raz - v[b, 1] - (obz * rbx - obx * rbz),
                 v[a, 2] + oax * ray - oay * rax - v[b, 2] - (obx * rby - oby * rbx))
+            _implicit_friction(q, imp, fc, fg, a, b, u, ft, mx, my, mz, px, py, pz)
             fxs += fx
             fys += fy
             fzs += fz
@@ -683,6 +752,7 @@ def _roller_rib_pairs(m, q, v, eta, eta_dot, w):
         mx, my, mz = rotate(q, b, nx, ny, nz)
         fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                      m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
+        _implicit_friction(q, m.body_fric_implicit, w.fric_c, w.fric_g, a, b, u, ft, mx, my, mz, px, py, pz)
         _store(w, c, fn, delta, u, ft)
         w.contact_angle[c] = 0.0
         e_sum += e
@@ -731,6 +801,8 @@ def _element_pocket_pairs(m, q, v, eta, eta_dot, w):
                 fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                              m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
                                              px, py, pz)
+                _implicit_friction(q, m.body_fric_implicit, w.fric_c, w.fric_g, a, b, u, ft, mx, my, mz, px, py,
+                                   pz)
             fn_sum += fn
             ft_sum += ft
             e_sum += e
@@ -819,6 +891,10 @@ def compute_forces(m, t, q, v, eta, eta_dot, w):
     _external_loads(m, q, w, t)
     for k in range(w.modal_f.shape[0]):
         w.modal_f[k] = 0.0
+    for i in range(m.body_fric_implicit.shape[0]):
+        if m.body_fric_implicit[i] != 0:
+            w.fric_c[i, :, :] = 0.0
+            w.fric_v[i, :] = v[i, :]
     w.energy[1] = _bushings(m, q, v, w) if m.bush_a.shape[0] > 0 else 0.0
     e = 0.0
     n_of = w.type_count

@@ -9,7 +9,9 @@ The time step is limited (DESIGN §5.4) by
   (Belytschko, Liu & Moran, *Nonlinear Finite Elements for Continua and Structures*, §6.3);
 * friction: below the transition speed the friction force acts as a damper of slope
   c = F·max dμ/du on the tangential effective mass m_t (translation plus rotation of the element
-  about its centre, 1/m_t = 1/m + r²/I), and an explicit damper needs h < 2 m_t / c. F is
+  about its centre, 1/m_t = 1/m + r²/I), and an explicit damper needs h < 2 m_t / c. Bodies that
+  integrate their friction implicitly (``implicit_friction``) leave m_t; a pair with only such
+  bodies does not limit the step. F is
   ``load_factor`` × the larger of the present load and, for raceway contacts, the external load
   shared by all pairs of that kind (1 % of that share for cage and rib contacts). Laws with
   μ(0⁺) > 0 (DREB falling, Kragelskii with D > 0) have no bounded slope and are not counted;
@@ -142,7 +144,12 @@ def stable_timestep(model: Model, state: State, load_factor: float = 3.0, safety
             share *= 0.01
         f_ref = load_factor * max(work.contact_fn[c], share, 1.0)
         r = a.pair_radius[c]
-        inv_mt = inv_m[ia] + (r * r / a.body_inertia[ia].min() if a.body_free[ia, 3:].any() else 0.0) + inv_m[ib]
+        # bodies with implicit friction do not limit the step (mbd_core.kernels.explicit)
+        inv_mt = 0.0 if a.body_fric_implicit[ia] else (
+            inv_m[ia] + (r * r / a.body_inertia[ia].min() if a.body_free[ia, 3:].any() else 0.0))
+        inv_mt += 0.0 if a.body_fric_implicit[ib] else inv_m[ib]
+        if inv_mt == 0.0:
+            continue
         h_f = 2.0 / (inv_mt * slope * f_ref)
         if h_f < best[0]:
             best = (h_f, f"friction at contact {model.pair_names[c]!r} (slope dμ/du up to {slope:.3g} s/m at "
@@ -297,6 +304,7 @@ def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | Non
         state.q[:], state.v[:] = ck["q"], ck["v"]
         state.eta, state.eta_dot = ck["eta"].copy(), ck["eta_dot"].copy()
         work.body_f[:], work.body_t[:], work.modal_f[:] = ck["body_f"], ck["body_t"], ck["modal_f"]
+        work.fric_c[:], work.fric_v[:] = ck["fric_c"], ck["fric_v"]
         for f in ("fn", "delta", "slip", "ft", "angle", "theta"):
             getattr(work, f"contact_{f}")[:] = ck[f]
         h = timestep_s

@@ -9,7 +9,9 @@ Bodies
     body_mass (n_b,) kg; body_inertia (n_b, 3) kg·m², principal, body frame;
     body_free (n_b, 6) int64, 1 where the component of v is integrated (v_x, v_y, v_z world,
     ω_x, ω_y, ω_z body), 0 where it is held at its prescribed value;
-    body_force (n_b, 6) N and N·m: constant world force and moment (gravity included).
+    body_force (n_b, 6) N and N·m: constant world force and moment (gravity included);
+    body_fric_implicit (n_b,) int64, 1 for a body whose friction is integrated implicitly (a free rigid
+    body, all six components free, in a model built with ``implicit_friction``; :mod:`mbd_core.kernels.explicit`).
 Load histories (cubic splines, :mod:`mbd_core.kernels.splines`)
     load_body (n_l,), load_off (n_l + 1,), knot_t (n_k,) s, knot_coef (n_k, 4, 6).
 Bushings (:func:`mbd_core.kernels.forces._bushings`)
@@ -63,7 +65,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 MODEL_FIELDS = (
-    "body_mass body_inertia body_free body_force "
+    "body_mass body_inertia body_free body_force body_fric_implicit "
     "load_body load_off knot_t knot_coef "
     "bush_a bush_b bush_p_a bush_p_b bush_q_ref bush_k bush_c "
     "pair_type pair_a pair_b pair_geom pair_law pair_k pair_n pair_c pair_dmax pair_fric pair_fric_p "
@@ -90,13 +92,16 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: cached sample rows, flex_field (FLEX_ROWS, 18) their D η, Ω η, D η̇, Ω η̇ and gathered force and
 #: moment on the ring (ring frame); flex_corner (4, 2) int64 row and cache slot, flex_weight (4,) the
 #: interpolation weights of one contact point; groove_rows (4, 3) D_i0 η, D_i1 η, Ω_i0 η, Ω_i1 η of the two
-#: samples around a ball on a modal ring's groove.
+#: samples around a ball on a modal ring's groove. Implicit friction (:mod:`mbd_core.kernels.explicit`):
+#: fric_c (n_b, 6, 6) each body's friction damping matrix, world (v, ω), N·s/m; fric_v (n_b, 6) the
+#: velocity (v world, ω body) at which the forces were evaluated; fric_a (6, 6), fric_r (6,), fric_g (6,)
+#: scratch.
 WorkArrays = namedtuple(
     "WorkArrays",
     "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta energy "
     "load pi center axis point slice_delta slice_point slice_normal type_count "
     "modal_f modal_M modal_L modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta "
-    "flex_row flex_field flex_corner flex_weight groove_rows",
+    "flex_row flex_field flex_corner flex_weight groove_rows fric_c fric_v fric_a fric_r fric_g",
 )
 FLEX_ROWS = 32
 
@@ -201,6 +206,8 @@ def make_work(model: Model) -> WorkArrays:
         modal_eta=np.zeros(n6 - 6),
         flex_row=np.zeros(FLEX_ROWS, dtype=np.int64), flex_field=np.zeros((FLEX_ROWS, 18)),
         flex_corner=np.zeros((4, 2), dtype=np.int64), flex_weight=np.zeros(4), groove_rows=np.zeros((4, 3)),
+        fric_c=np.zeros((nb, 6, 6)), fric_v=np.zeros((nb, 6)), fric_a=np.zeros((6, 6)), fric_r=np.zeros(6),
+        fric_g=np.zeros(6),
     )
 
 

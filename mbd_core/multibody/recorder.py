@@ -13,7 +13,7 @@ Layout of a run folder (one place, DESIGN §5.5)::
                         slip speed m/s, friction force N, contact angle rad, ball angle on its
                         groove rad (0 for other contacts)
     checkpoint.npz      the integrator state after the last chunk: t_origin, step, q, v, eta,
-                        eta_dot, body_f, body_t, modal_f, the contact outputs and n_chunks, from
+                        eta_dot, body_f, body_t, modal_f, fric_c, fric_v, the contact outputs and n_chunks, from
                         which a run resumes bit for bit
 
 Chunks and the checkpoint are written atomically (temporary file, then rename), so an interrupted
@@ -88,7 +88,8 @@ class RunRecord:
     def write_checkpoint(self, t_origin: float, step: int, state, work) -> None:
         _atomic_save(self.folder / "checkpoint.npz", t_origin=t_origin, step=step, q=state.q, v=state.v,
                      eta=state.eta, eta_dot=state.eta_dot, n_chunks=self.layout["n_chunks"],
-                     body_f=work.body_f, body_t=work.body_t, modal_f=work.modal_f,
+                     body_f=work.body_f, body_t=work.body_t, modal_f=work.modal_f, fric_c=work.fric_c,
+                     fric_v=work.fric_v,
                      **{f: getattr(work, f"contact_{f}") for f in RECORDED_CONTACT_FIELDS})
         _atomic_json(self.layout_path, self.layout)
 
