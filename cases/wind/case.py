@@ -172,12 +172,13 @@ class Loads:
 @dataclass(frozen=True)
 class Analysis:
     """Driving speed of the inner ring (rpm), simulated time (s), the settling time excluded from
-    the averages (s) and how often a sample is recorded (steps)."""
+    the averages (s) and how often a sample is recorded (steps; 50 steps ≈ 0.6–0.8 ms at the steps
+    of implicit friction)."""
 
     speed_rpm: float = 30.0
     duration_s: float = 8.0
     settle_s: float = 0.5
-    record_every: int = 200
+    record_every: int = 50
 
     def __post_init__(self) -> None:
         _positive(speed_rpm=self.speed_rpm, duration_s=self.duration_s, record_every=self.record_every)
