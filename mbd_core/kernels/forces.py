@@ -40,8 +40,8 @@ rows that is flushed when full): the slices of a roller share a few rows.
 
 Bodies that integrate their friction implicitly (``m.body_fric_implicit``) also get, per contact
 point, the damping matrix c Jᵀ(I − m mᵀ)J of the friction in (v, ω) world, c = |F_t|/|v_t| the secant
-coefficient (``w.fric_c``), and the velocity of this evaluation (``w.fric_v``), for the kick of
-:mod:`.explicit`.
+coefficient (``w.fric_c``, from the points noted in ``w.fric_pts``), and the velocity of this
+evaluation (``w.fric_v``), for the kick of :mod:`.explicit`.
 """
 
 from __future__ import annotations
@@ -152,23 +152,40 @@ def _friction_damping(q, fc, g, i, c, mx, my, mz, px, py, pz):
     f[4, 2] -= c * rx
 
 
-@njit(cache=True)
-def _implicit_friction(q, imp, fc, g, a, b, u, ft, mx, my, mz, px, py, pz):
-    """The friction of one contact point (slip speed u, force ft) as a damper of secant coefficient
-    ft / u on whichever of bodies a and b integrate their friction implicitly."""
+@njit(cache=True, inline="always")
+def _note_friction(imp, pts, cnt, a, b, u, ft, mx, my, mz, px, py, pz):
+    """Note one contact point's friction (slip speed u, force ft, normal m, world point p) for the
+    damping matrices (:func:`_friction_damping_matrices`) when body a or b integrates its friction
+    implicitly: row cnt[0] of pts = (a, b, c = ft / u, m, p)."""
     if (imp[a] == 0 and imp[b] == 0) or not (u > 0.0 and ft > 0.0):
         return
-    c = ft / u
-    if imp[a] != 0:
-        _friction_damping(q, fc, g, a, c, mx, my, mz, px, py, pz)
-    if imp[b] != 0:
-        _friction_damping(q, fc, g, b, c, mx, my, mz, px, py, pz)
+    k = cnt[0]
+    if k >= pts.shape[0]:  # (sized for every slice and two points per other pair)
+        return
+    pts[k, 0], pts[k, 1], pts[k, 2] = a, b, ft / u
+    pts[k, 3], pts[k, 4], pts[k, 5] = mx, my, mz
+    pts[k, 6], pts[k, 7], pts[k, 8] = px, py, pz
+    cnt[0] = k + 1
 
 
-# Hot per-contact functions take plain arrays and scalars, never the model namedtuple: passing a
-# tuple of ~50 arrays to a function that is not inlined costs about 0.5 µs per call, and every
-# array argument of a call costs reference counting (~10 ns), so the small helpers that take
-# arrays are inlined by numba (inline="always").
+@njit(cache=True)
+def _friction_damping_matrices(m, q, v, w):
+    """w.fric_c of every body with implicit friction from the noted points, w.fric_v = v. (A stage of
+    its own: accumulating in the contact loops slows them down even where no friction acts.)"""
+    imp, pts = m.body_fric_implicit, w.fric_pts
+    for i in range(imp.shape[0]):
+        if imp[i] != 0:
+            w.fric_c[i, :, :] = 0.0
+            w.fric_v[i, :] = v[i, :]
+    for k in range(w.fric_n[0]):
+        a, b, c = int(pts[k, 0]), int(pts[k, 1]), pts[k, 2]
+        for i in (a, b):
+            if imp[i] != 0:
+                _friction_damping(q, w.fric_c, w.fric_g, i, c, pts[k, 3], pts[k, 4], pts[k, 5], pts[k, 6],
+                                  pts[k, 7], pts[k, 8])
+    w.fric_n[0] = 0
+
+
 @njit(cache=True, inline="always")
 def point_force(law, k, n_exp, damping, d_max, fric, p0, p1, p2, p3, delta, mx, my, mz, rx, ry, rz):
     """Force on body a of one contact point with penetration δ > 0, unit normal m (on a) and
@@ -255,6 +272,7 @@ def _store(w, c, fn, delta, u, ft):
 def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
+    imp, fpts, fcnt = m.body_fric_implicit, w.fric_pts, w.fric_n
     for c in range(m.pair_type.shape[0]):
         if m.pair_type[c] != BALL_GROOVE:
             continue
@@ -272,7 +290,7 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
             fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                          m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
                                          px, py, pz)
-            _implicit_friction(q, m.body_fric_implicit, w.fric_c, w.fric_g, a, b, u, ft, mx, my, mz, px, py, pz)
+            _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
         else:
             # a groove on a modal ring (see _nearest_deformed_centre); the arrays are sliced here so
             # that no per-contact function takes the model tuple
@@ -307,7 +325,7 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
                                                        vaz - vbz - vz)
                 _add_force(q, bf, bt, a, fx, fy, fz, px, py, pz)
                 _add_force(q, bf, bt, b, -fx, -fy, -fz, px, py, pz)
-                _implicit_friction(q, m.body_fric_implicit, w.fric_c, w.fric_g, a, b, u, ft, mx, my, mz, px, py, pz)
+                _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
                 gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
                 _add_section_force(disp, rot, i0, i1, w0, w1, gx, gy, gz, by * gz - bz * gy, bz * gx - bx * gz,
                                    bx * gy - by * gx, w.modal_f[o0:o1])
@@ -566,7 +584,7 @@ def _flexible_contact(q, v, bf, bt, disp, rot, pts, e_j, ed_j, rows, field, corn
 
 
 @njit(cache=True, inline="always")
-def _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta, lx, ly, lz, nx, ny, nz):
+def _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta, lx, ly, lz, nx, ny, nz, imp, fpts, fcnt):
     """:func:`_flexible_contact` of one point of pair c (a roller end, a pocket wall; corners set, at most
     two points per pair, so the cache has room) through slot 0 of the slice scratch; returns (n, F_n,
     δ + n·d, |v_t|, |F_t|, energy)."""
@@ -576,13 +594,12 @@ def _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta, lx, ly,
         q, v, w.body_f, w.body_t, m.samp_disp, m.samp_rot, m.samp_point, eta[o0:o1], eta_dot[o0:o1], w.flex_row,
         w.flex_field, w.flex_corner, w.flex_weight, n, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
         m.pair_dmax[c], m.pair_fric[c], m.pair_fric_p[c], sd, sp, sn, 0)
-    if ft > 0.0:
-        _implicit_friction(q, m.body_fric_implicit, w.fric_c, w.fric_g, a, b, u, ft, mx, my, mz, px, py, pz)
+    _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
     return n, fn, delta, u, ft, e
 
 
 @njit(cache=True, inline="always")
-def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns):
+def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns, imp, fpts, fcnt):
     """The slices of roller pair c (rigid geometry in ``w.slice_*``) on the (θ, s)-sampled surface g of
     modal ring b. Returns (ΣF_n, largest δ, slip at the most loaded slice, Σ|F_t|, its contact angle,
     energy)."""
@@ -598,7 +615,6 @@ def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns):
     periodic, kind = m.race_periodic[g] == 1, m.race_kind[g]
     law, k_c, n_exp, damp, d_mx = m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c]
     fric, fp_c = m.pair_fric[c], m.pair_fric_p[c]
-    imp, fc, fg = m.body_fric_implicit, w.fric_c, w.fric_g
     fn_sum, dmax, u_at_max, ft_sum, f_max, angle, e_sum = 0.0, -math.inf, 0.0, 0.0, -1.0, 0.0, 0.0
     n = 0
     for k in range(ns):
@@ -613,7 +629,7 @@ def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns):
             dmax = delta
         if delta <= 0.0:
             continue
-        _implicit_friction(q, imp, fc, fg, a, b, u, ft, mx, my, mz, px, py, pz)
+        _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
         fn_sum += fn
         ft_sum += ft
         e_sum += e
@@ -628,6 +644,7 @@ def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns):
 def _ball_ball_pairs(m, q, v, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
+    imp, fpts, fcnt = m.body_fric_implicit, w.fric_pts, w.fric_n
     for c in range(m.pair_type.shape[0]):
         if m.pair_type[c] != BALL_BALL:
             continue
@@ -635,7 +652,7 @@ def _ball_ball_pairs(m, q, v, w):
         delta, mx, my, mz, px, py, pz = ball_ball(q[a], q[b], m.pair_radius[c], m.pair_radius_b[c])
         fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                      m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
-        _implicit_friction(q, m.body_fric_implicit, w.fric_c, w.fric_g, a, b, u, ft, mx, my, mz, px, py, pz)
+        _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
         _store(w, c, fn, delta, u, ft)
         w.contact_angle[c] = 0.0
         e_sum += e
@@ -648,6 +665,7 @@ def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
     center, axis = w.center, w.axis
     sd, sp, sn = w.slice_delta, w.slice_point, w.slice_normal
+    imp, fpts, fcnt = m.body_fric_implicit, w.fric_pts, w.fric_n
     for c in range(m.pair_type.shape[0]):
         if m.pair_type[c] != ROLLER_RACEWAY:
             continue
@@ -660,7 +678,7 @@ def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
                       m.race_kind[g], m.race_value[g], sd, sp, sn)
         if m.race_modal[g] >= 0:
             fn_sum, dmax, u_at_max, ft_sum, angle, e = _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g,
-                                                                                 ns)
+                                                                                 ns, imp, fpts, fcnt)
             e_sum += e
             _store(w, c, fn_sum, dmax, u_at_max, ft_sum)
             w.contact_angle[c] = angle
@@ -671,7 +689,6 @@ def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
         obx, oby, obz = rotate(q, b, v[b, 3], v[b, 4], v[b, 5])
         law, k_s, n_exp, damp, d_mx, fric = m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c], m.pair_fric[c]
         p0, p1, p2, p3 = fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3]
-        imp, fc, fg = m.body_fric_implicit, w.fric_c, w.fric_g
         fxs = fys = fzs = tax = tay = taz = tbx = tby = tbz = 0.0
         for k in range(ns):
             delta = sd[k]
@@ -688,7 +705,7 @@ def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
                 v[a, 0] + oay * raz - oaz * ray - v[b, 0] - (oby * rbz - obz * rby),
                 v[a, 1] + oaz * rax - oax * raz - v[b, 1] - (obz * rbx - obx * rbz),
                 v[a, 2] + oax * ray - oay * rax - v[b, 2] - (obx * rby - oby * rbx))
-            _implicit_friction(q, imp, fc, fg, a, b, u, ft, mx, my, mz, px, py, pz)
+            _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
             fxs += fx
             fys += fy
             fzs += fz
@@ -726,6 +743,7 @@ def _roller_rib_pairs(m, q, v, eta, eta_dot, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
     center, axis, point = w.center, w.axis, w.point
+    imp, fpts, fcnt = m.body_fric_implicit, w.fric_pts, w.fric_n
     for c in range(m.pair_type.shape[0]):
         if m.pair_type[c] != ROLLER_RIB:
             continue
@@ -742,7 +760,7 @@ def _roller_rib_pairs(m, q, v, eta, eta_dot, w):
             _grid_corners(m.samp_theta[s0:s0 + (s1 - s0) // circ.shape[0]], m.race_periodic[g] == 1, circ,
                           m.race_kind[g], s0, point[0], point[1], point[2], w.flex_corner, w.flex_weight)
             n, fn, delta, u, ft, e = _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, 0, delta,
-                                                     point[0], point[1], point[2], nx, ny, nz)
+                                                     point[0], point[1], point[2], nx, ny, nz, imp, fpts, fcnt)
             _flush_rows(w.flex_row, w.flex_field, n, m.samp_disp, m.samp_rot, w.modal_f[o0:o1])
             _store(w, c, fn, delta, u, ft)
             w.contact_angle[c] = 0.0
@@ -752,7 +770,7 @@ def _roller_rib_pairs(m, q, v, eta, eta_dot, w):
         mx, my, mz = rotate(q, b, nx, ny, nz)
         fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                      m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
-        _implicit_friction(q, m.body_fric_implicit, w.fric_c, w.fric_g, a, b, u, ft, mx, my, mz, px, py, pz)
+        _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
         _store(w, c, fn, delta, u, ft)
         w.contact_angle[c] = 0.0
         e_sum += e
@@ -764,6 +782,7 @@ def _element_pocket_pairs(m, q, v, eta, eta_dot, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
     center = w.center
+    imp, fpts, fcnt = m.body_fric_implicit, w.fric_pts, w.fric_n
     for c in range(m.pair_type.shape[0]):
         if m.pair_type[c] != ELEMENT_POCKET:
             continue
@@ -790,7 +809,7 @@ def _element_pocket_pairs(m, q, v, eta, eta_dot, w):
             if jm >= 0:  # the force, if any, is applied here already
                 _wall_corners(m.samp_point, m.pocket_samp[g], plx, ply, plz, w.flex_corner, w.flex_weight)
                 n, fn, delta, u, ft, e = _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta,
-                                                         plx, ply, plz, nx, ny, nz)
+                                                         plx, ply, plz, nx, ny, nz, imp, fpts, fcnt)
             if delta > dmax:
                 dmax = delta
             if delta <= 0.0:
@@ -801,8 +820,7 @@ def _element_pocket_pairs(m, q, v, eta, eta_dot, w):
                 fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                              m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
                                              px, py, pz)
-                _implicit_friction(q, m.body_fric_implicit, w.fric_c, w.fric_g, a, b, u, ft, mx, my, mz, px, py,
-                                   pz)
+                _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
             fn_sum += fn
             ft_sum += ft
             e_sum += e
@@ -891,10 +909,7 @@ def compute_forces(m, t, q, v, eta, eta_dot, w):
     _external_loads(m, q, w, t)
     for k in range(w.modal_f.shape[0]):
         w.modal_f[k] = 0.0
-    for i in range(m.body_fric_implicit.shape[0]):
-        if m.body_fric_implicit[i] != 0:
-            w.fric_c[i, :, :] = 0.0
-            w.fric_v[i, :] = v[i, :]
+    w.fric_n[0] = 0
     w.energy[1] = _bushings(m, q, v, w) if m.bush_a.shape[0] > 0 else 0.0
     e = 0.0
     n_of = w.type_count
@@ -909,6 +924,8 @@ def compute_forces(m, t, q, v, eta, eta_dot, w):
     if n_of[ELEMENT_POCKET] > 0:
         e += _element_pocket_pairs(m, q, v, eta, eta_dot, w)
     w.energy[0] = e
+    if w.fric_pts.shape[0] > 0:
+        _friction_damping_matrices(m, q, v, w)
     for c in range(m.pair_type.shape[0]):
         if not (math.isfinite(w.contact_fn[c]) and math.isfinite(w.contact_ft[c])):
             return STATUS_NONFINITE, c

@@ -94,14 +94,15 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: interpolation weights of one contact point; groove_rows (4, 3) D_i0 η, D_i1 η, Ω_i0 η, Ω_i1 η of the two
 #: samples around a ball on a modal ring's groove. Implicit friction (:mod:`mbd_core.kernels.explicit`):
 #: fric_c (n_b, 6, 6) each body's friction damping matrix, world (v, ω), N·s/m; fric_v (n_b, 6) the
-#: velocity (v world, ω body) at which the forces were evaluated; fric_a (6, 6), fric_r (6,), fric_g (6,)
-#: scratch.
+#: velocity (v world, ω body) at which the forces were evaluated; fric_pts (n_f, 9) the contact points
+#: with friction on such a body (a, b, secant coefficient N·s/m, normal, world point m; n_f = 0 in a
+#: model without them), fric_n (1,) int64 how many; fric_a (6, 6), fric_r (6,), fric_g (6,) scratch.
 WorkArrays = namedtuple(
     "WorkArrays",
     "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta energy "
     "load pi center axis point slice_delta slice_point slice_normal type_count "
     "modal_f modal_M modal_L modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta "
-    "flex_row flex_field flex_corner flex_weight groove_rows fric_c fric_v fric_a fric_r fric_g",
+    "flex_row flex_field flex_corner flex_weight groove_rows fric_c fric_v fric_pts fric_n fric_a fric_r fric_g",
 )
 FLEX_ROWS = 32
 
@@ -206,8 +207,10 @@ def make_work(model: Model) -> WorkArrays:
         modal_eta=np.zeros(n6 - 6),
         flex_row=np.zeros(FLEX_ROWS, dtype=np.int64), flex_field=np.zeros((FLEX_ROWS, 18)),
         flex_corner=np.zeros((4, 2), dtype=np.int64), flex_weight=np.zeros(4), groove_rows=np.zeros((4, 3)),
-        fric_c=np.zeros((nb, 6, 6)), fric_v=np.zeros((nb, 6)), fric_a=np.zeros((6, 6)), fric_r=np.zeros(6),
-        fric_g=np.zeros(6),
+        fric_c=np.zeros((nb, 6, 6)), fric_v=np.zeros((nb, 6)),
+        # at most: every slice, two points per other pair (roller ends, pocket walls)
+        fric_pts=np.zeros((a.slice_drop.size + 2 * nc if a.body_fric_implicit.any() else 0, 9)),
+        fric_n=np.zeros(1, dtype=np.int64), fric_a=np.zeros((6, 6)), fric_r=np.zeros(6), fric_g=np.zeros(6),
     )
 
 
