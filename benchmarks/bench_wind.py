@@ -8,11 +8,11 @@ slices on sampled raceway grids); modal rings and cages (20 modes each, pocket w
 Full run: the case's meshes and 10 slices per roller, 286 rollers → 5720 slice contacts with the
 raceways; ``--quick``: 5 slices, 8 modes on coarse meshes (the test's variant).
 
-Each variant is stepped at its own automatic step (the friction law's slope limits all three to
-the same step here) after a short run that loads or compiles the kernels; printed: ms per step,
-the ratio to the rigid scene, and the wall time that 8 simulated seconds take at that rate (the
-paper's Adams runs are not timed in the source; the issue's target is 30 min for the flexible
-model).
+Each variant is stepped at its own automatic step (friction implicit, so the roller contacts or,
+with modal cages, a cage's stiffest mode with its contacts set it) after a short run that loads or
+compiles the kernels; printed: ms per step, the ratio to the rigid scene, and the wall time that 8
+simulated seconds take at that rate (the paper's Adams runs are not timed in the source; the
+target is 30 min for the flexible model).
 
 Run::
 
