@@ -114,7 +114,11 @@ class Contact:
     IMPACT values (:data:`ADAMS_CONTACT`) for each whole roller contact, shared by its slices
     (``damping_ratio`` unused). Friction (Adams step law):
     μ_static at v_static, μ_dynamic from v_dynamic on, the paper's μ_s = 0.2, μ_d = 0.1; transition
-    speeds 0.3/0.6 m/s (the paper: 10/100 mm/s), below the rollers' surface speed (3 m/s at 30 rpm).
+    speeds 0.3/0.6 m/s by default, below the rollers' surface speed (3 m/s at 30 rpm). The paper's
+    10/100 mm/s are used by the presets ``wind-driving-speed``, ``wind-friction`` and
+    ``wind-speeds-adams``: the cage forces depend on them, the roller speeds hardly (within 0.3 %);
+    with them the friction carries about 0.4 % of the load in the inner ring's balance, which the
+    equilibrium figure (normal forces only) does not count.
     ``implicit_friction`` (default on): the friction of rollers and rigid cages is integrated
     implicitly (:class:`mbd_core.multibody.ModelBuilder`), so that the slope of the friction law
     does not limit the explicit step; off, the step is about 6× smaller at the default transition
