@@ -304,7 +304,8 @@ def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | Non
         state.q[:], state.v[:] = ck["q"], ck["v"]
         state.eta, state.eta_dot = ck["eta"].copy(), ck["eta_dot"].copy()
         work.body_f[:], work.body_t[:], work.modal_f[:] = ck["body_f"], ck["body_t"], ck["modal_f"]
-        work.fric_c[:], work.fric_v[:] = ck["fric_c"], ck["fric_v"]
+        if "fric_c" in ck:  # (checkpoints written before implicit friction existed lack them: zero there)
+            work.fric_c[:], work.fric_v[:] = ck["fric_c"], ck["fric_v"]
         for f in ("fn", "delta", "slip", "ft", "angle", "theta"):
             getattr(work, f"contact_{f}")[:] = ck[f]
         h = timestep_s
