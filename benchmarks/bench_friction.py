@@ -53,7 +53,8 @@ def main() -> None:
     rs_i, cs_i, cf_i, w_i = out["implicit"]
     for row in rs_e:
         f_e, f_i = _mean_force(cf_e[row]), _mean_force(cf_i[row])
-        print(f"  {row:12s} loaded roller speed error {rs_e[row]['loaded_error']:+.3%} / {rs_i[row]['loaded_error']:+.3%}, "
+        print(f"  {row:12s} loaded roller speed error {rs_e[row]['loaded_error']:+.3%} / "
+              f"{rs_i[row]['loaded_error']:+.3%}, "
               f"cage speed error {cs_e[row]['error']:+.3%} / {cs_i[row]['error']:+.3%}, "
               f"mean cage force {f_e:6.1f} / {f_i:6.1f} N (explicit / implicit)")
     print(f"implicit over explicit friction: ×{w_e / w_i:.1f} faster")

@@ -359,3 +359,39 @@ def test_thrust_roller_ribs_sit_beyond_both_roller_ends(load_sign):
     state.q[e, :3] = x + u * np.array([x[0], x[1], 0.0]) / math.hypot(x[0], x[1])
     w = evaluate_forces(model, state)
     np.testing.assert_allclose(w.contact_delta[ribs[3]], [u - c / 2, -u - c / 2], atol=1e-12)
+
+
+@pytest.mark.parametrize("orientation", ["radial", "thrust"])
+def test_rolling_velocities_of_rollers_with_ribs(orientation):
+    """set_rolling_velocities on roller rows held by ribs (which must not count as raceways):
+    radial row, no-slip kinematics ω_c = ω_i (1 − γ)/2 and zero slip at every slice (Harris &
+    Kotzalas, Essential Concepts, ch. 8); thrust row (axis radial), ω_c = ω_i/2 and spin
+    ω_s = −ω_i R / (2 r) about the roller's own axis, no slip at the pitch radius (the slices away
+    from it spin-slip, as on any cylindrical thrust roller)."""
+    omega_i = 2 * math.pi * 100 / 60
+    R, D = 0.15, 20e-3
+    row = RollerRow("row", 12, D, 20e-3, 2 * R, orientation, load_sign=1, gap_m=10e-6, n_slices=4)
+    b = ModelBuilder()
+    inner = b.add_body("inner ring", 1.0, (1e-2, 1e-2, 2e-2), motion=Driven(omega_i))
+    outer = b.add_body("outer ring", 1.0, (1e-2, 1e-2, 2e-2), motion=Fixed())
+    bodies = add_roller_row(b, row, inner, outer, rib_clearance_m=0.2e-3)
+    model, state = b.finalize()
+    set_rolling_velocities(model, state, bodies.elements, inner, other_ring=outer)
+    w = evaluate_forces(model, state)
+    e = bodies.elements[5]
+    x, v = state.q[e, :3], state.v[e, :3]
+    orbit = np.cross(x, v)[2] / (x[0] ** 2 + x[1] ** 2)
+    from scipy.spatial.transform import Rotation
+
+    R_e = Rotation.from_quat(state.q[e, [4, 5, 6, 3]])
+    omega_world = R_e.apply(state.v[e, 3:])
+    axis = R_e.apply([0.0, 0.0, 1.0])
+    spin = omega_world - orbit * np.array([0.0, 0.0, 1.0])
+    np.testing.assert_allclose(np.cross(spin, axis), 0.0, atol=1e-9 * omega_i * R / D)  # about its own axis only
+    if orientation == "radial":
+        kin = rolling_kinematics(D, 2 * R, 0.0, 12, omega_i, 0.0)
+        assert orbit == pytest.approx(kin.cage_speed_rad_s, rel=1e-9)
+        assert np.max(np.abs(w.contact_slip[list(bodies.moving_pairs) + list(bodies.fixed_pairs)])) < 1e-9
+    else:
+        assert orbit == pytest.approx(omega_i / 2, rel=1e-9)
+        assert abs(spin @ axis) == pytest.approx(omega_i * R / D, rel=1e-9)

@@ -101,12 +101,12 @@ def _friction_kick(q, v, w, body_mass, body_inertia, implicit, hh):
         dwx, dwy, dwz = rotate(q, i, v[i, 3] - ve[3], v[i, 4] - ve[4], v[i, 5] - ve[5])
         r[0], r[1], r[2] = v[i, 0] - ve[0], v[i, 1] - ve[1], v[i, 2] - ve[2]
         r[3], r[4], r[5] = dwx, dwy, dwz
-        for j in range(6):  # A = (h/2) C, rhs = (h/2)(F − C du) (kept in a column of A's scratch)
+        for j in range(6):  # A = (h/2) C, right-hand side (h/2)(F − C du) in w.fric_g
             s = 0.0
             for k in range(6):
                 A[j, k] = hh * C[j, k]
                 s += C[j, k] * r[k]
-                w.fric_g[j] = -hh * s
+            w.fric_g[j] = -hh * s
         for j in range(3):
             w.fric_g[j] += hh * w.body_f[i, j]
             w.fric_g[3 + j] += hh * w.body_t[i, j]

@@ -234,18 +234,25 @@ def set_rolling_velocities(model: Model, state: State, elements, ring, other_rin
 
     The rings turn about the world z axis at the speeds they have in ``state``. Each element's
     orbit speed (its centre moving about z) and angular velocity are those that make the slip zero
-    at its contact points with both rings, in the least-squares sense (minimum-norm spin): for
-    elements touching ``ring`` and ``other_ring`` along the line through their centres this is
-    the classical rolling kinematics (Harris & Kotzalas, *Essential Concepts*, ch. 8).
-    The contact points are the element's surface points along its contact normals at ``state``.
+    at its raceway contact points with both rings (ribs and pockets do not count), in the
+    least-squares sense: for elements touching ``ring`` and ``other_ring`` along the line through
+    their centres this is the classical rolling kinematics (Harris & Kotzalas, *Essential
+    Concepts*, ch. 8). A ball gets the minimum-norm spin; a roller turns about its own axis a only,
+    ω = ω_c ẑ + ω_s a (its axis follows the orbit), which fixes the spin about the contact normal
+    of a thrust roller. The contact points are the element's surface points along its contact
+    normals at ``state``.
     """
     a = model.arrays
     omega_ring = [0.0, 0.0]
     for k, body in enumerate((ring, other_ring)):
         if body is not None:
             omega_ring[k] = _spin_z(state, body)
+    z = np.array([0.0, 0.0, 1.0])
     for e in elements:
-        pairs = [c for c in range(model.n_pairs) if a.pair_a[c] == e and a.pair_b[c] in (ring, other_ring)]
+        pairs = [c for c in range(model.n_pairs) if a.pair_a[c] == e and a.pair_b[c] in (ring, other_ring)
+                 and model.pair_kinds[c] in ("ball_groove", "roller_raceway")]
+        roller = all(model.pair_kinds[c] == "roller_raceway" for c in pairs)
+        axis = _rotate(state.q[e, 3:], z)
         x = state.q[e, :3]
         pts, vel = [], []
         for c in pairs:
@@ -257,17 +264,22 @@ def set_rolling_velocities(model: Model, state: State, elements, ring, other_rin
             vel.append(np.cross([0.0, 0.0, wz], p - state.q[b, :3]))
         if len(pts) < 2:
             raise ValueError(f"set_rolling_velocities: element {model.body_names[e]!r} does not touch both rings")
-        # unknowns: orbit speed ω_c (centre velocity ω_c ẑ × x) and ω (world) of the element
+        # unknowns: orbit speed ω_c (centre velocity ω_c ẑ × x) and ω (world) of a ball, or ω_c and
+        # the spin ω_s of a roller (ω = ω_c ẑ + ω_s a)
         rows, rhs = [], []
         for r, vp in zip(pts, vel):
             for i in range(3):
                 # v_i = ω_c (ẑ × x)_i + (ω × r)_i,  (ω × r)·e_i = ω·(r × e_i)
                 e_i = np.eye(3)[i]
-                rows.append(np.concatenate([[np.cross([0.0, 0.0, 1.0], x)[i]], np.cross(r, e_i)]))
+                if roller:
+                    rows.append([np.cross(z, x)[i] + np.cross(z, r)[i], np.cross(axis, r)[i]])
+                else:
+                    rows.append(np.concatenate([[np.cross(z, x)[i]], np.cross(r, e_i)]))
                 rhs.append(vp[i])
         sol = np.linalg.lstsq(np.array(rows), np.array(rhs), rcond=None)[0]
-        omega_c, omega_w = sol[0], sol[1:]
-        state.v[e, :3] = omega_c * np.cross([0.0, 0.0, 1.0], x)
+        omega_c = sol[0]
+        omega_w = omega_c * z + sol[1] * axis if roller else sol[1:]
+        state.v[e, :3] = omega_c * np.cross(z, x)
         state.v[e, 3:] = _rotate_back(state.q[e, 3:], omega_w)
 
 
