@@ -50,7 +50,7 @@ def roller_speed_figure(case, sc, rec):
         ax.set_ylabel("r/min")
         ax.set_title(f"{row.name} row", fontsize=10)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="lower right")
+        ax.legend(fontsize=8, loc="best")
     axes[-1].set_xlabel("time, s")
     b = case.bodies
     fig.suptitle(f"Roller spin at {case.analysis.speed_rpm:g} r/min ({b.rings} rings, {b.cages} cages)")
