@@ -29,14 +29,14 @@ from mbd_core.materials import BEARING_STEEL
 from mbd_core.multibody import ModelBuilder
 from mbd_core.multibody.bearings import _rotate_back, add_ball_row, ball_mass_kg, set_rolling_velocities
 from mbd_core.multibody.builder import ContactLaw, Driven, Fixed
-from mbd_core.multibody.explicit import simulate
 from mbd_core.multibody.statics import static_equilibrium
 
+from ..integrate import integrate
 from . import scene
 from .case import THESIS_CONTACT_DAMPING_N_S_PER_M, THESIS_CONTACT_STIFFNESS_N_PER_M1P5, SlewingCase
 from .quasistatic import analytic_ball_load_N
 
-__all__ = ["DynamicScene", "build_scene", "state_from_quasistatic", "start_state", "integrate", "run_dynamic"]
+__all__ = ["DynamicScene", "build_scene", "state_from_quasistatic", "start_state", "run_dynamic"]
 
 log = logging.getLogger(__name__)
 
@@ -209,28 +209,6 @@ def start_state(sc: DynamicScene, case: SlewingCase | None = None):
     return state
 
 
-def integrate(sc: DynamicScene, state, duration_s: float, record_every: int, progress=None, chunks: int = 40,
-              adaptive: bool = False) -> dict:
-    """Explicit integration for ``duration_s`` from ``state`` in ``chunks`` pieces (for the progress bar).
-
-    The first piece's automatic step is kept for all, or (``adaptive``) each piece takes the
-    automatic step of its own start, for scenes whose loads grow far beyond the start's (the
-    step of a regularised friction law shrinks with the normal force); ``timestep_s`` of the
-    result is then the smallest."""
-    t0 = state.t
-    ends = t0 + duration_s * np.arange(1, chunks + 1) / chunks
-    parts, h, h_min = [], None, math.inf
-    for t_end in (progress(ends, "simulated") if progress else ends):
-        out = simulate(sc.model, state, float(t_end), timestep_s=None if adaptive else h, record_every=record_every)
-        h = out["timestep_s"]
-        h_min = min(h_min, h)
-        parts.append(out if not parts else {k: (v[1:] if isinstance(v, np.ndarray) else v) for k, v in out.items()})
-    run = {k: (np.concatenate([p[k] for p in parts]) if isinstance(parts[0][k], np.ndarray) else parts[0][k])
-           for k in parts[0]}
-    run["timestep_s"] = h_min
-    return run
-
-
 def _ball_orbit_rad_s(sc: DynamicScene, out: dict, index) -> np.ndarray:
     """Mean orbit speed of the bodies ``index`` at each record sample, rad/s."""
     q, v = out["q"][:, index, :3], out["v"][:, index, :3]
@@ -246,7 +224,7 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
     sc = build_scene(case, bodies)
     state = start_state(sc, case if bodies.top is None else None)
     a = case.analysis
-    run = integrate(sc, state, a.duration_s, a.record_every, progress)
+    run = integrate(sc.model, state, a.duration_s, a.record_every, progress)
     t = run["t"]
     q = run["fn"][:, list(sc.ball_pairs_top)]
     settled = t >= t[0] + 0.1 * (t[-1] - t[0])  # the first tenth: the start's small transient

@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from cases.slewing.dynamic import integrate
+from cases.integrate import integrate
 
 from .case import INNER_RING_MASS_KG, WindCase
 from .scene import G_M_S2, WindScene, build_scene, rolling_speeds
@@ -35,7 +35,8 @@ def run(case: WindCase, progress=None) -> tuple[WindScene, dict]:
     sc = build_scene(case)
     a = case.analysis
     # the Adams preset's soft contacts let the ring settle far from the (Hertz) start: loads grow
-    return sc, integrate(sc, sc.state, a.duration_s, a.record_every, progress, adaptive=case.contact.preset == "adams")
+    return sc, integrate(sc.model, sc.state, a.duration_s, a.record_every, progress,
+                         adaptive=case.contact.preset == "adams")
 
 
 def _settled(case: WindCase, rec: dict) -> np.ndarray:
