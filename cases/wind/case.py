@@ -121,7 +121,7 @@ class Contact:
     equilibrium figure (normal forces only) does not count.
     ``implicit_friction`` (default on): the friction of rollers and rigid cages is integrated
     implicitly (:class:`mbd_core.multibody.ModelBuilder`), so that the slope of the friction law
-    does not limit the explicit step; off, the step is about 6× smaller at the default transition
+    does not limit the explicit step; off, the step is 5–6× smaller at the default transition
     speeds.
     """
 

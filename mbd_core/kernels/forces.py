@@ -110,7 +110,7 @@ def _add_force(q, bf, bt, i, fx, fy, fz, px, py, pz):
     bt[i, 2] += rx * fy - ry * fx
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _friction_damping(q, fc, g, i, c, mx, my, mz, px, py, pz):
     """Add c Jᵀ(I − m mᵀ)J to body i's friction damping fc[i] (world (v, ω), 6 × 6): the friction
     c v_t of a contact at world point p with unit normal m, J = [I, −[r]×] the velocity of the body's
@@ -119,37 +119,35 @@ def _friction_damping(q, fc, g, i, c, mx, my, mz, px, py, pz):
     rx, ry, rz = px - q[i, 0], py - q[i, 1], pz - q[i, 2]
     g[0], g[1], g[2] = mx, my, mz
     g[3], g[4], g[5] = ry * mz - rz * my, rz * mx - rx * mz, rx * my - ry * mx
-    f = fc[i]
     for j in range(6):
         cg = c * g[j]
         for k in range(6):
-            f[j, k] -= cg * g[k]
+            fc[i, j, k] -= cg * g[k]
     r2 = rx * rx + ry * ry + rz * rz
-    f[0, 0] += c
-    f[1, 1] += c
-    f[2, 2] += c
-    f[3, 3] += c * (r2 - rx * rx)
-    f[4, 4] += c * (r2 - ry * ry)
-    f[5, 5] += c * (r2 - rz * rz)
-    f[3, 4] -= c * rx * ry
-    f[4, 3] -= c * rx * ry
-    f[3, 5] -= c * rx * rz
-    f[5, 3] -= c * rx * rz
-    f[4, 5] -= c * ry * rz
-    f[5, 4] -= c * ry * rz
+    for j in range(3):
+        fc[i, j, j] += c
+    fc[i, 3, 3] += c * (r2 - rx * rx)
+    fc[i, 4, 4] += c * (r2 - ry * ry)
+    fc[i, 5, 5] += c * (r2 - rz * rz)
+    fc[i, 3, 4] -= c * rx * ry
+    fc[i, 4, 3] -= c * rx * ry
+    fc[i, 3, 5] -= c * rx * rz
+    fc[i, 5, 3] -= c * rx * rz
+    fc[i, 4, 5] -= c * ry * rz
+    fc[i, 5, 4] -= c * ry * rz
     # upper right −[r]×, lower left [r]×
-    f[0, 4] += c * rz
-    f[4, 0] += c * rz
-    f[0, 5] -= c * ry
-    f[5, 0] -= c * ry
-    f[1, 3] -= c * rz
-    f[3, 1] -= c * rz
-    f[1, 5] += c * rx
-    f[5, 1] += c * rx
-    f[2, 3] += c * ry
-    f[3, 2] += c * ry
-    f[2, 4] -= c * rx
-    f[4, 2] -= c * rx
+    fc[i, 0, 4] += c * rz
+    fc[i, 4, 0] += c * rz
+    fc[i, 0, 5] -= c * ry
+    fc[i, 5, 0] -= c * ry
+    fc[i, 1, 3] -= c * rz
+    fc[i, 3, 1] -= c * rz
+    fc[i, 1, 5] += c * rx
+    fc[i, 5, 1] += c * rx
+    fc[i, 2, 3] += c * ry
+    fc[i, 3, 2] += c * ry
+    fc[i, 2, 4] -= c * rx
+    fc[i, 4, 2] -= c * rx
 
 
 @njit(cache=True, inline="always")
@@ -172,17 +170,19 @@ def _note_friction(imp, pts, cnt, a, b, u, ft, mx, my, mz, px, py, pz):
 def _friction_damping_matrices(m, q, v, w):
     """w.fric_c of every body with implicit friction from the noted points, w.fric_v = v. (A stage of
     its own: accumulating in the contact loops slows them down even where no friction acts.)"""
-    imp, pts = m.body_fric_implicit, w.fric_pts
+    imp, pts, fc, g = m.body_fric_implicit, w.fric_pts, w.fric_c, w.fric_g
     for i in range(imp.shape[0]):
         if imp[i] != 0:
-            w.fric_c[i, :, :] = 0.0
-            w.fric_v[i, :] = v[i, :]
+            for j in range(6):
+                w.fric_v[i, j] = v[i, j]
+                for k in range(6):
+                    fc[i, j, k] = 0.0
     for k in range(w.fric_n[0]):
         a, b, c = int(pts[k, 0]), int(pts[k, 1]), pts[k, 2]
-        for i in (a, b):
-            if imp[i] != 0:
-                _friction_damping(q, w.fric_c, w.fric_g, i, c, pts[k, 3], pts[k, 4], pts[k, 5], pts[k, 6],
-                                  pts[k, 7], pts[k, 8])
+        if imp[a] != 0:
+            _friction_damping(q, fc, g, a, c, pts[k, 3], pts[k, 4], pts[k, 5], pts[k, 6], pts[k, 7], pts[k, 8])
+        if imp[b] != 0:
+            _friction_damping(q, fc, g, b, c, pts[k, 3], pts[k, 4], pts[k, 5], pts[k, 6], pts[k, 7], pts[k, 8])
     w.fric_n[0] = 0
 
 
