@@ -83,8 +83,8 @@ def slide_to_roll(friction, implicit, timestep_s=None, t_end_s=0.5, v0=1.0):
 def test_sliding_roller_rolls_at_two_thirds_of_its_speed_at_a_step_far_above_the_friction_limit():
     # Closed form (a cylinder launched sliding at v0 on a plane, Coulomb friction μ; Kleppner &
     # Kolenkow, An Introduction to Mechanics, ch. 7): while it slides v = v0 − μ g t and
-    # ω r = 2 μ g t (I = m r²/2); it rolls
-    # from t* = v0 / (3 μ g) on at v = 2 v0 / 3 (angular momentum about the contact line is kept).
+    # ω r = 2 μ g t (I = m r²/2); it rolls from t* = v0 / (3 μ g) on at v = 2 v0 / 3 (angular
+    # momentum about the contact line is kept).
     mu, v0 = 0.1, 1.0
     law = Coulomb(mu, mu, 1e-5, 2e-5)  # a steep regularisation: slope 1.5 μ / v_s = 15000 s/m
     m_exp, s_exp, _ = roller_on_plane(law, False)
