@@ -181,20 +181,18 @@ def _signals_held():
 
 def _swap_in(tmp: Path, out: Path) -> None:
     check_output_target(out)  # the target may have changed during the run
-    aside = None
-    try:
-        with _signals_held():
-            if out.exists():
-                aside = _leftover_name(out, _OLD)
-                os.rename(out, aside)
-            try:
-                os.rename(tmp, out)
-            except BaseException:
-                if aside is not None:
-                    os.rename(aside, out)
-                raise
-    finally:  # also when a held-back signal arrives right after the swap
-        if aside is not None and out.exists():
+    with _signals_held():
+        aside = None
+        if out.exists():
+            aside = _leftover_name(out, _OLD)
+            os.rename(out, aside)
+        try:
+            os.rename(tmp, out)
+        except BaseException:
+            if aside is not None:
+                os.rename(aside, out)
+            raise
+        if aside is not None:
             shutil.rmtree(aside, ignore_errors=True)
 
 
@@ -220,5 +218,6 @@ def atomic_folder(out_dir, name: str = ""):
         _write_marker(tmp, name or out.name)
         _swap_in(tmp, out)
     except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
+        with _signals_held():
+            shutil.rmtree(tmp, ignore_errors=True)
         raise
