@@ -26,13 +26,13 @@ import logging
 import os
 import re
 import shutil
-import signal
 import time
 import uuid
 from contextlib import contextmanager
 from pathlib import Path
 
 from .config import CaseError
+from .signals import held
 
 __all__ = ["MARKER", "OutputTargetError", "atomic_folder", "check_output_target", "is_results_folder", "recover"]
 
@@ -46,7 +46,6 @@ STALE_AGE_S = 7 * 24 * 3600.0
 
 _TMP, _OLD = "fb-tmp", "fb-old"
 _LEFTOVER = re.compile(r"^\.(?P<name>.+)\.(?P<kind>fb-tmp|fb-old)-(?P<pid>\d+)-[0-9a-f]{8}$")
-_STOP_SIGNALS = {getattr(signal, s) for s in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, s)}
 
 
 class OutputTargetError(CaseError):
@@ -166,22 +165,9 @@ def _write_marker(folder: Path, name: str) -> None:
     (folder / MARKER).write_text(json.dumps({"format": MARKER_FORMAT, "name": name}) + "\n", encoding="utf-8")
 
 
-@contextmanager
-def _signals_held():
-    """Hold back stop signals (delivered on exit) so a swap is not cut in half."""
-    if not hasattr(signal, "pthread_sigmask"):
-        yield
-        return
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, _STOP_SIGNALS)
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
-
-
 def _swap_in(tmp: Path, out: Path) -> None:
     check_output_target(out)  # the target may have changed during the run
-    with _signals_held():
+    with held():
         aside = None
         if out.exists():
             aside = _leftover_name(out, _OLD)
@@ -218,6 +204,6 @@ def atomic_folder(out_dir, name: str = ""):
         _write_marker(tmp, name or out.name)
         _swap_in(tmp, out)
     except BaseException:
-        with _signals_held():
+        with held():
             shutil.rmtree(tmp, ignore_errors=True)
         raise

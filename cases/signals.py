@@ -14,8 +14,11 @@ import os
 import signal
 import sys
 import threading
+from contextlib import contextmanager
 
-__all__ = ["Terminated", "install"]
+__all__ = ["Terminated", "held", "install"]
+
+_STOP = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n))
 
 
 class Terminated(KeyboardInterrupt):
@@ -41,6 +44,36 @@ def _excepthook(kind, value, tb, _previous=sys.excepthook):
     sys.stdout.flush()
     signal.signal(value.signum, signal.SIG_DFL)
     os.kill(os.getpid(), value.signum)
+
+
+@contextmanager
+def held():
+    """Hold back SIGINT, SIGTERM and SIGHUP in the block; one that arrived is acted on at its end.
+
+    The handlers are swapped for ones that only note the signal (a mask would not do: another
+    thread of the process may receive it), then restored; the first noted signal is then passed to
+    its restored handler (a Python handler is called, the default action is taken by re-sending
+    it). Outside the main thread signals cannot be handled, and the block runs as is.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    noted: list[int] = []
+    previous = {s: signal.signal(s, lambda signum, frame: noted.append(signum)) for s in _STOP}
+    try:
+        yield
+    finally:
+        for s, h in previous.items():
+            signal.signal(s, h)
+        if noted:
+            _deliver(noted[0], previous[noted[0]])
+
+
+def _deliver(signum: int, handler) -> None:
+    if callable(handler):
+        handler(signum, None)
+    elif handler == signal.SIG_DFL:
+        os.kill(os.getpid(), signum)
 
 
 def install() -> None:
