@@ -64,7 +64,7 @@ def held():
         yield
     finally:
         for s, h in previous.items():
-            signal.signal(s, h)
+            signal.signal(s, signal.SIG_DFL if h is None else h)  # None: a handler not set from Python
         if noted:
             _deliver(noted[0], previous[noted[0]])
 
