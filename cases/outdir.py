@@ -39,7 +39,7 @@ __all__ = ["MARKER", "OutputTargetError", "atomic_folder", "check_output_target"
 log = logging.getLogger(__name__)
 
 #: marker file in every results folder the project writes
-MARKER = ".flexbearing-results"
+MARKER = ".flexbearing-results.json"
 MARKER_FORMAT = "flexbearing-results/1"
 #: leftovers older than this are stale even when their process id is in use again, s
 STALE_AGE_S = 7 * 24 * 3600.0

@@ -2,7 +2,7 @@
 
 A run writes into a temporary folder that replaces the target only when the run completes
 (:func:`cases.outdir.atomic_folder`), so a folder that exists is complete (and carries the
-project's marker ``.flexbearing-results``): ``case.toml`` (the
+project's marker ``.flexbearing-results.json``): ``case.toml`` (the
 resolved case), ``summary.json`` (key figures, SI units in the key names), CSV time/angle series,
 ``.vtu`` files for ParaView and PNG plots.
 """
