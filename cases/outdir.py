@@ -20,7 +20,6 @@ folder holding one of them, a file and a symbolic link are refused before any wo
 
 from __future__ import annotations
 
-import errno
 import json
 import logging
 import os
@@ -30,6 +29,8 @@ import time
 import uuid
 from contextlib import contextmanager
 from pathlib import Path
+
+from fem_rings.cache import process_alive
 
 from .config import CaseError
 from .signals import held
@@ -108,26 +109,12 @@ def _leftover_name(out: Path, kind: str) -> Path:
     return out.with_name(f".{out.name}.{kind}-{os.getpid()}-{uuid.uuid4().hex[:8]}")
 
 
-def _pid_alive(pid: int) -> bool:
-    if pid == os.getpid():
-        return True
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:  # someone else's process
-        return True
-    except OSError as exc:
-        return exc.errno != errno.ESRCH
-    return True
-
-
 def _is_stale(path: Path, pid: int) -> bool:
     try:
         age = time.time() - path.lstat().st_mtime
     except FileNotFoundError:
         return False
-    return age > STALE_AGE_S or (pid != os.getpid() and not _pid_alive(pid))
+    return age > STALE_AGE_S or not process_alive(pid)
 
 
 def recover(parent) -> None:
@@ -155,7 +142,7 @@ def recover(parent) -> None:
             log.info("removed %s left by a killed run", p)
 
 
-def make_folder(path: Path) -> Path:
+def _make_folder(path: Path) -> Path:
     """``mkdir`` with the usual permissions (0777 less the umask, unlike ``tempfile.mkdtemp``)."""
     os.mkdir(path)
     return path
@@ -198,7 +185,7 @@ def atomic_folder(out_dir, name: str = ""):
     out = check_output_target(out_dir)
     out.parent.mkdir(parents=True, exist_ok=True)
     recover(out.parent)
-    tmp = make_folder(_leftover_name(out, _TMP))
+    tmp = _make_folder(_leftover_name(out, _TMP))
     try:
         yield tmp
         _write_marker(tmp, name or out.name)

@@ -32,7 +32,8 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["atomic_path", "cache_dir", "clean_stale_parts", "content_hash", "input_hash", "load_arrays", "save_arrays"]
+__all__ = ["atomic_path", "cache_dir", "clean_stale_parts", "content_hash", "input_hash", "load_arrays",
+           "process_alive", "save_arrays"]
 
 log = logging.getLogger(__name__)
 
@@ -136,16 +137,18 @@ def save_arrays(kind: str, key: str, arrays: dict) -> Path | None:
     return p
 
 
-def _pid_gone(pid: int) -> bool:
+def process_alive(pid: int) -> bool:
+    """True when a process ``pid`` exists on this machine (this process included); the owner
+    test of the temporary files and folders of killed runs."""
     if pid == os.getpid():
-        return False
+        return True
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
-        return True
-    except OSError:
         return False
-    return False
+    except OSError:  # exists, owned by another user
+        return True
+    return True
 
 
 def clean_stale_parts(folder: Path) -> None:
@@ -168,7 +171,7 @@ def clean_stale_parts(folder: Path) -> None:
         if not m:
             continue
         try:
-            if _pid_gone(int(m["pid"])) or now - p.stat().st_mtime > STALE_PART_AGE_S:
+            if not process_alive(int(m["pid"])) or now - p.stat().st_mtime > STALE_PART_AGE_S:
                 p.unlink()
                 log.info("removed %s left by a killed run", p)
         except OSError:
