@@ -141,6 +141,8 @@ def run_case(case, out_dir, progress=None, resume: bool = False) -> RunOutput:
     except BaseException:
         if any(keep.glob("run_*/piece_*.npz")):
             log.warning("the explicit runs done so far are kept in %s: continue with --resume", keep)
+        else:  # nothing worth resuming
+            shutil.rmtree(keep, ignore_errors=True)
         raise
     shutil.rmtree(keep, ignore_errors=True)
     out.folder = Path(out_dir)

@@ -93,6 +93,22 @@ def test_an_unwritable_cache_warns_and_the_run_goes_on(tmp_path, monkeypatch, ca
     assert blocker.read_text() == "not a folder"
 
 
+def test_a_full_disk_warns_and_the_run_goes_on(tmp_path, monkeypatch, caplog, reference):
+    monkeypatch.setenv("FLEXBEARING_CACHE", str(tmp_path))
+
+    def savez(path, **arrays):
+        with open(path, "wb") as fh:
+            fh.write(b"PK")  # a few bytes, then the disk is full
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(cache.np, "savez", savez)
+    with caplog.at_level(logging.WARNING):
+        model = build_model(PROFILE, SPEC, STEEL)
+    assert abs(model.K - reference.K).max() == 0.0
+    assert "No space left on device" in caplog.text
+    assert list((tmp_path / "fe-model").iterdir()) == []  # no partial file left
+
+
 def test_a_read_only_cache_warns_and_the_run_goes_on(tmp_path, monkeypatch, caplog):
     if os.geteuid() == 0:
         pytest.skip("root ignores folder permissions")

@@ -138,6 +138,10 @@ def test_a_case_run_interrupted_and_resumed_equals_an_uninterrupted_one(tmp_path
     for name in ("ball_loads_time.csv", "spacer_forces_time.csv", "balls_end.vtu"):
         assert (tmp_path / "cut" / name).read_bytes() == (tmp_path / "whole" / name).read_bytes(), name
     assert not resume_folder(tmp_path / "cut").exists()  # removed once the results are in place
+    # interrupted before any piece: nothing is kept
+    with pytest.raises(KeyboardInterrupt):
+        run_case(case, tmp_path / "early", progress=_stop_at(0))
+    assert not resume_folder(tmp_path / "early").exists() and not (tmp_path / "early").exists()
     # a resume of another case is refused, naming the entry
     with pytest.raises(KeyboardInterrupt):
         run_case(case, tmp_path / "cut", progress=_stop_at(2))
