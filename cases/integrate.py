@@ -24,7 +24,7 @@ import numpy as np
 from fem_rings.cache import atomic_path
 from mbd_core.multibody.explicit import simulate
 from mbd_core.multibody.model import State, fingerprint_differences, model_fingerprint
-from mbd_core.multibody.recorder import NPZ_ERRORS
+from mbd_core.npzfile import NPZ_ERRORS, read_npz
 
 from .config import CaseError
 
@@ -111,8 +111,7 @@ def _load_piece(path: Path, state: State) -> dict | None:
     if not path.exists():
         return None
     try:
-        with np.load(path, allow_pickle=False) as f:
-            d = {k: f[k] for k in f.files}
+        d = read_npz(path)
         out = json.loads(str(d["meta"]))
         end = {k: d[f"state:{k}"] for k in _STATE}
     except NPZ_ERRORS as exc:

@@ -27,7 +27,8 @@ from typing import Callable
 
 import numpy as np
 
-from fem_rings.cache import NPZ_ERRORS, atomic_path, cache_dir, clean_stale_parts
+from fem_rings.cache import atomic_path, cache_dir, clean_stale_parts
+from mbd_core.npzfile import NPZ_ERRORS, read_npz
 
 from .body import ReducedBody
 
@@ -184,8 +185,7 @@ def load_body(path) -> ReducedBody:
         raise ValueError(f"{npz_path}: array file is corrupt or modified (SHA-256 {digest[:16]}…, "
                          f"metadata records {str(header['npz_sha256'])[:16]}…); rebuild the body")
     try:
-        with np.load(npz_path, allow_pickle=False) as f:
-            arrays = {k: f[k] for k in f.files}
+        arrays = read_npz(npz_path)
     except NPZ_ERRORS as exc:
         raise ValueError(f"{npz_path}: unreadable array file ({type(exc).__name__}: {exc})") from None
     for name in _REQUIRED:

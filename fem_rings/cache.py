@@ -25,12 +25,12 @@ import os
 import re
 import time
 import uuid
-import zipfile
-import zlib
 from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
+
+from mbd_core.npzfile import NPZ_ERRORS, read_npz
 
 __all__ = ["atomic_path", "cache_dir", "clean_stale_parts", "content_hash", "input_hash", "load_arrays",
            "process_alive", "save_arrays"]
@@ -43,8 +43,6 @@ FORMAT_VERSION = 2
 
 #: name of the content hash inside an entry
 HASH_KEY = "__content_sha256__"
-#: what reading a damaged .npz may raise (truncated, bad CRC, missing member, bad header)
-NPZ_ERRORS = (OSError, ValueError, EOFError, KeyError, zipfile.BadZipFile, zlib.error)
 #: temporary files older than this are stale even if their process id is in use again, s
 STALE_PART_AGE_S = 24 * 3600.0
 _PART = re.compile(r"^\..+\.(?P<pid>\d+)-[0-9a-f]{12}\.part(\.\w+)?$")
@@ -111,8 +109,7 @@ def load_arrays(kind: str, key: str) -> dict | None:
     if not p.is_file():
         return None
     try:
-        with np.load(p, allow_pickle=False) as f:
-            arrays = {k: f[k] for k in f.files}
+        arrays = read_npz(p)
         recorded = str(arrays.pop(HASH_KEY))
     except NPZ_ERRORS as exc:
         _discard(p, f"{type(exc).__name__}: {exc}")

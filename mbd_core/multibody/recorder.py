@@ -29,18 +29,14 @@ from __future__ import annotations
 
 import json
 import os
-import zipfile
-import zlib
 from pathlib import Path
 
 import numpy as np
 
+from ..npzfile import NPZ_ERRORS, read_npz
 from .model import RECORDED_CONTACT_FIELDS, Model, fingerprint_differences, model_fingerprint
 
 __all__ = ["RunRecord", "RecordError", "read_run", "FORMAT_VERSION"]
-
-#: what reading a damaged .npz may raise (truncated, bad CRC, missing member, bad header)
-NPZ_ERRORS = (OSError, ValueError, EOFError, KeyError, zipfile.BadZipFile, zlib.error)
 
 
 class RecordError(ValueError):
@@ -127,8 +123,7 @@ class RunRecord:
         if not path.exists():
             raise FileNotFoundError(f"{self.folder}: no checkpoint to resume from")
         try:
-            with np.load(path, allow_pickle=False) as d:
-                ck = {k: d[k] for k in d.files}
+            ck = read_npz(path)
             n_chunks = int(ck["n_chunks"])
         except NPZ_ERRORS as exc:
             raise RecordError(f"{path}: checkpoint unreadable ({type(exc).__name__}: {exc}); "
@@ -175,8 +170,7 @@ def read_run(folder) -> dict:
     for n in range(layout["n_chunks"]):
         path = folder / f"chunk_{n:06d}.npz"
         try:
-            with np.load(path, allow_pickle=False) as d:
-                chunk = {k: d[k] for k in d.files}
+            chunk = read_npz(path)
         except NPZ_ERRORS as exc:
             raise RecordError(f"{path}: record chunk unreadable ({type(exc).__name__}: {exc})") from None
         for k, a in chunk.items():
