@@ -3,9 +3,11 @@ result whole, leftovers of killed runs are restored or removed, folders get the 
 
 import json
 import os
+import signal
 import stat
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -161,3 +163,30 @@ def test_recovery_leaves_running_runs_and_foreign_names_alone(tmp_path):
     recover(tmp_path)
     assert all(p.is_dir() for p in running + foreign)
     assert not (tmp_path / "results").exists()
+
+
+@pytest.mark.parametrize("name", ["SIGTERM", "SIGHUP", "SIGINT"])
+def test_stop_signals_unwind_like_ctrl_c(tmp_path, name):
+    """A stop signal in the middle of writing: the temporary folder is removed, the old result
+    stays, and the process still ends by that signal (SIGTERM/SIGHUP: stderr says so)."""
+    _write(tmp_path / "results", "old")
+    code = (
+        "import os, signal, sys, time\n"
+        "from cases import signals\n"
+        "from cases.outdir import atomic_folder\n"
+        "signals.install()\n"
+        "with atomic_folder(sys.argv[1]) as tmp:\n"
+        "    (tmp / 'summary.json').write_text('{}')\n"
+        f"    os.kill(os.getpid(), signal.{name})\n"
+        "    time.sleep(30)\n"
+    )
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]))
+    proc = subprocess.run([sys.executable, "-c", code, str(tmp_path / "results")], env=env, capture_output=True,
+                          text=True, timeout=60)
+    signum = getattr(signal, name)
+    if name == "SIGINT":
+        assert proc.returncode in (-signum, 128 + signum, 1) and "KeyboardInterrupt" in proc.stderr
+    else:
+        assert proc.returncode == -signum and f"stopped by {name}" in proc.stderr
+    assert _value(tmp_path / "results") == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["results"]
