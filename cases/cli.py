@@ -22,6 +22,7 @@ from mbd_core.contact.line import iso16281_stiffness, palmgren_stiffness
 from mbd_core.materials import ElasticMaterial, effective_modulus_Pa
 from mbd_core.quasistatic import LoadDistributionError, RingLoad, solve_load_distribution
 
+from . import signals
 from .catalog import BUILTIN_BEARINGS, builtin_bearing
 from .parts import RING_PARTS, ring_part
 from .report import format_table, load_distribution_table, write_load_distribution
@@ -217,7 +218,7 @@ def cmd_run(args) -> dict:
     case = resolve_case(args.case, args.quick, args.set)
     out_dir = args.out or f"results/{case.name}"
     print(f"{case.name}: {case.description}" if case.description else case.name)
-    out = run_case(case, out_dir, progress=_progress)
+    out = run_case(case, out_dir, progress=_progress, resume=args.resume)
     for line in out.report:
         print(f"  {line}")
     files = sorted({p.suffix for p in out.folder.iterdir()})
@@ -289,6 +290,8 @@ def build_parser() -> argparse.ArgumentParser:
     rn.add_argument("--out", default=None, help="results folder (default results/<case name>)")
     rn.add_argument("--list", action="store_true", help="list the named cases")
     rn.add_argument("--json", action="store_true", help="print summary.json to stdout at the end")
+    rn.add_argument("--resume", action="store_true",
+                    help="continue an interrupted run of the same case into the same folder from its last checkpoint")
     rn.set_defaults(func=cmd_run)
 
     md = sub.add_parser("modes", help="free–free natural modes of a ring or cage (solid finite elements)")
@@ -322,6 +325,7 @@ def _attach_negative_values(argv: list[str]) -> list[str]:
 
 
 def main(argv: list[str] | None = None) -> int:
+    signals.install()
     parser = build_parser()
     args = parser.parse_args(_attach_negative_values(sys.argv[1:] if argv is None else list(argv)))
     logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING, format="%(message)s")

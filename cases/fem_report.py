@@ -15,7 +15,8 @@ from fem_rings.render import render_png
 from fem_rings.solve import Modes, classify_ring_mode
 
 from .parts import RingPart
-from .report import atomic_folder, format_table
+from .outdir import atomic_folder
+from .report import format_table
 
 __all__ = ["part_modes", "modes_table", "write_modes"]
 
@@ -61,7 +62,7 @@ def modes_table(summary: dict) -> str:
 
 def write_modes(model: FEModel, modes: Modes, summary: dict, out_dir: str | os.PathLike, n_pictures: int = 2) -> Path:
     """summary.json, modes.vtu (all mode shapes as point data) and PNGs of the first elastic modes."""
-    with atomic_folder(out_dir) as tmp:
+    with atomic_folder(out_dir, str(summary.get("part", ""))) as tmp:
         shapes = {f"mode_{k + 1:02d}_{f:.2f}Hz": modes.shapes[:, k].reshape(-1, 3)
                   for k, f in enumerate(modes.frequencies_Hz)}
         write_vtu(tmp / "modes.vtu", model.mesh, shapes)

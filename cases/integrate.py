@@ -1,14 +1,127 @@
-"""A long explicit run of a case's model in pieces, for the progress bar (shared by the cases)."""
+"""A long explicit run of a case's model in pieces, for the progress bar and for resuming (shared by the cases).
+
+Each piece is an independent :func:`mbd_core.multibody.explicit.simulate` from the state at the
+end of the previous one. Inside :func:`checkpoints` (``flexbearing run --resume``), every finished
+piece is stored (its record and end state, written atomically) in a slot of the checkpoint folder,
+one slot per :func:`integrate` call in call order; a resumed run loads the stored pieces and goes
+on from the first missing one, so it gives bit for bit the record of an uninterrupted run. A slot
+remembers the model's fingerprint (:func:`mbd_core.multibody.model.model_fingerprint`) and the run
+settings: a resume against another model or other settings is refused, naming what differs.
+"""
 
 from __future__ import annotations
 
+import json
+import logging
 import math
+import shutil
+from contextlib import contextmanager
+from contextvars import ContextVar
+from pathlib import Path
 
 import numpy as np
 
+from fem_rings.cache import atomic_path
 from mbd_core.multibody.explicit import simulate
+from mbd_core.multibody.model import State, fingerprint_differences, model_fingerprint
+from mbd_core.npzfile import NPZ_ERRORS, read_npz
 
-__all__ = ["integrate"]
+from .config import CaseError
+
+__all__ = ["integrate", "checkpoints", "ResumeError"]
+
+log = logging.getLogger(__name__)
+
+_MANIFEST = "run.json"
+_STATE = ("t", "q", "v", "eta", "eta_dot")
+
+
+class ResumeError(CaseError):
+    """A stored run cannot be continued with this model or these settings (names what differs)."""
+
+
+class _Store:
+    """Slots of one case run's explicit runs in ``folder`` (``resume``: reuse stored pieces)."""
+
+    def __init__(self, folder: Path, resume: bool):
+        self.folder, self.resume, self.count = Path(folder), resume, 0
+
+    def next_slot(self) -> Path:
+        slot = self.folder / f"run_{self.count:02d}"
+        self.count += 1
+        return slot
+
+
+_STORE: ContextVar[_Store | None] = ContextVar("cases_integrate_store", default=None)
+
+
+@contextmanager
+def checkpoints(folder, resume: bool = False):
+    """Store the pieces of every :func:`integrate` in the block under ``folder`` (``resume``: reuse them)."""
+    token = _STORE.set(_Store(folder, resume))
+    try:
+        yield
+    finally:
+        _STORE.reset(token)
+
+
+def _settings(state: State, duration_s: float, record_every: int, chunks: int, adaptive: bool) -> dict:
+    start = {k: np.asarray(getattr(state, k), float).tolist() for k in _STATE}
+    return {"duration_s": float(duration_s), "record_every": int(record_every), "chunks": int(chunks),
+            "adaptive": bool(adaptive), "start_state": start}
+
+
+def _open_slot(slot: Path, resume: bool, manifest: dict) -> bool:
+    """Prepare ``slot``; True when its stored pieces may be reused (raises when they belong elsewhere)."""
+    path = slot / _MANIFEST
+    if resume and path.exists():
+        try:
+            old = json.loads(path.read_text(encoding="utf-8"))
+            old["model_sha256"], old["settings"]
+        except (OSError, UnicodeDecodeError, ValueError, KeyError, TypeError) as exc:
+            raise ResumeError(f"{path}: stored run unreadable ({exc}); run again without --resume") from None
+        differ = fingerprint_differences(old["model_sha256"], manifest["model_sha256"])
+        if differ:
+            raise ResumeError(f"cannot resume from {slot}: the model differs from the interrupted run's "
+                              f"({', '.join(differ)}); run again without --resume")
+        for key, value in manifest["settings"].items():
+            if old["settings"].get(key) != value:
+                what = "start state" if key == "start_state" else key
+                raise ResumeError(f"cannot resume from {slot}: the run's {what} differs from the interrupted "
+                                  f"run's; run again without --resume")
+        return True
+    if slot.exists():
+        shutil.rmtree(slot)
+    slot.mkdir(parents=True)
+    with atomic_path(path, ".json") as tmp:
+        tmp.write_text(json.dumps(manifest), encoding="utf-8")
+    return False
+
+
+def _save_piece(path: Path, out: dict, state: State) -> None:
+    arrays = {f"rec:{k}": v for k, v in out.items() if isinstance(v, np.ndarray)}
+    meta = {k: v for k, v in out.items() if not isinstance(v, np.ndarray)}
+    arrays.update({f"state:{k}": np.asarray(getattr(state, k), float) for k in _STATE})
+    with atomic_path(path, ".npz") as tmp:
+        np.savez(tmp, meta=np.array(json.dumps(meta)), **arrays)
+
+
+def _load_piece(path: Path, state: State) -> dict | None:
+    """A stored piece (its end state copied into ``state``), or None when absent or unreadable."""
+    if not path.exists():
+        return None
+    try:
+        d = read_npz(path)
+        out = json.loads(str(d["meta"]))
+        end = {k: d[f"state:{k}"] for k in _STATE}
+    except NPZ_ERRORS as exc:
+        log.warning("recomputing from %s: stored piece unreadable (%s)", path, exc)
+        return None
+    out.update({k[4:]: v for k, v in d.items() if k.startswith("rec:")})
+    state.t = float(end["t"])
+    state.q[:], state.v[:] = end["q"], end["v"]
+    state.eta, state.eta_dot = end["eta"].copy(), end["eta_dot"].copy()
+    return out
 
 
 def integrate(model, state, duration_s: float, record_every: int, progress=None, chunks: int = 40,
@@ -18,12 +131,33 @@ def integrate(model, state, duration_s: float, record_every: int, progress=None,
     The first piece's automatic step is kept for all, or (``adaptive``) each piece takes the
     automatic step of its own start, for scenes whose loads grow far beyond the start's (the
     step of a contact law stiffening with its load shrinks); ``timestep_s`` of the result is then
-    the smallest. ``progress(iterable, label)`` wraps the pieces (a progress bar) when given."""
+    the smallest. ``progress(iterable, label)`` wraps the pieces (a progress bar) when given.
+    Inside :func:`checkpoints` the pieces are stored and, on a resume, reused (module docstring).
+
+    Raises
+    ------
+    ResumeError
+        Resuming, and the stored run has another model or other settings.
+    """
     t0 = state.t
     ends = t0 + duration_s * np.arange(1, chunks + 1) / chunks
+    store = _STORE.get()
+    slot, reuse = None, False
+    if store is not None:
+        slot = store.next_slot()
+        manifest = {"model_sha256": model_fingerprint(model),
+                    "settings": _settings(state, duration_s, record_every, chunks, adaptive)}
+        reuse = _open_slot(slot, store.resume, manifest)
     parts, h, h_min = [], None, math.inf
-    for t_end in (progress(ends, "simulated") if progress else ends):
-        out = simulate(model, state, float(t_end), timestep_s=None if adaptive else h, record_every=record_every)
+    for i, t_end in enumerate(progress(ends, "simulated") if progress else ends):
+        piece = slot / f"piece_{i:03d}.npz" if slot is not None else None
+        out = _load_piece(piece, state) if reuse else None
+        if out is None:
+            reuse = False  # every later piece starts from this one's end
+            out = simulate(model, state, float(t_end), timestep_s=None if adaptive else h,
+                           record_every=record_every)
+            if piece is not None:
+                _save_piece(piece, out, state)
         h = out["timestep_s"]
         h_min = min(h_min, h)
         parts.append(out if not parts else {k: (v[1:] if isinstance(v, np.ndarray) else v) for k, v in out.items()})

@@ -5,14 +5,13 @@ from __future__ import annotations
 import csv
 import json
 import os
-import shutil
-import tempfile
-from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
 from mbd_core.quasistatic import LoadDistribution
+
+from .outdir import atomic_folder
 
 __all__ = ["atomic_folder", "format_table", "load_distribution_table", "write_load_distribution"]
 
@@ -81,29 +80,10 @@ def _plot(res: LoadDistribution, path: Path) -> None:
     plt.close(fig)
 
 
-@contextmanager
-def atomic_folder(out_dir: str | os.PathLike):
-    """Yield a temporary folder beside ``out_dir`` that replaces ``out_dir`` on success.
-
-    An interrupted or failing run never leaves a folder that looks complete: on error the
-    temporary folder is removed and an existing ``out_dir`` stays as it was.
-    """
-    out = Path(out_dir)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
-    try:
-        yield tmp
-        if out.exists():
-            shutil.rmtree(out)
-        tmp.rename(out)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-
-
 def write_load_distribution(res: LoadDistribution, out_dir: str | os.PathLike, extra: dict | None = None) -> Path:
-    """Write summary.json, element_loads.csv and element_loads.png to ``out_dir`` (atomically)."""
-    with atomic_folder(out_dir) as tmp:
+    """Write summary.json, element_loads.csv and element_loads.png to ``out_dir`` (atomically,
+    :func:`cases.outdir.atomic_folder`: an existing folder is replaced only if the project wrote it)."""
+    with atomic_folder(out_dir, (extra or {}).get("case", res.bearing_name)) as tmp:
         with open(tmp / "element_loads.csv", "w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(["row", "element", "azimuth_deg", "load_N", "approach_m", "contact_angle_deg", "unloaded"])

@@ -1,7 +1,8 @@
 """The results folder of a run: what a study writes into it, and the short report it prints.
 
 A run writes into a temporary folder that replaces the target only when the run completes
-(:func:`cases.report.atomic_folder`), so a folder that exists is complete: ``case.toml`` (the
+(:func:`cases.outdir.atomic_folder`), so a folder that exists is complete (and carries the
+project's marker ``.flexbearing-results.json``): ``case.toml`` (the
 resolved case), ``summary.json`` (key figures, SI units in the key names), CSV time/angle series,
 ``.vtu`` files for ParaView and PNG plots.
 """

@@ -3,6 +3,11 @@
 Resolution order: the named sub-case (or the TOML file), then ``--quick``, then every ``--set
 key=value``; the resolved case is validated before any meshing starts and saved as ``case.toml``
 beside the results, so a folder always says exactly what produced it.
+
+The explicit runs of a case keep their pieces in ``.NAME.fb-resume/`` beside the results folder
+(:func:`cases.integrate.checkpoints`) until the results are in place; after an interruption
+``flexbearing run … --resume`` (``run_case(..., resume=True)``) goes on from the last stored
+piece of the same resolved case and writes results identical to those of an uninterrupted run.
 """
 
 from __future__ import annotations
@@ -10,11 +15,14 @@ from __future__ import annotations
 import logging
 import platform
 import resource
+import shutil
 import time
+import tomllib
 from pathlib import Path
 
 from .config import CaseError, dumps_case, read_case, with_overrides
-from .report import atomic_folder
+from .integrate import ResumeError, checkpoints
+from .outdir import atomic_folder, check_output_target
 from .results import RunOutput
 from .slewing import presets as slewing_presets
 from .slewing import studies as slewing_studies
@@ -23,7 +31,7 @@ from .wind import presets as wind_presets
 from .wind import studies as wind_studies
 from .wind.case import WindCase
 
-__all__ = ["CASES", "resolve_case", "run_case"]
+__all__ = ["CASES", "resolve_case", "resume_folder", "run_case"]
 
 log = logging.getLogger(__name__)
 
@@ -66,15 +74,76 @@ def _peak_rss_mb() -> float:
     return kb / (1024.0 * 1024.0) if platform.system() == "Darwin" else kb / 1024.0
 
 
-def run_case(case, out_dir, progress=None) -> RunOutput:
-    """Run ``case`` into ``out_dir`` (replaced only when the run completes); returns the output."""
+def resume_folder(out_dir) -> Path:
+    """Where the explicit runs of a case writing to ``out_dir`` keep their pieces."""
+    out = Path(out_dir).resolve()
+    return out.with_name(f".{out.name}.fb-resume")
+
+
+def _flat(d: dict, prefix: str = "") -> dict:
+    out = {}
+    for k, v in d.items():
+        out.update(_flat(v, f"{prefix}{k}.") if isinstance(v, dict) else {f"{prefix}{k}": v})
+    return out
+
+
+def _check_same_case(stored_toml: Path, case_toml: str) -> None:
+    """Refuse to resume a run of another case, naming the entries that differ."""
+    try:
+        old = _flat(tomllib.loads(stored_toml.read_text(encoding="utf-8")))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        raise ResumeError(f"{stored_toml}: stored case unreadable ({exc}); run again without --resume") from None
+    new = _flat(tomllib.loads(case_toml))
+    differ = sorted(k for k in set(old) | set(new) if old.get(k) != new.get(k))
+    if differ:
+        shown = "; ".join(f"{k}: {old.get(k, '(absent)')!r} in the interrupted run, {new.get(k, '(absent)')!r} now"
+                          for k in differ[:5])
+        raise ResumeError(f"cannot resume: the case differs from the interrupted run's ({shown}"
+                          f"{'; …' if len(differ) > 5 else ''}); run again without --resume")
+
+
+def _open_resume_folder(folder: Path, case_toml: str, resume: bool) -> None:
+    stored = folder / "case.toml"
+    if resume and folder.is_dir() and stored.exists():
+        _check_same_case(stored, case_toml)
+        log.info("resuming from %s", folder)
+        return
+    if resume:
+        log.warning("nothing to resume in %s: running from the start", folder)
+    if folder.exists():
+        shutil.rmtree(folder)
+    folder.mkdir()
+    stored.write_text(case_toml, encoding="utf-8")
+
+
+def run_case(case, out_dir, progress=None, resume: bool = False) -> RunOutput:
+    """Run ``case`` into ``out_dir`` (replaced only when the run completes); returns the output.
+
+    ``resume``: reuse the explicit-run pieces stored by an interrupted run of the same case into
+    the same folder (:func:`resume_folder`). Raises :class:`cases.outdir.OutputTargetError` before
+    any work when ``out_dir`` may not be replaced, :class:`cases.integrate.ResumeError` when the
+    stored run belongs to another case or model.
+    """
     t0 = time.perf_counter()
-    with atomic_folder(out_dir) as tmp:
-        out = RunOutput(tmp)
-        out.path("case.toml").write_text(dumps_case(case))
-        _FAMILIES[type(case)][1].run_study(case, out, progress)
-        out.summary = {"case": case.name, "study": case.study.kind, "description": case.description,
-                       **out.summary, "wall_time_s": time.perf_counter() - t0, "peak_rss_mb": _peak_rss_mb()}
-        out.write_summary()
+    check_output_target(out_dir)
+    text = dumps_case(case)
+    keep = resume_folder(out_dir)
+    keep.parent.mkdir(parents=True, exist_ok=True)
+    _open_resume_folder(keep, text, resume)
+    try:
+        with atomic_folder(out_dir, case.name) as tmp, checkpoints(keep, resume):
+            out = RunOutput(tmp)
+            out.path("case.toml").write_text(text)
+            _FAMILIES[type(case)][1].run_study(case, out, progress)
+            out.summary = {"case": case.name, "study": case.study.kind, "description": case.description,
+                           **out.summary, "wall_time_s": time.perf_counter() - t0, "peak_rss_mb": _peak_rss_mb()}
+            out.write_summary()
+    except BaseException:
+        if any(keep.glob("run_*/piece_*.npz")):
+            log.warning("the explicit runs done so far are kept in %s: continue with --resume", keep)
+        else:  # nothing worth resuming
+            shutil.rmtree(keep, ignore_errors=True)
+        raise
+    shutil.rmtree(keep, ignore_errors=True)
     out.folder = Path(out_dir)
     return out

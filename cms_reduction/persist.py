@@ -5,14 +5,16 @@ Layout of a pair ``<stem>.npz`` / ``<stem>.json``:
 * npz: ``nodes_m``, ``shapes``, ``frequencies_Hz``, ``damping_ratio``, ``mesh_doflocs``, ``mesh_t``
   and every extras array as ``extra:<name>`` (e.g. ``extra:inv:mass_kg``); read without pickle;
 * json: ``format_version``, name, floating, mesh_kind, n_modes, n_nodes, frequencies_Hz, units,
-  the body's ``metadata`` (inputs, hash), the array names and ``npz_sha256``, the SHA-256 of the
-  npz bytes.
+  the body's ``metadata`` (inputs, hash), the array names, ``npz_sha256``, the SHA-256 of the
+  npz bytes, and ``header_sha256``, the SHA-256 of all other entries (canonical JSON: sorted keys),
+  so an edited sidecar is caught like an edited npz.
 
 Both files are written atomically (temporary name in the same folder, then ``os.replace``), the
 npz first and the json last, and an existing json is removed before its npz is replaced: a json
 is only ever present next to the npz it describes, and the hash catches any later change.
-:func:`load_body` refuses a pair that is incomplete, of another format version, or whose npz does
-not match the hash; :func:`cached_body` then rebuilds.
+:func:`load_body` refuses a pair that is incomplete, of another format version, or whose npz or
+json does not match its hash; :func:`cached_body` then rebuilds (with a warning naming the file) and
+goes on without storing when the cache cannot be written.
 """
 
 from __future__ import annotations
@@ -20,13 +22,13 @@ from __future__ import annotations
 import hashlib
 import json
 import logging
-import zipfile
 from pathlib import Path
 from typing import Callable
 
 import numpy as np
 
-from fem_rings.cache import atomic_path, cache_dir
+from fem_rings.cache import atomic_path, cache_dir, clean_stale_parts
+from mbd_core.npzfile import NPZ_ERRORS, read_npz
 
 from .body import ReducedBody
 
@@ -35,7 +37,8 @@ __all__ = ["FORMAT_VERSION", "UNITS", "save_body", "load_body", "cached_body", "
 log = logging.getLogger(__name__)
 
 #: Version of the stored layout; a file of another version is refused (rebuild the body).
-FORMAT_VERSION = 1
+#: 2: the json carries ``header_sha256``.
+FORMAT_VERSION = 2
 
 #: Units of the stored arrays (extras carry theirs in their names).
 UNITS = {
@@ -67,6 +70,14 @@ def _sha256(path: Path) -> str:
         for block in iter(lambda: fh.read(_CHUNK_BYTES), b""):
             h.update(block)
     return h.hexdigest()
+
+
+def _header_sha256(header: dict) -> str:
+    """SHA-256 of the sidecar's entries other than ``header_sha256`` (canonical JSON)."""
+    rest = {k: v for k, v in header.items() if k != "header_sha256"}
+    text = json.dumps(json.loads(json.dumps(rest, allow_nan=False)), sort_keys=True, ensure_ascii=False,
+                      separators=(",", ":"))
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
 def _arrays(body: ReducedBody) -> dict:
@@ -117,6 +128,7 @@ def save_body(body: ReducedBody, path) -> Path:
     with atomic_path(npz_path, ".npz") as tmp:
         np.savez(tmp, **arrays)
     header["npz_sha256"] = _sha256(npz_path)
+    header["header_sha256"] = _header_sha256(header)
     text = json.dumps(header, indent=1, ensure_ascii=False, allow_nan=False) + "\n"
     with atomic_path(json_path, ".json") as tmp:
         tmp.write_text(text, encoding="utf-8")
@@ -141,9 +153,12 @@ def _read_header(json_path: Path, npz_path: Path) -> dict:
     if version != FORMAT_VERSION:
         raise ValueError(f"{json_path}: reduced body has format_version {version!r}, this version of "
                          f"flexbearing reads format_version {FORMAT_VERSION}; rebuild the body")
-    for key in ("name", "floating", "mesh_kind", "n_modes", "n_nodes", "npz_sha256"):
+    for key in ("name", "floating", "mesh_kind", "n_modes", "n_nodes", "npz_sha256", "header_sha256"):
         if key not in header:
             raise ValueError(f"{json_path}: metadata entry {key!r} missing")
+    if _header_sha256(header) != header["header_sha256"]:
+        raise ValueError(f"{json_path}: metadata file is corrupt or modified (its entries do not match "
+                         f"header_sha256); rebuild the body")
     return header
 
 
@@ -170,10 +185,9 @@ def load_body(path) -> ReducedBody:
         raise ValueError(f"{npz_path}: array file is corrupt or modified (SHA-256 {digest[:16]}…, "
                          f"metadata records {str(header['npz_sha256'])[:16]}…); rebuild the body")
     try:
-        with np.load(npz_path, allow_pickle=False) as f:
-            arrays = {k: f[k] for k in f.files}
-    except (OSError, ValueError, zipfile.BadZipFile) as exc:
-        raise ValueError(f"{npz_path}: unreadable array file ({exc})") from exc
+        arrays = read_npz(npz_path)
+    except NPZ_ERRORS as exc:
+        raise ValueError(f"{npz_path}: unreadable array file ({type(exc).__name__}: {exc})") from None
     for name in _REQUIRED:
         if name not in arrays:
             raise ValueError(f"{npz_path}: required array {name!r} missing")
@@ -211,6 +225,7 @@ def cached_body(key: str, build: Callable[[], ReducedBody]) -> ReducedBody:
     if not key or Path(key).name != key or key in (".", ".."):
         raise ValueError(f"cache key must be a plain file name, got {key!r}")
     npz_path = cache_dir() / "reduced" / f"{key}.npz"
+    clean_stale_parts(npz_path.parent)
     if npz_path.exists() or npz_path.with_suffix(".json").exists():
         try:
             body = load_body(npz_path)
@@ -224,5 +239,8 @@ def cached_body(key: str, build: Callable[[], ReducedBody]) -> ReducedBody:
     body = build()
     if not isinstance(body, ReducedBody):
         raise TypeError(f"build() must return a ReducedBody, got {type(body).__name__}")
-    save_body(body, npz_path)
+    try:
+        save_body(body, npz_path)
+    except OSError as exc:
+        log.warning("could not store reduced body %s in the cache (%s): going on without it", npz_path, exc)
     return body

@@ -3,7 +3,14 @@
 The key is a SHA-256 of a canonical JSON description of the inputs (dataclasses are expanded field
 by field) plus a format version, so any change of profile, mesh size, element or material gives a
 new entry. Files are written atomically (temporary name, then rename): an interrupted run never
-leaves an entry that looks complete.
+leaves an entry that looks complete; the temporary files of killed runs (``.NAME.<pid>-<hex>.part*``)
+are removed at the next use of their folder once their process is gone.
+
+Every entry holds the SHA-256 of its arrays (:func:`content_hash`), checked on load: an entry that
+is unreadable (truncated, bad CRC, missing member) or whose arrays do not match the hash is
+reported (a warning naming the file), treated as absent and rebuilt. A cache that cannot be written
+(disk full, read-only, the cache path is a file) costs a warning and the rebuild next time, not
+the run.
 
 The folder is ``$FLEXBEARING_CACHE`` if set, else ``~/.cache/flexbearing``.
 """
@@ -15,18 +22,31 @@ import hashlib
 import json
 import logging
 import os
+import re
+import time
 import uuid
 from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["atomic_path", "cache_dir", "input_hash", "load_arrays", "save_arrays"]
+from mbd_core.npzfile import NPZ_ERRORS, read_npz
+
+__all__ = ["atomic_path", "cache_dir", "clean_stale_parts", "content_hash", "input_hash", "load_arrays",
+           "process_alive", "save_arrays"]
 
 log = logging.getLogger(__name__)
 
 #: Bump when the stored layout changes: old entries are then simply not found.
-FORMAT_VERSION = 1
+#: 2: entries carry the content hash ``HASH_KEY``.
+FORMAT_VERSION = 2
+
+#: name of the content hash inside an entry
+HASH_KEY = "__content_sha256__"
+#: temporary files older than this are stale even if their process id is in use again, s
+STALE_PART_AGE_S = 24 * 3600.0
+_PART = re.compile(r"^\..+\.(?P<pid>\d+)-[0-9a-f]{12}\.part(\.\w+)?$")
+_cleaned: set = set()
 
 
 def cache_dir() -> Path:
@@ -64,25 +84,95 @@ def _path(kind: str, key: str) -> Path:
     return cache_dir() / kind / f"{key}.npz"
 
 
+def content_hash(arrays: dict) -> str:
+    """SHA-256 (hex) of named arrays: names, dtypes, shapes and bytes, in name order."""
+    h = hashlib.sha256()
+    for name in sorted(arrays):
+        a = np.ascontiguousarray(arrays[name])
+        h.update(f"{name}\x00{a.dtype.str}\x00{a.shape}\x00".encode())
+        h.update(a.tobytes())
+    return h.hexdigest()
+
+
+def _discard(p: Path, why: str) -> None:
+    log.warning("cache entry %s is unusable (%s): rebuilding it", p, why)
+    try:
+        p.unlink()
+    except OSError:
+        pass
+
+
 def load_arrays(kind: str, key: str) -> dict | None:
-    """Stored arrays of an entry, or None when absent or unreadable."""
+    """Stored arrays of an entry, or None when absent, unreadable or not matching its hash."""
     p = _path(kind, key)
-    if not p.exists():
+    clean_stale_parts(p.parent)
+    if not p.is_file():
         return None
     try:
-        with np.load(p, allow_pickle=False) as f:
-            return {k: f[k] for k in f.files}
-    except (OSError, ValueError) as exc:
-        log.warning("ignoring unreadable cache entry %s: %s", p, exc)
+        arrays = read_npz(p)
+        recorded = str(arrays.pop(HASH_KEY))
+    except NPZ_ERRORS as exc:
+        _discard(p, f"{type(exc).__name__}: {exc}")
         return None
+    if content_hash(arrays) != recorded:
+        _discard(p, "content does not match its SHA-256: corrupt or modified")
+        return None
+    return arrays
 
 
-def save_arrays(kind: str, key: str, arrays: dict) -> Path:
-    """Store arrays atomically; returns the file."""
+def save_arrays(kind: str, key: str, arrays: dict) -> Path | None:
+    """Store arrays atomically with their content hash; returns the file, or None (with a
+    warning) when the cache cannot be written."""
     p = _path(kind, key)
-    with atomic_path(p, ".npz") as tmp:
-        np.savez(tmp, **arrays)
+    try:
+        clean_stale_parts(p.parent)
+        with atomic_path(p, ".npz") as tmp:
+            np.savez(tmp, **arrays, **{HASH_KEY: np.array(content_hash(arrays))})
+    except OSError as exc:
+        log.warning("could not write cache entry %s (%s): going on without it", p, exc)
+        return None
     return p
+
+
+def process_alive(pid: int) -> bool:
+    """True when a process ``pid`` exists on this machine (this process included); the owner
+    test of the temporary files and folders of killed runs."""
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # exists, owned by another user
+        return True
+    return True
+
+
+def clean_stale_parts(folder: Path) -> None:
+    """Remove the temporary files of killed writers in ``folder`` (once per process and folder).
+
+    A file ``.NAME.<pid>-<hex>.part*`` (:func:`atomic_path`) is stale when process ``pid`` no
+    longer exists or the file is older than :data:`STALE_PART_AGE_S`; writers still running keep
+    theirs."""
+    folder = Path(folder)
+    if folder in _cleaned:
+        return
+    _cleaned.add(folder)
+    try:
+        entries = list(folder.iterdir())
+    except OSError:
+        return
+    now = time.time()
+    for p in entries:
+        m = _PART.match(p.name)
+        if not m:
+            continue
+        try:
+            if not process_alive(int(m["pid"])) or now - p.stat().st_mtime > STALE_PART_AGE_S:
+                p.unlink()
+                log.info("removed %s left by a killed run", p)
+        except OSError:
+            pass
 
 
 @contextmanager

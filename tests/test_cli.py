@@ -108,7 +108,8 @@ def test_modes_of_a_slewing_race_folder_and_figures(tmp_path, capsys):
     assert max(f[:6]) < 1e-3 * f[6]
     assert f[7] == pytest.approx(f[6], rel=1e-3)
     assert (d["modes"][6]["family"], d["modes"][6]["waves"]) == ("out", 2)
-    assert sorted(p.name for p in out.iterdir()) == ["mode_07.png", "mode_08.png", "modes.vtu", "summary.json"]
+    assert sorted(p.name for p in out.iterdir()) == [".flexbearing-results.json", "mode_07.png", "mode_08.png", "modes.vtu",
+                                                    "summary.json"]
     assert json.loads((out / "summary.json").read_text())["dofs"] == d["dofs"]
 
 

@@ -7,6 +7,7 @@ import logging
 import numpy as np
 import pytest
 
+from cms_reduction import persist
 from cms_reduction.body import ReducedBody
 from cms_reduction.persist import FORMAT_VERSION, body_paths, cached_body, load_body, save_body
 
@@ -53,7 +54,7 @@ def test_round_trip_is_bit_identical(tmp_path):
         assert (back.name, back.floating, back.mesh_kind) == (body.name, body.floating, body.mesh_kind)
         assert back.metadata == body.metadata
     header = json.loads(npz.with_suffix(".json").read_text())
-    assert header["format_version"] == FORMAT_VERSION == 1
+    assert header["format_version"] == FORMAT_VERSION == 2
     assert (header["n_modes"], header["n_nodes"]) == (4, 20)
     assert header["frequencies_Hz"] == body.frequencies_Hz.tolist()
     assert header["units"]["shapes"] == "m/sqrt(kg)" and header["units"]["nodes_m"] == "m"
@@ -84,7 +85,7 @@ def test_other_format_version_is_refused_naming_both(tmp_path):
     header = json.loads(js.read_text())
     header["format_version"] = 0
     js.write_text(json.dumps(header))
-    with pytest.raises(ValueError, match=r"format_version 0.*format_version 1; rebuild"):
+    with pytest.raises(ValueError, match=r"format_version 0.*format_version 2; rebuild"):
         load_body(npz)
 
 
@@ -101,6 +102,7 @@ def test_missing_json_or_array_is_named(tmp_path):
     js = npz.with_suffix(".json")
     header = json.loads(js.read_text())
     header["npz_sha256"] = hashlib.sha256(npz.read_bytes()).hexdigest()
+    header["header_sha256"] = persist._header_sha256(header)
     js.write_text(json.dumps(header))
     with pytest.raises(ValueError, match="required array 'shapes' missing"):
         load_body(npz)

@@ -310,6 +310,11 @@ def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | Non
             getattr(work, f"contact_{f}")[:] = ck[f]
         h = timestep_s
         state.t = t_origin + step * h
+        if t_end_s < state.t:
+            raise ValueError(f"simulate: t_end_s = {t_end_s!r} s is before the checkpoint's time {state.t!r} s "
+                             f"in {folder}; a resume can only run on")
+        if energy_limit_J is None and "energy_limit_J" in ck:
+            energy_limit_J = float(ck["energy_limit_J"])  # the original run's limit
     else:
         limit = stable_timestep(model, state)
         h = limit.timestep_s if timestep_s is None else float(timestep_s)
@@ -356,7 +361,7 @@ def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | Non
                 rec_file.finish(f"failed: {text}")
             raise DivergenceError(text)
         if rec_file is not None:
-            rec_file.write_checkpoint(t_origin, step, state, work)
+            rec_file.write_checkpoint(t_origin, step, state, work, e_limit)
     if rec_file is not None:
         rec_file.finish("complete")
         return read_run(folder)

@@ -59,6 +59,7 @@ Every one of these tables is empty, and every index −1, in a model without sam
 
 from __future__ import annotations
 
+import hashlib
 from collections import namedtuple
 from dataclasses import dataclass, field
 
@@ -223,3 +224,25 @@ def make_record_buffers(model: Model, n_samples: int) -> RecordBuffers:
         eta=np.zeros((k, model.n_modal)), eta_dot=np.zeros((k, model.n_modal)),
         **{name: np.zeros((k, nc)) for name in RECORDED_CONTACT_FIELDS},
     )
+
+
+def model_fingerprint(model: Model) -> dict:
+    """SHA-256 (hex, 16 digits) of every model array (dtype, shape and bytes) and of the name lists.
+
+    Two models with equal fingerprints integrate identically; comparing two fingerprints with
+    :func:`fingerprint_differences` names the arrays that differ.
+    """
+    out = {}
+    for name, value in zip(model.arrays._fields, model.arrays):
+        a = np.ascontiguousarray(value)
+        h = hashlib.sha256(f"{a.dtype.str}{a.shape}".encode())
+        h.update(a.tobytes())
+        out[name] = h.hexdigest()[:16]
+    for name in ("body_names", "pair_names", "pair_kinds"):
+        out[name] = hashlib.sha256("\x00".join(getattr(model, name)).encode()).hexdigest()[:16]
+    return out
+
+
+def fingerprint_differences(recorded: dict, present: dict) -> list[str]:
+    """Names of the entries in which two :func:`model_fingerprint` results differ (sorted)."""
+    return sorted(k for k in set(recorded) | set(present) if recorded.get(k) != present.get(k))
