@@ -27,8 +27,8 @@ class BallGroup:
     ----------
     p_m : (n, 3) moving-ring groove-centre position, m
     t : (n, 3) tangential unit vector e_t at the ball
-    s0_m : (n, 3) unloaded centre-distance vector A·d̂, m
-    free_length_m : (n,) A + gap, m (approach δ = |s| − free_length)
+    s0_m : (n, 3) unloaded centre-distance vector A·d̂ − (P_d/2)·s_r·e_r, m
+    free_length_m : (n,) A, m (approach δ = |s| − free_length)
     K : (n,) load–deflection constant, N/m^1.5
     radial_sign, axial_sign : (n,) ±1, for the loaded contact angle
     angle_min_rad, angle_max_rad : (n,) loaded contact angles the groove can carry, rad
@@ -96,11 +96,12 @@ def _ball_arrays(i_row: int, row: BallRow) -> dict[str, np.ndarray]:
     d_hat = (sr * np.cos(a0)) * e_r + (sz * np.sin(a0)) * e_z
     ball_centre = 0.5 * row.pitch_diameter_m * e_r + row.axial_position_m * e_z
     A = row.curvature_centre_distance_m
+    # the clearance moves the grooves apart radially (concentric rings): ISO/TS 16281, Harris ch. 2
     return dict(
         p_m=ball_centre + (row.conformity_moving - 0.5) * D * d_hat,
         t=e_t,
-        s0_m=A * d_hat,
-        free_length_m=np.full(n, A + row.gap_m),
+        s0_m=A * d_hat - (0.5 * row.diametral_clearance_m * sr) * e_r,
+        free_length_m=np.full(n, A),
         K=np.full(n, row.contact_stiffness()),
         radial_sign=np.full(n, float(sr)),
         axial_sign=np.full(n, float(sz)),

@@ -75,6 +75,8 @@ from .solver import (
     slice_forces,
     supported_dofs,
 )
+from .validity import load_distribution_warnings
+
 
 __all__ = ["FlexibleRing", "GrooveOffset", "FlexibleBearingModel", "build_flexible_model", "RacewayDeflection",
            "FlexibleLoadDistribution", "solve_flexible_load_distribution"]
@@ -613,5 +615,7 @@ def _collect(model: FlexibleBearingModel, load: RingLoad, x: np.ndarray, iterati
         eta = etas[names.index(c.ring)]
         deflections.append(RacewayDeflection(c.ring, c.row, c.azimuth_rad, c.points_m, c.D @ eta, c.Omega @ eta,
                                              None if c.T is None else c.T @ eta))
+    warnings = load_distribution_warnings(model.bearing, rows, x[:5])
     return FlexibleLoadDistribution(model.bearing.name, load.as_array(), x[:5].copy(), (rb + rs)[:5], rows,
-                                    iterations, float(error), held, names, etas, tuple(deflections))
+                                    iterations, float(error), held, warnings, ring_names=names,
+                                    modal_coordinates=etas, deflections=tuple(deflections))
