@@ -60,7 +60,7 @@ from typing import Any
 
 import numpy as np
 
-from .elements import BallGroup, SliceGroup, build_groups, displacement_matrix
+from .elements import BallGroup, SliceGroup, build_groups, displacement_matrix, shift_ball_centres
 from .rows import BallRow, Bearing
 from .solver import (
     DOF_NAMES,
@@ -463,7 +463,7 @@ def build_flexible_model(bearing: Bearing, rings=(), offsets=()) -> FlexibleBear
             amplitude = np.maximum(amplitude, np.linalg.norm(disp, axis=1).max(axis=0))
         scale[cols] = np.maximum(amplitude, 1e-6 * max(amplitude.max(), 1e-300))
     rel = {k: delta["moving"][k] - delta["fixed"][k] for k in (0, 1)}
-    balls = replace(balls, s0_m=balls.s0_m + rel[0])
+    balls = shift_ball_centres(balls, rel[0])
     slices = replace(slices, offset_m=slices.offset_m - np.einsum("ij,ij->i", rel[1], slices.normal))
     return FlexibleBearingModel(bearing, rings, offsets, balls, slices, G, w, stiffness, ring_dofs, scale,
                                 tuple(couplings))

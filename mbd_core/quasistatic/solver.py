@@ -57,7 +57,8 @@ def ball_forces(g: BallGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = Tru
     s = g.s0_m + u
     L = np.linalg.norm(s, axis=1)
     s_hat = s / L[:, None]
-    delta = L - g.free_length_m
+    # δ = |s| − A without the cancellation: (|s0|² − A² + 2 s0·u + |u|²)/(|s| + A)
+    delta = (g.s0_excess_m2 + np.einsum("ij,ij->i", 2.0 * g.s0_m + u, u)) / (L + g.free_length_m)
     alpha = np.arctan2(g.axial_sign * s[:, 2], g.radial_sign * np.sum(s * g.e_r, axis=1))
     on_groove = (alpha >= g.angle_min_rad) & (alpha <= g.angle_max_rad)
     dpos = np.where(on_groove, np.maximum(delta, 0.0), 0.0)
@@ -112,8 +113,9 @@ class _Problem:
 
         Π = Σ Q·δ/(n + 1) − f·q (elastic energy K·δ^(n+1)/(n+1) of each loaded element). The
         threshold is ``tolerance``·max(|f/S|, Σ Q) plus the rounding level of the residual,
-        Σ (dQ/dδ)·ε·ℓ with ℓ the lengths whose difference is δ (|s| + A of a ball,
-        |w|·|q| + |offset| of a slice): below it the residual is noise.
+        Σ (dQ/dδ)·ε·ℓ with ℓ the size of the terms whose sum is δ
+        ((| |s0|² − A² | + |2s0 + u|·|u|)/(|s| + A) of a ball, |w|·|q| + |offset| of a slice):
+        below it the residual is noise.
         """
         with np.errstate(over="ignore", invalid="ignore"):
             Qb, db, s, rb, Jb = ball_forces(self.balls, self.B_balls, q, jacobian)
@@ -121,7 +123,10 @@ class _Problem:
             lb, ls = Qb > 0.0, Qs > 0.0
             energy = (float(np.sum(Qb[lb] * db[lb])) / 2.5 + float(np.sum(Qs[ls] * ds[ls] / (self.slices.exponent[ls] + 1.0)))
                       - float(f_ext @ q))
-            ell_b = np.linalg.norm(s[lb], axis=1) + self.balls.free_length_m[lb]
+            g = self.balls
+            u = s[lb] - g.s0_m[lb]
+            ell_b = ((np.abs(g.s0_excess_m2[lb]) + np.linalg.norm(2.0 * g.s0_m[lb] + u, axis=1) * np.linalg.norm(u, axis=1))
+                     / (np.linalg.norm(s[lb], axis=1) + g.free_length_m[lb]))
             ell_s = np.linalg.norm(self.w_slices[ls], axis=1) * safe_norm(q) + np.abs(self.slices.offset_m[ls])
             noise = _ROUNDING * (float(np.sum(1.5 * Qb[lb] / db[lb] * ell_b))
                                  + float(np.sum(self.slices.exponent[ls] * Qs[ls] / ds[ls] * ell_s)))
@@ -138,7 +143,8 @@ class _Problem:
         transverse geometric stiffness Q/A of a ball in its groove).
         """
         n_el = len(self.balls.K) + len(self.slices.K)
-        Q_ref = (load_scale_N if load_scale_N > 0.0 else 1.0) / max(n_el, 1)
+        # a direction and a pattern are all that is used: keep the springs clear of underflow
+        Q_ref = (max(load_scale_N, 1e-30) if load_scale_N > 0.0 else 1.0) / max(n_el, 1)
         K = np.zeros((5, 5))
         g = self.balls
         if len(g.K):
@@ -287,7 +293,10 @@ def solve_load_distribution(
 
     if initial_displacement is None:
         y = np.zeros(5)
-        y[free] = np.linalg.solve(K_lin[np.ix_(free, free)], f_ext[free] / S[free])
+        try:
+            y[free] = np.linalg.solve(K_lin[np.ix_(free, free)], f_ext[free] / S[free])
+        except np.linalg.LinAlgError:
+            y[free] = f_ext[free] / S[free] / np.diag(K_lin)[free]
         y = ray_start(evaluate, y, free)
     else:
         y = np.asarray(initial_displacement, dtype=float).reshape(5) * S
