@@ -51,7 +51,8 @@ def groove_edge_warning(semi_major_m: float, groove_radius_m: float, contact_ang
     half = semi_major_m / groove_radius_m
     if angle_min_rad <= contact_angle_rad - half and contact_angle_rad + half <= angle_max_rad:
         return None
-    return (f"contact ellipse (a = {semi_major_m * 1e3:.4g} mm, ±{math.degrees(half):.3g}° on the groove about "
+    span = f"±{math.degrees(half):.3g}°" if half < math.pi else "more than the whole section"
+    return (f"contact ellipse (a = {semi_major_m * 1e3:.4g} mm, {span} on the groove about "
             f"α = {math.degrees(contact_angle_rad):.4g}°) runs over the groove edge at "
             f"[{math.degrees(angle_min_rad):.3g}°, {math.degrees(angle_max_rad):.3g}°]: truncated, beyond the Hertz model")
 
