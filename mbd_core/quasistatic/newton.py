@@ -76,10 +76,12 @@ def safe_norm(v: np.ndarray) -> float:
 
 def ray_start(evaluate: Callable[[np.ndarray, bool], Evaluation], direction: np.ndarray, free: np.ndarray,
               max_doublings: int = 200) -> np.ndarray:
-    """t·direction at the minimum of Π along the ray t ≥ 0 (or 0 if the direction does not descend).
+    """A start on the ray t·direction, t ≥ 0, at or past the minimum of Π along it.
 
-    dΠ/dt = −R(t·d)·d is non-decreasing (Π convex); it is bracketed by doubling t from 1 and its
-    root found by Brent's method to 1e-6 relative, enough for a start.
+    dΠ/dt = −R(t·d)·d is non-decreasing (Π convex). If it is ≥ 0 at t = 1 (the linear estimate is
+    past the minimum, the usual case without clearance) the estimate is returned; otherwise (a
+    clearance still open there) the root is bracketed by doubling t and found by Brent's method to
+    1e-3 relative, enough for a start. 0 if the direction does not descend.
     """
     d = np.where(np.isin(np.arange(direction.size), free), direction, 0.0)
 
@@ -88,7 +90,9 @@ def ray_start(evaluate: Callable[[np.ndarray, bool], Evaluation], direction: np.
 
     if not slope(0.0) < 0.0:
         return np.zeros_like(d)
-    t_lo, t_hi = 0.0, 1.0
+    if slope(1.0) >= 0.0:
+        return d  # the estimate itself is past the minimum on the ray: Newton takes it from there
+    t_lo, t_hi = 1.0, 2.0
     for _ in range(max_doublings):
         s = slope(t_hi)
         if not math.isfinite(s):
@@ -98,7 +102,7 @@ def ray_start(evaluate: Callable[[np.ndarray, bool], Evaluation], direction: np.
         t_lo, t_hi = t_hi, 2.0 * t_hi
     else:
         return t_lo * d  # the rows give nothing along this ray: let the minimisation look elsewhere
-    t = brentq(slope, t_lo, t_hi, xtol=1e-300, rtol=1e-6)
+    t = brentq(slope, t_lo, t_hi, xtol=1e-300, rtol=1e-3)
     return t * d
 
 

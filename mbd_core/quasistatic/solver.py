@@ -93,6 +93,10 @@ def slice_forces(g: SliceGroup, w: np.ndarray, q: np.ndarray, jacobian: bool = T
     return Q, delta, r, -(w.T * dQ) @ w
 
 
+def _row_norm(v: np.ndarray) -> np.ndarray:
+    return np.sqrt(np.einsum("ij,ij->i", v, v))
+
+
 class _Problem:
     """Bearing geometry flattened once; evaluates the residual and Jacobian of q."""
 
@@ -101,6 +105,7 @@ class _Problem:
         self.balls, self.slices = build_groups(bearing)
         self.B_balls = displacement_matrix(self.balls.p_m)
         self.w_slices = np.einsum("nji,nj->ni", displacement_matrix(self.slices.p_m), self.slices.normal)
+        self.w_norm = _row_norm(self.w_slices)
 
     def reaction(self, q: np.ndarray, jacobian: bool = True):
         _, _, _, rb, Jb = ball_forces(self.balls, self.B_balls, q, jacobian)
@@ -125,9 +130,9 @@ class _Problem:
                       - float(f_ext @ q))
             g = self.balls
             u = s[lb] - g.s0_m[lb]
-            ell_b = ((np.abs(g.s0_excess_m2[lb]) + np.linalg.norm(2.0 * g.s0_m[lb] + u, axis=1) * np.linalg.norm(u, axis=1))
-                     / (np.linalg.norm(s[lb], axis=1) + g.free_length_m[lb]))
-            ell_s = np.linalg.norm(self.w_slices[ls], axis=1) * safe_norm(q) + np.abs(self.slices.offset_m[ls])
+            ell_b = ((np.abs(g.s0_excess_m2[lb]) + _row_norm(2.0 * g.s0_m[lb] + u) * _row_norm(u))
+                     / (_row_norm(s[lb]) + g.free_length_m[lb]))
+            ell_s = self.w_norm[ls] * safe_norm(q) + np.abs(self.slices.offset_m[ls])
             noise = _ROUNDING * (float(np.sum(1.5 * Qb[lb] / db[lb] * ell_b))
                                  + float(np.sum(self.slices.exponent[ls] * Qs[ls] / ds[ls] * ell_s)))
             load_sum = float(np.sum(Qb) + np.sum(Qs))
