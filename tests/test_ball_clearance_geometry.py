@@ -96,7 +96,7 @@ def test_clearance_through_geometry_matches_harris(pd, alpha0_deg, Fr, Fa):
 
 
 def test_free_contact_angle_from_clearance():
-    """cos α_f = 1 − P_d/(2A) (Harris & Kotzalas eq. 2.10), and the smallest axial load turns the
+    """cos α_f = 1 − P_d/(2A) (Harris & Kotzalas ch. 2), and the smallest axial load turns the
     balls to that angle: α within 1e-7 rad of α_f at 1 nN (the approach, ~1e-13 m, turns it by ~1e-9 rad)."""
     r = row(20e-6)
     A = r.curvature_centre_distance_m

@@ -13,15 +13,15 @@ d̂ = (s_r·cos α0)·e_r + (s_z·sin α0)·e_z, the direction in which the movi
 compress the ball (s_r = +1 when the moving ring carries the inner raceway, s_z = ``axial_sign``).
 A diametral clearance P_d moves the grooves apart radially by P_d/2 (the rings concentric):
 s0 = A·d̂ − (P_d/2)·s_r·e_r. For a deep groove (α0 = 0) pushed axially until the ball touches,
-the free contact angle is then cos α_f = 1 − P_d/(2A) (Harris & Kotzalas, eq. 2.10).
+the free contact angle is then cos α_f = 1 − P_d/(2A) (Harris & Kotzalas, ch. 2, free contact angle).
 Displaced, the centre distance is |s| with s = s0 + (u − (u·e_t)e_t), u = d + θ × p the
 displacement of the moving centre p; the approach is δ = |s| − A (the geometry, not a gap along
 a fixed contact line), the ball load Q = K·δ^1.5 with K the series constant of the two Hertz
-contacts, and the loaded contact angle α = atan2(s_z·s·e_z, s_r·s·e_r). The groove carries only contact angles on its loaded side
-(see ``BallRow.groove_angle_range_rad``): beyond, the ball has run over the groove edge and is
-unloaded, so a single-row angular-contact ring tips under a moment it cannot carry instead of
-the ball finding the opposite flank of a full torus. Ball centrifugal force and gyroscopic moment are neglected
-(slow bearings).
+contacts, and the loaded contact angle α = atan2(s_z·s·e_z, s_r·s·e_r). The groove carries only
+contact angles on its loaded side (see ``BallRow.groove_angle_range_rad``): beyond, the ball has
+run over the groove edge and is unloaded, so a single-row angular-contact ring tips under a moment
+it cannot carry instead of the ball finding the opposite flank of a full torus. Ball centrifugal
+force and gyroscopic moment are neglected (slow bearings).
 
 Roller rows (ISO/TS 16281 slices): a roller of effective length L is cut into n_s slices; slice
 k at distance x_k from the roller centre has approach δ_k = u(p_k)·n − gap − drop(x_k) along the
@@ -175,7 +175,7 @@ class BallRow:
 
     @property
     def gap_m(self) -> float:
-        """Radial play of one ball between its grooves, P_d/2, m (as the multibody groove model takes it)."""
+        """Radial clearance P_d/2, m (the name of the former gap field, kept for its readers)."""
         return self.radial_clearance_m
 
     @property
@@ -183,7 +183,7 @@ class BallRow:
         """Contact angle of the unloaded ball pushed axially until it touches, rad.
 
         From the curvature-centre geometry: the radial and axial components of s0 with |s| = A
-        (Harris & Kotzalas, eq. 2.10 for α0 = 0: cos α_f = 1 − P_d/(2A)). Without clearance α0.
+        (Harris & Kotzalas ch. 2 for α0 = 0: cos α_f = 1 − P_d/(2A)). Without clearance α0.
         """
         A = self.curvature_centre_distance_m
         s_r = A * math.cos(self.contact_angle_rad) - 0.5 * self.diametral_clearance_m
