@@ -10,6 +10,9 @@ minimum of the ring's convex potential energy (:mod:`.newton`): a start that clo
 clearances along the linear-spring estimate, then Newton steps with the analytic Jacobian,
 Levenberg–Marquardt regularised where elements have lost contact, and a line search on the
 energy — convergent from any start for any load the rows can carry, whatever the clearance.
+The potential is convex while the grooves are taken as full tori; the groove edges (beyond
+which a ball is unloaded, :mod:`.rows`) make it discontinuous. So the first stage solves on full
+tori and the second, from there, lets the balls that ran over an edge drop out.
 Moments and rotations are scaled by the largest pitch radius so that the system is well
 balanced. Convergence is relative: |residual| ≤ tolerance·max(|load|, Σ element loads) plus the
 rounding level of the approaches, never an absolute force. Degrees of freedom in which the
@@ -43,8 +46,11 @@ _ROUNDING = 8.0 * np.finfo(float).eps
 # --------------------------------------------------------------------------- element forces
 # The generalised force of a point force F at p is Bᵀ(p)·F (virtual work with u = B(p)·q).
 
-def ball_forces(g: BallGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = True):
+def ball_forces(g: BallGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = True, groove_edges: bool = True):
     """Ball loads and their resultant on the moving ring.
+
+    ``groove_edges=False`` takes the grooves as full tori (no ball runs over an edge): the convex
+    problem of the first solver stage.
 
     Returns
     -------
@@ -60,7 +66,7 @@ def ball_forces(g: BallGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = Tru
     # δ = |s| − A without the cancellation: (|s0|² − A² + 2 s0·u + |u|²)/(|s| + A)
     delta = (g.s0_excess_m2 + np.einsum("ij,ij->i", 2.0 * g.s0_m + u, u)) / (L + g.free_length_m)
     alpha = np.arctan2(g.axial_sign * s[:, 2], g.radial_sign * np.sum(s * g.e_r, axis=1))
-    on_groove = (alpha >= g.angle_min_rad) & (alpha <= g.angle_max_rad)
+    on_groove = (alpha >= g.angle_min_rad) & (alpha <= g.angle_max_rad) if groove_edges else True
     dpos = np.where(on_groove, np.maximum(delta, 0.0), 0.0)
     sq = np.sqrt(dpos)
     Q = g.K * dpos * sq
@@ -113,7 +119,7 @@ class _Problem:
         return rb + rs, (None if not jacobian else Jb + Js)
 
     def evaluate(self, q: np.ndarray, f_ext: np.ndarray, S: np.ndarray, tolerance: float,
-                 jacobian: bool = True) -> Evaluation:
+                 jacobian: bool = True, groove_edges: bool = True) -> Evaluation:
         """Scaled residual (r + f)/S, its Jacobian, the potential Π and the convergence threshold at q.
 
         Π = Σ Q·δ/(n + 1) − f·q (elastic energy K·δ^(n+1)/(n+1) of each loaded element). The
@@ -123,7 +129,7 @@ class _Problem:
         below it the residual is noise.
         """
         with np.errstate(over="ignore", invalid="ignore"):
-            Qb, db, s, rb, Jb = ball_forces(self.balls, self.B_balls, q, jacobian)
+            Qb, db, s, rb, Jb = ball_forces(self.balls, self.B_balls, q, jacobian, groove_edges)
             Qs, ds, rs, Js = slice_forces(self.slices, self.w_slices, q, jacobian)
             lb, ls = Qb > 0.0, Qs > 0.0
             energy = (float(np.sum(Qb[lb] * db[lb])) / 2.5 + float(np.sum(Qs[ls] * ds[ls] / (self.slices.exponent[ls] + 1.0)))
@@ -293,7 +299,10 @@ def solve_load_distribution(
     free = np.flatnonzero(supported)
     held = tuple(DOF_NAMES[i] for i in np.flatnonzero(~supported))
 
-    def evaluate(y_scaled: np.ndarray, jac: bool = True) -> Evaluation:
+    def on_tori(y_scaled: np.ndarray, jac: bool = True) -> Evaluation:
+        return prob.evaluate(y_scaled / S, f_ext, S, tolerance, jac, groove_edges=False)
+
+    def on_grooves(y_scaled: np.ndarray, jac: bool = True) -> Evaluation:
         return prob.evaluate(y_scaled / S, f_ext, S, tolerance, jac)
 
     if initial_displacement is None:
@@ -302,11 +311,16 @@ def solve_load_distribution(
             y[free] = np.linalg.solve(K_lin[np.ix_(free, free)], f_ext[free] / S[free])
         except np.linalg.LinAlgError:
             y[free] = f_ext[free] / S[free] / np.diag(K_lin)[free]
-        y = ray_start(evaluate, y, free)
+        y = ray_start(on_tori, y, free)
     else:
         y = np.asarray(initial_displacement, dtype=float).reshape(5) * S
         y[~supported] = 0.0
-    y, ev, norm, it = minimise_potential(evaluate, y, free, max_iterations, np.diag(K_lin)[free])
+    # stage 1: grooves as full tori, a convex potential (global convergence); stage 2: the balls that
+    # ran over a groove edge drop out (nothing to do when none did)
+    D = np.diag(K_lin)[free]
+    y, _, _, it1 = minimise_potential(on_tori, y, free, max_iterations, D)
+    y, ev, norm, it2 = minimise_potential(on_grooves, y, free, max_iterations, D)
+    it = it1 + it2
     if not norm <= ev.tolerance:
         raise no_equilibrium_error(bearing.name, it, ev.R, S, f_ext)
     return _collect(prob, bearing, load, y / S, it, norm, held)
