@@ -54,7 +54,8 @@ def groove_edge_warning(semi_major_m: float, groove_radius_m: float, contact_ang
     span = f"±{math.degrees(half):.3g}°" if half < math.pi else "more than the whole section"
     return (f"contact ellipse (a = {semi_major_m * 1e3:.4g} mm, {span} on the groove about "
             f"α = {math.degrees(contact_angle_rad):.4g}°) runs over the groove edge at "
-            f"[{math.degrees(angle_min_rad):.3g}°, {math.degrees(angle_max_rad):.3g}°]: truncated, beyond the Hertz model")
+            f"[{math.degrees(angle_min_rad):.3g}°, {math.degrees(angle_max_rad):.3g}°]: "
+            "truncated, beyond the Hertz model")
 
 
 def point_contact_warnings(contact, Q_N: float, convex_radius_m: float, limit_Pa: float = P0_STATIC_LIMIT_BALL_PA,

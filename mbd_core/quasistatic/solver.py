@@ -26,7 +26,6 @@ Reference: Harris & Kotzalas, *Advanced Concepts of Bearing Technology*, 5th ed.
 from __future__ import annotations
 
 import logging
-import math
 
 import numpy as np
 
@@ -132,8 +131,9 @@ class _Problem:
             Qb, db, s, rb, Jb = ball_forces(self.balls, self.B_balls, q, jacobian, groove_edges)
             Qs, ds, rs, Js = slice_forces(self.slices, self.w_slices, q, jacobian)
             lb, ls = Qb > 0.0, Qs > 0.0
-            energy = (float(np.sum(Qb[lb] * db[lb])) / 2.5 + float(np.sum(Qs[ls] * ds[ls] / (self.slices.exponent[ls] + 1.0)))
-                      - float(f_ext @ q))
+            elastic_b = float(np.sum(Qb[lb] * db[lb])) / 2.5
+            elastic_s = float(np.sum(Qs[ls] * ds[ls] / (self.slices.exponent[ls] + 1.0)))
+            energy = elastic_b + elastic_s - float(f_ext @ q)
             g = self.balls
             u = s[lb] - g.s0_m[lb]
             ell_b = ((np.abs(g.s0_excess_m2[lb]) + _row_norm(2.0 * g.s0_m[lb] + u) * _row_norm(u))
