@@ -232,3 +232,17 @@ def test_groove_edges_do_not_trap_the_solver():
     np.testing.assert_allclose(res.displacement, q, rtol=1e-8, atol=1e-14)
     assert np.degrees(res.rows[0].contact_angle_rad.max()) > 84.0
     assert_equilibrium(b, res, RingLoad(Fx_N=1e5, Fz_N=-6.76e5))
+
+
+def test_loads_below_the_rounding_of_the_clearances_are_refused_or_flagged():
+    """Three-row roller (gaps 0.085–0.1 mm) under 1 nN thrust: the approaches (~1e-20 m) are at the
+    rounding of q ≈ gap (ε·gap ≈ 2e-20 m), so no equilibrium to better than ~60 % exists in double
+    precision; the original solve "converged" on its absolute tolerance. Now an error naming the
+    cause; at 100 nN the result carries a warning with its equilibrium error, and the reaction
+    equals the load within that error."""
+    case = three_row_roller()
+    with pytest.raises(LoadDistributionError, match="too small for the clearances"):
+        solve_load_distribution(case.bearing, RingLoad(Fz_N=1e-9))
+    res = solve_load_distribution(case.bearing, RingLoad(Fz_N=1e-7))
+    assert any("equilibrium only to" in w for w in res.warnings)
+    assert -res.reaction[2] == pytest.approx(1e-7, rel=2 * res.equilibrium_error)

@@ -26,6 +26,7 @@ Reference: Harris & Kotzalas, *Advanced Concepts of Bearing Technology*, 5th ed.
 from __future__ import annotations
 
 import logging
+from dataclasses import replace
 
 import numpy as np
 
@@ -39,6 +40,10 @@ __all__ = ["RingLoad", "RowLoads", "LoadDistribution", "LoadDistributionError", 
 
 log = logging.getLogger(__name__)
 
+#: Relative equilibrium error above which a result converged to the rounding level is flagged,
+#: and above which it is refused (LoadDistributionError).
+ROUNDING_WARNING_LIMIT = 1e-6
+ROUNDING_ERROR_LIMIT = 1e-2
 #: Rounding level of an approach δ = |s| − A (or w·q − offset), in units of the lengths involved.
 _ROUNDING = 8.0 * np.finfo(float).eps
 
@@ -146,6 +151,15 @@ class _Problem:
             J = None if not jacobian else (Jb + Js) / S[:, None] / S[None, :]
         return Evaluation(R, J, energy, tolerance * max(safe_norm(f_ext / S), load_sum) + noise)
 
+    def resolution_force_N(self) -> float:
+        """Largest element force at an approach equal to the rounding of the lengths it is computed
+        from (|s0|² − A² over 2A of a ball, the gap of a slice), N: loads near it are not resolved."""
+        g, sl = self.balls, self.slices
+        eps = _ROUNDING
+        ball = g.K * (eps * np.abs(g.s0_excess_m2) / (2.0 * g.free_length_m)) ** 1.5
+        sli = sl.K * (eps * np.abs(sl.offset_m)) ** sl.exponent
+        return float(max(ball.max(initial=0.0), sli.max(initial=0.0)))
+
     def linear_stiffness(self, load_scale_N: float) -> np.ndarray:
         """Secant stiffness (5, 5) with every element loaded to an equal share of the load.
 
@@ -237,14 +251,23 @@ def damped_newton(residual, y: np.ndarray, free: np.ndarray, tolerance_abs: floa
 
 
 def no_equilibrium_error(bearing_name: str, iterations: int, r: np.ndarray, S: np.ndarray,
-                         f_ext: np.ndarray) -> LoadDistributionError:
-    """The error of an unconverged solve, naming the worst unbalanced load component."""
+                         f_ext: np.ndarray, resolution_N: float = 0.0, too_small: bool = False) -> LoadDistributionError:
+    """The error of an unconverged solve, naming the worst unbalanced load component.
+
+    ``resolution_N``: the smallest element force the geometry resolves in double precision
+    (:meth:`_Problem.resolution_force_N`); a load not far above it (or ``too_small``) is named as
+    the cause.
+    """
     worst = int(np.argmax(np.abs(r[:5])))
+    cause = ("the rows cannot carry this load (does it lift the moving ring off every element, or exceed what "
+             "the contact angles allow?)")
+    if too_small or safe_norm(f_ext / S) < 1e6 * resolution_N:
+        cause = (f"the load is too small for the clearances: the approaches it causes are below the rounding of "
+                 f"the geometry in double precision (an element force at the rounding level of its approach "
+                 f"is ~{resolution_N:.1e} N)")
     return LoadDistributionError(
         f"no converged equilibrium for bearing {bearing_name!r} after {iterations} iterations: "
-        f"unbalanced {LOAD_NAMES[worst]} = {r[worst] * S[worst]:.6g} of the applied "
-        f"{f_ext[worst]:.6g}; the rows cannot carry this load (does it lift the moving ring "
-        "off every element, or exceed what the contact angles allow?)"
+        f"unbalanced {LOAD_NAMES[worst]} = {r[worst] * S[worst]:.6g} of the applied {f_ext[worst]:.6g}; {cause}"
     )
 
 
@@ -322,8 +345,15 @@ def solve_load_distribution(
     y, ev, norm, it2 = minimise_potential(on_grooves, y, free, max_iterations, D)
     it = it1 + it2
     if not norm <= ev.tolerance:
-        raise no_equilibrium_error(bearing.name, it, ev.R, S, f_ext)
-    return _collect(prob, bearing, load, y / S, it, norm, held)
+        raise no_equilibrium_error(bearing.name, it, ev.R, S, f_ext, prob.resolution_force_N())
+    res = _collect(prob, bearing, load, y / S, it, norm, held)
+    if res.equilibrium_error > ROUNDING_ERROR_LIMIT:  # converged to the rounding level, which is no answer
+        raise no_equilibrium_error(bearing.name, it, ev.R, S, f_ext, prob.resolution_force_N(), too_small=True)
+    if res.equilibrium_error > ROUNDING_WARNING_LIMIT:
+        note = (f"equilibrium only to {res.equilibrium_error:.1e} of the load: the approaches are near the "
+                "rounding of the geometry in double precision (a load this small against the clearances)")
+        res = replace(res, warnings=res.warnings + (note,))
+    return res
 
 
 def _collect(prob: _Problem, bearing: Bearing, load: RingLoad, q: np.ndarray, iterations: int,
