@@ -18,6 +18,7 @@ from importlib.metadata import PackageNotFoundError, version
 import numpy as np
 
 from mbd_core.contact import ball_on_groove, line_contact, sphere_on_sphere, subsurface_shear
+from mbd_core.contact.limits import line_contact_warnings, point_contact_warnings
 from mbd_core.contact.line import iso16281_stiffness, palmgren_stiffness
 from mbd_core.materials import ElasticMaterial, effective_modulus_Pa
 from mbd_core.quasistatic import LoadDistributionError, RingLoad, solve_load_distribution
@@ -91,6 +92,11 @@ def _print_quantities(title: str, d: dict, spec) -> None:
     print(format_table(rows, ("quantity", "value", "unit")))
 
 
+def _print_warnings(d: dict) -> None:
+    for w in d.get("warnings", ()):
+        print(f"WARNING: {w}")
+
+
 def cmd_hertz_ball(args) -> dict:
     _require_positive(ball_diameter_mm=args.ball_diameter_mm, pitch_diameter_mm=args.pitch_diameter_mm,
                       load_N=args.load_N)
@@ -105,11 +111,15 @@ def cmd_hertz_ball(args) -> dict:
                                                                          "-deg" if "angle" in field else "-mm"), 1)
         raise UserError(msg) from None
     d = _point_report(c, args.load_N, mat.nu)
+    alpha = math.radians(args.contact_angle_deg)
+    groove = (args.conformity * args.ball_diameter_mm * 1e-3, alpha, -math.pi / 2 if alpha == 0.0 else 0.0, math.pi / 2)
+    d["warnings"] = point_contact_warnings(c, args.load_N, args.ball_diameter_mm * 0.5e-3, groove=groove)
     if not args.json:
         _print_quantities(
             f"ball Ø{args.ball_diameter_mm:g} mm on the {args.raceway} groove (f = {args.conformity:g}, "
             f"pitch Ø{args.pitch_diameter_mm:g} mm, α = {args.contact_angle_deg:g}°), Q = {args.load_N:g} N",
             d, _POINT_ROWS)
+        _print_warnings(d)
     return d
 
 
@@ -118,9 +128,11 @@ def cmd_hertz_spheres(args) -> dict:
     mat = _material(args)
     c = sphere_on_sphere(args.diameter_1_mm * 1e-3, args.diameter_2_mm * 1e-3, mat, mat)
     d = _point_report(c, args.load_N, mat.nu)
+    d["warnings"] = point_contact_warnings(c, args.load_N, min(args.diameter_1_mm, args.diameter_2_mm) * 0.5e-3)
     if not args.json:
         _print_quantities(f"spheres Ø{args.diameter_1_mm:g} and Ø{args.diameter_2_mm:g} mm, Q = {args.load_N:g} N",
                           d, _POINT_ROWS)
+        _print_warnings(d)
     return d
 
 
@@ -149,6 +161,7 @@ def cmd_hertz_line(args) -> dict:
         "depth_tau_max_m": sub.depth_tau_max_m,
         "palmgren_approach_one_contact_m": (Q / palmgren_stiffness(L, e_eff)) ** 0.9,
         "iso16281_approach_roller_m": (Q / iso16281_stiffness(L, e_eff)) ** 0.9,
+        "warnings": line_contact_warnings(c, Q, args.roller_diameter_mm * 0.5e-3),
     }
     if not args.json:
         spec = (
@@ -162,6 +175,7 @@ def cmd_hertz_line(args) -> dict:
         _print_quantities(f"roller Ø{args.roller_diameter_mm:g} × {args.length_mm:g} mm on raceway "
                           f"Ø{args.raceway_diameter_mm:g} mm{' (concave)' if args.concave else ''}, Q = {Q:g} N",
                           d, spec)
+        _print_warnings(d)
     return d
 
 

@@ -26,7 +26,7 @@ def format_table(rows: list[tuple], headers: tuple[str, ...]) -> str:
 
 
 def load_distribution_table(res: LoadDistribution) -> str:
-    """Summary of a load distribution: ring displacement and per-row extremes."""
+    """Summary of a load distribution: ring displacement, per-row extremes and validity warnings."""
     q = res.displacement
     out = [
         f"bearing: {res.bearing_name}",
@@ -55,6 +55,7 @@ def load_distribution_table(res: LoadDistribution) -> str:
         ))
     out.append(format_table(rows, ("row", "kind", "Z", "Q_max kN", "at deg", "Q_min>0 kN", "unloaded",
                                    "angle deg", "approach mm")))
+    out += [f"WARNING: {w}" for w in res.warnings]
     return "\n".join(out)
 
 

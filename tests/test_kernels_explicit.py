@@ -51,7 +51,7 @@ def _ball_bearing():
     balls bear on their pockets; balls nearly at rest, so their outer-ring slip is in the transition
     range of the Coulomb law and their inner-ring slip (~5 m/s) beyond it."""
     rng = np.random.default_rng(SEED)
-    row = BallRow("row", 7, 8e-3, 0.04, math.radians(25), 0.52, 0.53, "inner", axial_sign=1, gap_m=-4e-6)
+    row = BallRow("row", 7, 8e-3, 0.04, math.radians(25), 0.52, 0.53, "inner", axial_sign=1, radial_clearance_m=-4e-6)
     mb = ModelBuilder(gravity_m_s2=(0.0, -9.81, 0.0))
     inner = mb.add_body("inner", 0.12, (3e-5, 3e-5, 5e-5), omega_rad_s=(2.0, -3.0, 0.0),
                         motion=Driven(OMEGA_INNER, translation_free=True, tilt_free=True))

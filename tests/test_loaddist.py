@@ -20,7 +20,7 @@ from mbd_core.quasistatic import (
 
 
 def radial_ball_bearing(n_balls: int, gap_m: float = 0.0) -> Bearing:
-    row = BallRow("balls", n_balls, 12.7e-3, 0.25, 0.0, 0.52, 0.52, "inner", 1, gap_m=gap_m)
+    row = BallRow("balls", n_balls, 12.7e-3, 0.25, 0.0, 0.52, 0.52, "inner", 1, radial_clearance_m=gap_m)
     return Bearing("radial ball", (row,))
 
 

@@ -67,7 +67,7 @@ def test_thrust_slewing_ring_settles_to_the_quasistatic_ball_loads():
 
 
 def test_radial_load_with_clearance_matches_quasistatic_per_ball():
-    row = dataclasses.replace(SLEWING_ROW, gap_m=0.05e-3)
+    row = dataclasses.replace(SLEWING_ROW, radial_clearance_m=0.05e-3, diametral_clearance_m=None)
     load = RingLoad(Fx_N=0.15 * 68.9e3 * G, Fz_N=-68.9e3 * G)
     qs = solve_load_distribution(Bearing("slewing", (row,)), load).rows[0].load_N
     assert qs.min() < 0.5 * qs.max()  # a real distribution, not a uniform one
@@ -178,7 +178,7 @@ def test_cylindrical_roller_bearing_kinematics_match_no_slip_formulas():
 def _free_bearing(preload_m=-20e-6, caged=True):
     """Both rings free; two preloaded rows of 8 balls (back to back, so the preload is held
     inside the bearing) in free cages; no friction, no damping; the inner ring spinning and shaking."""
-    rows = [BallRow(name, 8, 12e-3, 0.1, math.radians(30), 0.52, 0.52, "inner", axial_sign=sign, gap_m=preload_m,
+    rows = [BallRow(name, 8, 12e-3, 0.1, math.radians(30), 0.52, 0.52, "inner", axial_sign=sign, radial_clearance_m=preload_m,
                     axial_position_m=z) for name, sign, z in (("row A", 1, -0.01), ("row B", -1, 0.01))]
     b = ModelBuilder()
     inner = b.add_body("inner ring", 0.4, (4e-4, 4e-4, 7e-4), velocity_m_s=(0.0, 0.0, 0.001),

@@ -22,7 +22,10 @@ def _finite(owner: str, **values: float) -> None:
 
 @dataclass(frozen=True)
 class Coulomb:
-    """Regularised Coulomb friction (Adams STEP blend): μ_static at v_static, μ_dynamic from v_dynamic on."""
+    """Regularised Coulomb friction (Adams STEP blend): μ_static at v_static, μ_dynamic from v_dynamic on.
+
+    μ_static = μ_dynamic = 0 is valid and frictionless (as no friction law at all).
+    """
 
     mu_static: float
     mu_dynamic: float

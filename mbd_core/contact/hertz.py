@@ -166,7 +166,7 @@ class HertzPointContact:
     def approach_m(self, Q_N):
         """Mutual approach δ of the two bodies under load Q, m."""
         Q = np.maximum(np.asarray(Q_N, dtype=float), 0.0)
-        return self._approach_coefficient * np.cbrt(Q * Q)
+        return self._approach_coefficient * np.cbrt(Q) ** 2  # not cbrt(Q²): no overflow at huge loads
 
     @property
     def stiffness_N_per_m1p5(self) -> float:

@@ -9,10 +9,11 @@ unloaded geometric positions with the clearance split equally between the two ra
 Ball rows: with u the unit vector from the ball centre to the moving ring's contact point at the
 nominal angle α0, u = (∓cos α0 (inner/outer moving raceway), −s sin α0) in (radial, axial) with s
 the row's axial sign, the moving groove's curvature centre lies at x − (f_m D − D/2) u and the
-fixed one at x + (f_f D − D/2) u (Harris & Kotzalas, *Essential Concepts*, ch. 2). The free play g
-along the contact line is taken as in the quasi-static solver: the curvature centres stay A =
-(f_m + f_f − 1) D apart and the ball touches both grooves when they are A + g apart (each
-groove's touching distance grows by g/2), so a loaded contact angle differs from α0 with play.
+fixed one at x + (f_f D − D/2) u (Harris & Kotzalas, *Essential Concepts*, ch. 2). The clearance
+is taken through the geometry, as in the quasi-static solver (ISO/TS 16281): a diametral
+clearance P_d moves the two curvature centres apart radially by P_d/4 each (the rings concentric),
+the groove radii stay f·D and the ball touches both grooves when the centres are A apart, so a
+loaded contact angle differs from α0 with play.
 Each contact gets its own Hertz constant (exact elliptic integrals, :func:`ball_on_groove`).
 
 Roller rows: the moving raceway is the inner cylinder (radial row, load sign +1) or the plane below
@@ -96,9 +97,9 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
     a0 = row.contact_angle_rad
     s_rad = -1.0 if row.moving_raceway == "inner" else 1.0
     u = np.array([s_rad * math.cos(a0), -row.axial_sign * math.sin(a0)])
-    g2 = row.gap_m / 2
-    c_m = np.array([R, row.axial_position_m]) - (row.conformity_moving * D - D / 2) * u
-    c_f = np.array([R, row.axial_position_m]) + (row.conformity_fixed * D - D / 2) * u
+    play = np.array([0.25 * row.diametral_clearance_m * s_rad, 0.0])  # each centre moves P_d/4 radially
+    c_m = np.array([R, row.axial_position_m]) - (row.conformity_moving * D - D / 2) * u + play
+    c_f = np.array([R, row.axial_position_m]) + (row.conformity_fixed * D - D / 2) * u - play
     fixed_raceway = "outer" if row.moving_raceway == "inner" else "inner"
     if row.stiffness_N_per_m1p5 is not None:
         k_m = k_f = row.stiffness_N_per_m1p5 * 2.0**1.5  # two equal contacts in series give K back
@@ -107,9 +108,9 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
                              row.ball_material, row.race_material).stiffness_N_per_m1p5
         k_f = ball_on_groove(D, row.conformity_fixed, row.pitch_diameter_m, a0, fixed_raceway,
                              row.ball_material, row.race_material).stiffness_N_per_m1p5
-    g_m = builder.add_groove(moving_ring, c_m[0], c_m[1], row.conformity_moving * D + g2,
+    g_m = builder.add_groove(moving_ring, c_m[0], c_m[1], row.conformity_moving * D,
                              *(moving_groove_m or (None, None)), raceway=moving_sample)
-    g_f = builder.add_groove(fixed_ring, c_f[0], c_f[1], row.conformity_fixed * D + g2,
+    g_f = builder.add_groove(fixed_ring, c_f[0], c_f[1], row.conformity_fixed * D,
                              *(fixed_groove_m or (None, None)), raceway=fixed_sample)
     law_m = _law(k_m, 1.5, damping_N_s_m, d_max_m, friction)
     law_f = _law(k_f, 1.5, damping_N_s_m, d_max_m, friction)

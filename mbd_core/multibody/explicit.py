@@ -135,8 +135,8 @@ def stable_timestep(model: Model, state: State, load_factor: float = 3.0, safety
         if key not in fric_cache:
             fric_cache[key] = _friction_slope(key[0], a.pair_fric_p[c])
         slope = fric_cache[key]
-        if not math.isfinite(slope):
-            continue
+        if not math.isfinite(slope) or slope == 0.0:
+            continue  # no bounded slope, or no friction at all (μ = 0: frictionless)
         # friction acts at the load the contact carries: raceway contacts may carry a share of the
         # external load from the start, cage and rib contacts only what they carry now
         share = f_floor / max(kind_count[a.pair_type[c]], 1)

@@ -10,13 +10,13 @@ moving ring moves by u = B(p)·q with B(p) = [I₃ | −[p]ₓ(:, :2)] (small ro
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from .rows import BallRow, Bearing, RollerRow
 
-__all__ = ["BallGroup", "SliceGroup", "build_groups", "displacement_matrix"]
+__all__ = ["BallGroup", "SliceGroup", "build_groups", "displacement_matrix", "shift_ball_centres"]
 
 
 @dataclass(frozen=True)
@@ -27,8 +27,10 @@ class BallGroup:
     ----------
     p_m : (n, 3) moving-ring groove-centre position, m
     t : (n, 3) tangential unit vector e_t at the ball
-    s0_m : (n, 3) unloaded centre-distance vector A·d̂, m
-    free_length_m : (n,) A + gap, m (approach δ = |s| − free_length)
+    s0_m : (n, 3) unloaded centre-distance vector A·d̂ − (P_d/2)·s_r·e_r, m
+    free_length_m : (n,) A, m (approach δ = |s| − free_length)
+    s0_excess_m2 : (n,) |s0|² − A², m² (exact, so that δ = (|s0|² − A² + 2 s0·u + |u|²)/(|s| + A)
+        keeps its relative precision when δ ≪ A)
     K : (n,) load–deflection constant, N/m^1.5
     radial_sign, axial_sign : (n,) ±1, for the loaded contact angle
     angle_min_rad, angle_max_rad : (n,) loaded contact angles the groove can carry, rad
@@ -40,6 +42,7 @@ class BallGroup:
     t: np.ndarray
     s0_m: np.ndarray
     free_length_m: np.ndarray
+    s0_excess_m2: np.ndarray
     K: np.ndarray
     radial_sign: np.ndarray
     axial_sign: np.ndarray
@@ -95,12 +98,14 @@ def _ball_arrays(i_row: int, row: BallRow) -> dict[str, np.ndarray]:
     sr, sz = row.radial_sign, row.axial_sign
     d_hat = (sr * np.cos(a0)) * e_r + (sz * np.sin(a0)) * e_z
     ball_centre = 0.5 * row.pitch_diameter_m * e_r + row.axial_position_m * e_z
-    A = row.curvature_centre_distance_m
+    A, c = row.curvature_centre_distance_m, row.radial_clearance_m
+    # the clearance moves the grooves apart radially (concentric rings): ISO/TS 16281, Harris ch. 2
     return dict(
         p_m=ball_centre + (row.conformity_moving - 0.5) * D * d_hat,
         t=e_t,
-        s0_m=A * d_hat,
-        free_length_m=np.full(n, A + row.gap_m),
+        s0_m=A * d_hat - (c * sr) * e_r,
+        free_length_m=np.full(n, A),
+        s0_excess_m2=np.full(n, c * (c - 2.0 * A * np.cos(a0))),  # |A·d̂ − c·s_r·e_r|² − A², c = P_d/2
         K=np.full(n, row.contact_stiffness()),
         radial_sign=np.full(n, float(sr)),
         axial_sign=np.full(n, float(sz)),
@@ -158,6 +163,13 @@ def build_groups(bearing: Bearing) -> tuple[BallGroup, SliceGroup]:
     bg = BallGroup(**_stack(balls, tuple(BallGroup.__dataclass_fields__), vec3))
     sg = SliceGroup(**_stack(slices, tuple(SliceGroup.__dataclass_fields__), vec3))
     return bg, sg
+
+
+def shift_ball_centres(g: BallGroup, ds_m: np.ndarray) -> BallGroup:
+    """The ball group with every unloaded centre-distance vector s0 moved by ``ds_m`` (n, 3), m."""
+    s0 = g.s0_m + ds_m
+    excess = g.s0_excess_m2 + np.einsum("ij,ij->i", 2.0 * g.s0_m + ds_m, ds_m)
+    return replace(g, s0_m=s0, s0_excess_m2=excess)
 
 
 def displacement_matrix(p_m: np.ndarray) -> np.ndarray:

@@ -60,7 +60,7 @@ from typing import Any
 
 import numpy as np
 
-from .elements import BallGroup, SliceGroup, build_groups, displacement_matrix
+from .elements import BallGroup, SliceGroup, build_groups, displacement_matrix, shift_ball_centres
 from .rows import BallRow, Bearing
 from .solver import (
     DOF_NAMES,
@@ -75,6 +75,8 @@ from .solver import (
     slice_forces,
     supported_dofs,
 )
+from .validity import load_distribution_warnings
+
 
 __all__ = ["FlexibleRing", "GrooveOffset", "FlexibleBearingModel", "build_flexible_model", "RacewayDeflection",
            "FlexibleLoadDistribution", "solve_flexible_load_distribution"]
@@ -461,7 +463,7 @@ def build_flexible_model(bearing: Bearing, rings=(), offsets=()) -> FlexibleBear
             amplitude = np.maximum(amplitude, np.linalg.norm(disp, axis=1).max(axis=0))
         scale[cols] = np.maximum(amplitude, 1e-6 * max(amplitude.max(), 1e-300))
     rel = {k: delta["moving"][k] - delta["fixed"][k] for k in (0, 1)}
-    balls = replace(balls, s0_m=balls.s0_m + rel[0])
+    balls = shift_ball_centres(balls, rel[0])
     slices = replace(slices, offset_m=slices.offset_m - np.einsum("ij,ij->i", rel[1], slices.normal))
     return FlexibleBearingModel(bearing, rings, offsets, balls, slices, G, w, stiffness, ring_dofs, scale,
                                 tuple(couplings))
@@ -613,5 +615,7 @@ def _collect(model: FlexibleBearingModel, load: RingLoad, x: np.ndarray, iterati
         eta = etas[names.index(c.ring)]
         deflections.append(RacewayDeflection(c.ring, c.row, c.azimuth_rad, c.points_m, c.D @ eta, c.Omega @ eta,
                                              None if c.T is None else c.T @ eta))
+    warnings = load_distribution_warnings(model.bearing, rows, x[:5])
     return FlexibleLoadDistribution(model.bearing.name, load.as_array(), x[:5].copy(), (rb + rs)[:5], rows,
-                                    iterations, float(error), held, names, etas, tuple(deflections))
+                                    iterations, float(error), held, warnings, ring_names=names,
+                                    modal_coordinates=etas, deflections=tuple(deflections))

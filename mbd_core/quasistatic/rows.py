@@ -5,19 +5,23 @@ q = (x, y, z, θx, θy) (m, rad; small rotations about its reference point, the 
 An element sits at azimuth ψ (from +x towards +y); e_r, e_t, e_z are the radial, tangential and
 axial unit vectors there.
 
-Ball rows (Harris & Kotzalas, *Rolling Bearing Analysis*, ch. 7 and 9, "rigid rings"): the
-groove curvature centres of the two rings lie on a line through the ball centre. Unloaded and
-touching, the moving ring's centre sits A = (f_m + f_f − 1)·D from the fixed ring's along
+Ball rows (Harris & Kotzalas, *Rolling Bearing Analysis*, 5th ed., ch. 2, 7 and 9, "rigid rings";
+ISO/TS 16281:2008): the groove curvature centres of the two rings lie on a line through the ball
+centre, A = (f_m + f_f − 1)·D apart when the ball touches both grooves unloaded. Without
+clearance, at q = 0 the moving ring's centre sits A from the fixed ring's along
 d̂ = (s_r·cos α0)·e_r + (s_z·sin α0)·e_z, the direction in which the moving ring must move to
 compress the ball (s_r = +1 when the moving ring carries the inner raceway, s_z = ``axial_sign``).
-Displaced, the centre distance is |s| with s = A·d̂ + (u − (u·e_t)e_t), u = d + θ × p the
-displacement of the moving centre p; the approach is δ = |s| − A − gap, the ball load
-Q = K·δ^1.5 with K the series constant of the two Hertz contacts, and the loaded contact angle
-α = atan2(s_z·s·e_z, s_r·s·e_r). The groove carries only contact angles on its loaded side
-(see ``BallRow.groove_angle_range_rad``): beyond, the ball has run over the groove edge and is
-unloaded, so a single-row angular-contact ring tips under a moment it cannot carry instead of
-the ball finding the opposite flank of a full torus. Ball centrifugal force and gyroscopic moment are neglected
-(slow bearings).
+A diametral clearance P_d moves the grooves apart radially by P_d/2 (the rings concentric):
+s0 = A·d̂ − (P_d/2)·s_r·e_r. For a deep groove (α0 = 0) pushed axially until the ball touches,
+the free contact angle is then cos α_f = 1 − P_d/(2A) (Harris & Kotzalas, ch. 2, free contact angle).
+Displaced, the centre distance is |s| with s = s0 + (u − (u·e_t)e_t), u = d + θ × p the
+displacement of the moving centre p; the approach is δ = |s| − A (the geometry, not a gap along
+a fixed contact line), the ball load Q = K·δ^1.5 with K the series constant of the two Hertz
+contacts, and the loaded contact angle α = atan2(s_z·s·e_z, s_r·s·e_r). The groove carries only
+contact angles on its loaded side (see ``BallRow.groove_angle_range_rad``): beyond, the ball has
+run over the groove edge and is unloaded, so a single-row angular-contact ring tips under a moment
+it cannot carry instead of the ball finding the opposite flank of a full torus. Ball centrifugal
+force and gyroscopic moment are neglected (slow bearings).
 
 Roller rows (ISO/TS 16281 slices): a roller of effective length L is cut into n_s slices; slice
 k at distance x_k from the roller centre has approach δ_k = u(p_k)·n − gap − drop(x_k) along the
@@ -79,8 +83,12 @@ class BallRow:
     axial_sign : int
         +1 if an axial displacement of the moving ring towards +z loads the row, −1 if towards −z.
         Irrelevant for α0 = 0.
-    gap_m : float
-        Free play along the contact line before the ball is loaded, m (negative = preload).
+    diametral_clearance_m, radial_clearance_m : float or None
+        Internal clearance of the unloaded, concentric bearing, m: the diametral clearance P_d
+        (total radial free play) or the radial clearance P_d/2 — give either (the other follows;
+        both must agree if both are given); negative = preload; default none. Modelled through
+        the groove geometry (see the module docstring). To change it with
+        :func:`dataclasses.replace`, pass the new one and ``None`` for the other.
     axial_position_m : float
         z of the ball centres, m.
     first_azimuth_rad : float
@@ -99,7 +107,8 @@ class BallRow:
     conformity_fixed: float
     moving_raceway: Literal["inner", "outer"] = "inner"
     axial_sign: int = 1
-    gap_m: float = 0.0
+    diametral_clearance_m: float | None = None
+    radial_clearance_m: float | None = None
     axial_position_m: float = 0.0
     first_azimuth_rad: float = 0.0
     stiffness_N_per_m1p5: float | None = None
@@ -125,8 +134,8 @@ class BallRow:
         if self.moving_raceway not in ("inner", "outer"):
             raise ValueError(f"{who}: moving_raceway must be 'inner' or 'outer', got {self.moving_raceway!r}")
         _sign(who, "axial_sign", self.axial_sign)
-        _finite(who, gap_m=self.gap_m, axial_position_m=self.axial_position_m,
-                first_azimuth_rad=self.first_azimuth_rad)
+        self._settle_clearance(who)
+        _finite(who, axial_position_m=self.axial_position_m, first_azimuth_rad=self.first_azimuth_rad)
         if self.stiffness_N_per_m1p5 is not None:
             check_positive(who, stiffness_N_per_m1p5=self.stiffness_N_per_m1p5)
         if self.n_balls * self.ball_diameter_m > math.pi * self.pitch_diameter_m * (1 + 1e-9):
@@ -134,6 +143,51 @@ class BallRow:
                 f"{who}: {self.n_balls} balls of {self.ball_diameter_m} m do not fit on the pitch "
                 f"circle of {self.pitch_diameter_m} m"
             )
+
+    def _settle_clearance(self, who: str) -> None:
+        """Fill in the clearance not given from the one given (P_d = 2·radial)."""
+        d, r = self.diametral_clearance_m, self.radial_clearance_m
+        for name, v in (("diametral_clearance_m", d), ("radial_clearance_m", r)):
+            if v is not None:
+                _finite(who, **{name: v})
+        if d is None and r is None:
+            d = r = 0.0
+        elif d is None:
+            d = 2.0 * r
+        elif r is None:
+            r = 0.5 * d
+        elif abs(d - 2.0 * r) > 1e-12 * max(abs(d), 1e-12):
+            raise ValueError(
+                f"{who}: diametral_clearance_m ({d!r}) and radial_clearance_m ({r!r}) disagree "
+                "(P_d = 2·radial); give one of them, the other as None"
+            )
+        A = self.curvature_centre_distance_m
+        if r >= A * math.cos(self.contact_angle_rad) and r > 0.0:
+            raise ValueError(
+                f"{who}: radial_clearance_m = {r!r} must be below A·cos α0 = {A * math.cos(self.contact_angle_rad):.6g} m "
+                "(A = (f_m + f_f − 1)·D): with more play the ball leaves the groove before it touches"
+            )
+        if -r >= A:
+            raise ValueError(f"{who}: a preload (negative clearance) of {d!r} m exceeds the groove geometry "
+                             f"(A = {A:.6g} m)")
+        object.__setattr__(self, "diametral_clearance_m", float(d))
+        object.__setattr__(self, "radial_clearance_m", float(r))
+
+    @property
+    def gap_m(self) -> float:
+        """Radial clearance P_d/2, m (the name of the former gap field, kept for its readers)."""
+        return self.radial_clearance_m
+
+    @property
+    def free_contact_angle_rad(self) -> float:
+        """Contact angle of the unloaded ball pushed axially until it touches, rad.
+
+        From the curvature-centre geometry: the radial and axial components of s0 with |s| = A
+        (Harris & Kotzalas ch. 2 for α0 = 0: cos α_f = 1 − P_d/(2A)). Without clearance α0.
+        """
+        A = self.curvature_centre_distance_m
+        s_r = A * math.cos(self.contact_angle_rad) - 0.5 * self.diametral_clearance_m
+        return math.acos(max(-1.0, min(1.0, s_r / A)))
 
     @property
     def radial_sign(self) -> int:

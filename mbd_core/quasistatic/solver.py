@@ -1,13 +1,21 @@
 """Quasi-static load distribution of a bearing with rigid rings.
 
-Newton's method with the analytic Jacobian on the equilibrium of the moving ring,
+The equilibrium of the moving ring,
 
     Σ_i F_i(q) + F_ext = 0,   Σ_i (p_i × F_i(q))_{x,y} + M_ext = 0,
 
 for q = (x, y, z, θx, θy) (the spin θz has no stiffness and is not an unknown). F_i are the
-forces of the balls and roller slices on the moving ring (see :mod:`.rows`). Moments and
-rotations are scaled by the largest pitch radius so that the Newton system is well balanced;
-each step is damped by backtracking on the residual norm. Degrees of freedom in which the
+forces of the balls and roller slices on the moving ring (see :mod:`.rows`). It is solved as the
+minimum of the ring's convex potential energy (:mod:`.newton`): a start that closes the
+clearances along the linear-spring estimate, then Newton steps with the analytic Jacobian,
+Levenberg–Marquardt regularised where elements have lost contact, and a line search on the
+energy — convergent from any start for any load the rows can carry, whatever the clearance.
+The potential is convex while the grooves are taken as full tori; the groove edges (beyond
+which a ball is unloaded, :mod:`.rows`) make it discontinuous. So the first stage solves on full
+tori and the second, from there, lets the balls that ran over an edge drop out.
+Moments and rotations are scaled by the largest pitch radius so that the system is well
+balanced. Convergence is relative: |residual| ≤ tolerance·max(|load|, Σ element loads) plus the
+rounding level of the approaches, never an absolute force. Degrees of freedom in which the
 bearing has no stiffness and no load (the axial direction of a purely radial roller row, say)
 are held at zero; a load on such a degree of freedom is an error.
 
@@ -18,151 +26,35 @@ Reference: Harris & Kotzalas, *Advanced Concepts of Bearing Technology*, 5th ed.
 from __future__ import annotations
 
 import logging
-import math
-from dataclasses import dataclass
+from dataclasses import replace
 
 import numpy as np
 
 from .elements import BallGroup, SliceGroup, build_groups, displacement_matrix
+from .newton import Evaluation, minimise_potential, ray_start, safe_norm
+from .results import DOF_NAMES, LOAD_NAMES, LoadDistribution, LoadDistributionError, RingLoad, RowLoads
 from .rows import BallRow, Bearing
+from .validity import approach_limit_error, load_distribution_warnings
 
 __all__ = ["RingLoad", "RowLoads", "LoadDistribution", "LoadDistributionError", "solve_load_distribution", "DOF_NAMES"]
 
 log = logging.getLogger(__name__)
 
-#: Names of the unknowns and of the matching load components.
-DOF_NAMES = ("x", "y", "z", "rot_x", "rot_y")
-LOAD_NAMES = ("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm")
-
-
-class LoadDistributionError(RuntimeError):
-    """No equilibrium: the rows cannot carry the load, or the solver did not converge."""
-
-
-@dataclass(frozen=True)
-class RingLoad:
-    """External load on the moving ring at its reference point (the bearing centre).
-
-    Forces in N, moments in N·m, in the bearing frame (z along the axis).
-    """
-
-    Fx_N: float = 0.0
-    Fy_N: float = 0.0
-    Fz_N: float = 0.0
-    Mx_Nm: float = 0.0
-    My_Nm: float = 0.0
-
-    def __post_init__(self) -> None:
-        for name in LOAD_NAMES:
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v)):
-                raise ValueError(f"load: {name} must be a finite number, got {v!r}")
-
-    def as_array(self) -> np.ndarray:
-        return np.array([getattr(self, n) for n in LOAD_NAMES], dtype=float)
-
-
-@dataclass(frozen=True)
-class RowLoads:
-    """Loads of one row at equilibrium.
-
-    Attributes (Z = elements in the row)
-    ----------
-    name, kind : str
-        Row name and "ball" or "roller".
-    azimuth_rad : (Z,) element azimuth ψ, rad
-    load_N : (Z,) normal load of a ball, or total load of a roller, N
-    approach_m : (Z,) ball approach δ, or the largest slice approach of a roller, m
-    contact_angle_rad : (Z,) loaded contact angle (balls); nominal 0 / π/2 (radial / thrust rollers)
-    unloaded : (Z,) True where the element carries no load
-    slice_load_N : (Z, n_s) slice loads of rollers, or None for balls
-    """
-
-    name: str
-    kind: str
-    azimuth_rad: np.ndarray
-    load_N: np.ndarray
-    approach_m: np.ndarray
-    contact_angle_rad: np.ndarray
-    unloaded: np.ndarray
-    slice_load_N: np.ndarray | None = None
-
-    @property
-    def max_load_N(self) -> float:
-        return float(self.load_N.max())
-
-    @property
-    def n_unloaded(self) -> int:
-        return int(self.unloaded.sum())
-
-    def to_dict(self) -> dict:
-        d = {
-            "name": self.name,
-            "kind": self.kind,
-            "azimuth_deg": np.degrees(self.azimuth_rad).tolist(),
-            "load_N": self.load_N.tolist(),
-            "approach_m": self.approach_m.tolist(),
-            "contact_angle_deg": np.degrees(self.contact_angle_rad).tolist(),
-            "unloaded": self.unloaded.tolist(),
-            "max_load_N": self.max_load_N,
-            "n_unloaded": self.n_unloaded,
-        }
-        if self.slice_load_N is not None:
-            d["slice_load_N"] = self.slice_load_N.tolist()
-        return d
-
-
-@dataclass(frozen=True)
-class LoadDistribution:
-    """Equilibrium of the moving ring and the loads of every element.
-
-    Attributes
-    ----------
-    bearing_name : str
-    load : (5,) applied (Fx, Fy, Fz, Mx, My), N and N·m
-    displacement : (5,) moving-ring (x, y, z, θx, θy), m and rad
-    reaction : (5,) resultant of the element forces on the moving ring, N and N·m
-    rows : tuple of RowLoads
-    iterations : int
-    equilibrium_error : float
-        |load + reaction| / (|F| + |M|/R_ref) with moments scaled by the largest pitch radius.
-    held_dofs : tuple of str
-        Degrees of freedom held at zero (no stiffness and no load).
-    """
-
-    bearing_name: str
-    load: np.ndarray
-    displacement: np.ndarray
-    reaction: np.ndarray
-    rows: tuple[RowLoads, ...]
-    iterations: int
-    equilibrium_error: float
-    held_dofs: tuple[str, ...] = ()
-
-    def row(self, name: str) -> RowLoads:
-        for r in self.rows:
-            if r.name == name:
-                return r
-        raise KeyError(f"no row named {name!r}; rows: {[r.name for r in self.rows]}")
-
-    def to_dict(self) -> dict:
-        return {
-            "bearing": self.bearing_name,
-            "load": dict(zip(LOAD_NAMES, self.load.tolist())),
-            "displacement": dict(zip(("x_m", "y_m", "z_m", "rot_x_rad", "rot_y_rad"), self.displacement.tolist())),
-            "reaction": dict(zip(LOAD_NAMES, self.reaction.tolist())),
-            "iterations": self.iterations,
-            "equilibrium_error": self.equilibrium_error,
-            "held_dofs": list(self.held_dofs),
-            "rows": [r.to_dict() for r in self.rows],
-        }
-
+#: Relative equilibrium error above which a result converged to the rounding level is flagged,
+#: and above which it is refused (LoadDistributionError).
+ROUNDING_WARNING_LIMIT = 1e-6
+ROUNDING_ERROR_LIMIT = 1e-2
+#: Rounding level of an approach δ = |s| − A (or w·q − offset), in units of the lengths involved.
+_ROUNDING = 8.0 * np.finfo(float).eps
 
 # --------------------------------------------------------------------------- element forces
 # The generalised force of a point force F at p is Bᵀ(p)·F (virtual work with u = B(p)·q).
 
-def ball_forces(g: BallGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = True):
+def ball_forces(g: BallGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = True, groove_edges: bool = True):
     """Ball loads and their resultant on the moving ring.
+
+    ``groove_edges=False`` takes the grooves as full tori (no ball runs over an edge): the convex
+    problem of the first solver stage.
 
     Returns
     -------
@@ -175,9 +67,10 @@ def ball_forces(g: BallGroup, B: np.ndarray, q: np.ndarray, jacobian: bool = Tru
     s = g.s0_m + u
     L = np.linalg.norm(s, axis=1)
     s_hat = s / L[:, None]
-    delta = L - g.free_length_m
+    # δ = |s| − A without the cancellation: (|s0|² − A² + 2 s0·u + |u|²)/(|s| + A)
+    delta = (g.s0_excess_m2 + np.einsum("ij,ij->i", 2.0 * g.s0_m + u, u)) / (L + g.free_length_m)
     alpha = np.arctan2(g.axial_sign * s[:, 2], g.radial_sign * np.sum(s * g.e_r, axis=1))
-    on_groove = (alpha >= g.angle_min_rad) & (alpha <= g.angle_max_rad)
+    on_groove = (alpha >= g.angle_min_rad) & (alpha <= g.angle_max_rad) if groove_edges else True
     dpos = np.where(on_groove, np.maximum(delta, 0.0), 0.0)
     sq = np.sqrt(dpos)
     Q = g.K * dpos * sq
@@ -210,6 +103,10 @@ def slice_forces(g: SliceGroup, w: np.ndarray, q: np.ndarray, jacobian: bool = T
     return Q, delta, r, -(w.T * dQ) @ w
 
 
+def _row_norm(v: np.ndarray) -> np.ndarray:
+    return np.sqrt(np.einsum("ij,ij->i", v, v))
+
+
 class _Problem:
     """Bearing geometry flattened once; evaluates the residual and Jacobian of q."""
 
@@ -218,11 +115,50 @@ class _Problem:
         self.balls, self.slices = build_groups(bearing)
         self.B_balls = displacement_matrix(self.balls.p_m)
         self.w_slices = np.einsum("nji,nj->ni", displacement_matrix(self.slices.p_m), self.slices.normal)
+        self.w_norm = _row_norm(self.w_slices)
 
     def reaction(self, q: np.ndarray, jacobian: bool = True):
         _, _, _, rb, Jb = ball_forces(self.balls, self.B_balls, q, jacobian)
         _, _, rs, Js = slice_forces(self.slices, self.w_slices, q, jacobian)
         return rb + rs, (None if not jacobian else Jb + Js)
+
+    def evaluate(self, q: np.ndarray, f_ext: np.ndarray, S: np.ndarray, tolerance: float,
+                 jacobian: bool = True, groove_edges: bool = True) -> Evaluation:
+        """Scaled residual (r + f)/S, its Jacobian, the potential Π and the convergence threshold at q.
+
+        Π = Σ Q·δ/(n + 1) − f·q (elastic energy K·δ^(n+1)/(n+1) of each loaded element). The
+        threshold is ``tolerance``·max(|f/S|, Σ Q) plus the rounding level of the residual,
+        Σ (dQ/dδ)·ε·ℓ with ℓ the size of the terms whose sum is δ
+        ((| |s0|² − A² | + |2s0 + u|·|u|)/(|s| + A) of a ball, |w|·|q| + |offset| of a slice):
+        below it the residual is noise.
+        """
+        with np.errstate(over="ignore", invalid="ignore"):
+            Qb, db, s, rb, Jb = ball_forces(self.balls, self.B_balls, q, jacobian, groove_edges)
+            Qs, ds, rs, Js = slice_forces(self.slices, self.w_slices, q, jacobian)
+            lb, ls = Qb > 0.0, Qs > 0.0
+            elastic_b = float(np.sum(Qb[lb] * db[lb])) / 2.5
+            elastic_s = float(np.sum(Qs[ls] * ds[ls] / (self.slices.exponent[ls] + 1.0)))
+            energy = elastic_b + elastic_s - float(f_ext @ q)
+            g = self.balls
+            u = s[lb] - g.s0_m[lb]
+            ell_b = ((np.abs(g.s0_excess_m2[lb]) + _row_norm(2.0 * g.s0_m[lb] + u) * _row_norm(u))
+                     / (_row_norm(s[lb]) + g.free_length_m[lb]))
+            ell_s = self.w_norm[ls] * safe_norm(q) + np.abs(self.slices.offset_m[ls])
+            noise = _ROUNDING * (float(np.sum(1.5 * Qb[lb] / db[lb] * ell_b))
+                                 + float(np.sum(self.slices.exponent[ls] * Qs[ls] / ds[ls] * ell_s)))
+            load_sum = float(np.sum(Qb) + np.sum(Qs))
+            R = (rb + rs + f_ext) / S
+            J = None if not jacobian else (Jb + Js) / S[:, None] / S[None, :]
+        return Evaluation(R, J, energy, tolerance * max(safe_norm(f_ext / S), load_sum) + noise)
+
+    def resolution_force_N(self) -> float:
+        """Largest element force at an approach equal to the rounding of the lengths it is computed
+        from (|s0|² − A² over 2A of a ball, the gap of a slice), N: loads near it are not resolved."""
+        g, sl = self.balls, self.slices
+        eps = _ROUNDING
+        ball = g.K * (eps * np.abs(g.s0_excess_m2) / (2.0 * g.free_length_m)) ** 1.5
+        sli = sl.K * (eps * np.abs(sl.offset_m)) ** sl.exponent
+        return float(max(ball.max(initial=0.0), sli.max(initial=0.0)))
 
     def linear_stiffness(self, load_scale_N: float) -> np.ndarray:
         """Secant stiffness (5, 5) with every element loaded to an equal share of the load.
@@ -232,7 +168,8 @@ class _Problem:
         transverse geometric stiffness Q/A of a ball in its groove).
         """
         n_el = len(self.balls.K) + len(self.slices.K)
-        Q_ref = max(load_scale_N, 1.0) / max(n_el, 1)
+        # a direction and a pattern are all that is used: keep the springs clear of underflow
+        Q_ref = (max(load_scale_N, 1e-30) if load_scale_N > 0.0 else 1.0) / max(n_el, 1)
         K = np.zeros((5, 5))
         g = self.balls
         if len(g.K):
@@ -261,13 +198,12 @@ def supported_dofs(prob: _Problem, bearing_name: str, f_ext: np.ndarray, S: np.n
     :meth:`_Problem.linear_stiffness`. A load on an unsupported DOF is a
     :class:`LoadDistributionError` naming the load component.
     """
-    load_scale = float(np.linalg.norm(f_ext / S))
-    scale = max(load_scale, 1.0)
+    load_scale = safe_norm(f_ext / S)
     K_lin = prob.linear_stiffness(load_scale) / S[:, None] / S[None, :]
     diag = np.diag(K_lin)
     supported = diag > 1e-12 * diag.max()
     for i in np.flatnonzero(~supported):
-        if abs(f_ext[i] / S[i]) > 1e-12 * scale:
+        if abs(f_ext[i] / S[i]) > 1e-12 * load_scale:
             raise LoadDistributionError(
                 f"load: {LOAD_NAMES[i]} = {f_ext[i]:.6g} acts on a degree of freedom ({DOF_NAMES[i]}) "
                 f"in which bearing {bearing_name!r} has no stiffness"
@@ -315,14 +251,23 @@ def damped_newton(residual, y: np.ndarray, free: np.ndarray, tolerance_abs: floa
 
 
 def no_equilibrium_error(bearing_name: str, iterations: int, r: np.ndarray, S: np.ndarray,
-                         f_ext: np.ndarray) -> LoadDistributionError:
-    """The error of an unconverged solve, naming the worst unbalanced load component."""
+                         f_ext: np.ndarray, resolution_N: float = 0.0, too_small: bool = False) -> LoadDistributionError:
+    """The error of an unconverged solve, naming the worst unbalanced load component.
+
+    ``resolution_N``: the smallest element force the geometry resolves in double precision
+    (:meth:`_Problem.resolution_force_N`); a load not far above it (or ``too_small``) is named as
+    the cause.
+    """
     worst = int(np.argmax(np.abs(r[:5])))
+    cause = ("the rows cannot carry this load (does it lift the moving ring off every element, or exceed what "
+             "the contact angles allow?)")
+    if too_small or safe_norm(f_ext / S) < 1e6 * resolution_N:
+        cause = (f"the load is too small for the clearances: the approaches it causes are below the rounding of "
+                 f"the geometry in double precision (an element force at the rounding level of its approach "
+                 f"is ~{resolution_N:.1e} N)")
     return LoadDistributionError(
         f"no converged equilibrium for bearing {bearing_name!r} after {iterations} iterations: "
-        f"unbalanced {LOAD_NAMES[worst]} = {r[worst] * S[worst]:.6g} of the applied "
-        f"{f_ext[worst]:.6g}; the rows cannot carry this load (does it lift the moving ring "
-        "off every element, or exceed what the contact angles allow?)"
+        f"unbalanced {LOAD_NAMES[worst]} = {r[worst] * S[worst]:.6g} of the applied {f_ext[worst]:.6g}; {cause}"
     )
 
 
@@ -343,58 +288,88 @@ def solve_load_distribution(
     load : RingLoad
         External load on the moving ring, N and N·m.
     tolerance : float
-        Convergence when |residual| ≤ tolerance·(|F| + |M|/R_ref) (moments scaled by the
-        largest pitch radius R_ref).
+        Convergence when |residual| ≤ tolerance·max(|F, M/R_ref|, Σ element loads) plus the
+        rounding level of the element approaches (moments scaled by the largest pitch radius
+        R_ref); relative at every load, never an absolute force.
     max_iterations : int
         Newton iterations before giving up.
     initial_displacement : (5,) array, optional
-        Starting point (x, y, z, θx, θy), m and rad; default from a linear spring estimate.
+        Starting point (x, y, z, θx, θy), m and rad; default: the minimum of the potential along
+        the linear-spring estimate (which closes the clearances).
+
+    Returns
+    -------
+    LoadDistribution
+        With ``warnings`` where the result lies outside the model's validity (:mod:`.validity`).
 
     Raises
     ------
     LoadDistributionError
-        If the load acts on a degree of freedom without stiffness or Newton does not converge
-        (the rows cannot carry the load, e.g. it lifts the moving ring off every element).
+        If the load acts on a degree of freedom without stiffness, or there is no equilibrium
+        (the rows cannot carry the load: it lifts the moving ring off every element, exceeds what
+        the contact angles allow, overflows, or needs approaches beyond the elements' size).
     """
     if not isinstance(bearing, Bearing):
         raise TypeError(f"bearing must be a Bearing, got {type(bearing).__name__}")
     if not isinstance(load, RingLoad):
         raise TypeError(f"load must be a RingLoad, got {type(load).__name__}")
+    if not (isinstance(tolerance, (int, float)) and 0.0 < tolerance < 1.0):
+        raise ValueError(f"tolerance must lie in (0, 1), got {tolerance!r}")
     prob = _Problem(bearing)
     S = _scaling(bearing)  # q_scaled = S·q, r_scaled = r / S
     f_ext = load.as_array()
-    load_scale = float(np.linalg.norm(f_ext / S))
-    scale = max(load_scale, 1.0)
     supported, K_lin = supported_dofs(prob, bearing.name, f_ext, S)
     free = np.flatnonzero(supported)
     held = tuple(DOF_NAMES[i] for i in np.flatnonzero(~supported))
 
+    def on_tori(y_scaled: np.ndarray, jac: bool = True) -> Evaluation:
+        return prob.evaluate(y_scaled / S, f_ext, S, tolerance, jac, groove_edges=False)
+
+    def on_grooves(y_scaled: np.ndarray, jac: bool = True) -> Evaluation:
+        return prob.evaluate(y_scaled / S, f_ext, S, tolerance, jac)
+
     if initial_displacement is None:
         y = np.zeros(5)
-        y[free] = np.linalg.solve(K_lin[np.ix_(free, free)], f_ext[free] / S[free])
+        try:
+            y[free] = np.linalg.solve(K_lin[np.ix_(free, free)], f_ext[free] / S[free])
+        except np.linalg.LinAlgError:
+            y[free] = f_ext[free] / S[free] / np.diag(K_lin)[free]
+        y = ray_start(on_tori, y, free)
     else:
         y = np.asarray(initial_displacement, dtype=float).reshape(5) * S
         y[~supported] = 0.0
-
-    def residual(y_scaled, jac=True):
-        r, J = prob.reaction(y_scaled / S, jac)
-        r_s = (r + f_ext) / S
-        J_s = None if J is None else J / S[:, None] / S[None, :]
-        return r_s, J_s
-
-    y, r, norm, it = damped_newton(residual, y, free, tolerance * scale, max_iterations, K_lin)
-    if not norm <= tolerance * scale:
-        raise no_equilibrium_error(bearing.name, it, r, S, f_ext)
-    q = y / S
-    return _collect(prob, bearing, load, q, it, float(norm / scale), held)
+    # stage 1: grooves as full tori, a convex potential (global convergence); stage 2: the balls that
+    # ran over a groove edge drop out (nothing to do when none did)
+    D = np.diag(K_lin)[free]
+    y, _, _, it1 = minimise_potential(on_tori, y, free, max_iterations, D)
+    y, ev, norm, it2 = minimise_potential(on_grooves, y, free, max_iterations, D)
+    it = it1 + it2
+    if not norm <= ev.tolerance:
+        raise no_equilibrium_error(bearing.name, it, ev.R, S, f_ext, prob.resolution_force_N())
+    res = _collect(prob, bearing, load, y / S, it, norm, held)
+    if res.equilibrium_error > ROUNDING_ERROR_LIMIT:  # converged to the rounding level, which is no answer
+        raise no_equilibrium_error(bearing.name, it, ev.R, S, f_ext, prob.resolution_force_N(), too_small=True)
+    if res.equilibrium_error > ROUNDING_WARNING_LIMIT:
+        note = (f"equilibrium only to {res.equilibrium_error:.1e} of the load: the approaches are near the "
+                "rounding of the geometry in double precision (a load this small against the clearances)")
+        res = replace(res, warnings=res.warnings + (note,))
+    return res
 
 
 def _collect(prob: _Problem, bearing: Bearing, load: RingLoad, q: np.ndarray, iterations: int,
-             error: float, held: tuple[str, ...]) -> LoadDistribution:
+             residual_norm: float, held: tuple[str, ...]) -> LoadDistribution:
     Qb, db, s, rb, _ = ball_forces(prob.balls, prob.B_balls, q, jacobian=False)
     Qs, ds, rs, _ = slice_forces(prob.slices, prob.w_slices, q, jacobian=False)
+    scale = max(safe_norm(load.as_array() / _scaling(bearing)), float(Qb.sum() + Qs.sum()))
+    error = residual_norm / scale if scale > 0.0 else 0.0
     rows = row_loads(bearing, prob.balls, prob.slices, (Qb, db, s), (Qs, ds))
-    return LoadDistribution(bearing.name, load.as_array(), q, rb + rs, rows, iterations, error, held)
+    err = approach_limit_error(bearing, rows)
+    if err:
+        raise LoadDistributionError(f"no converged equilibrium within the model for bearing {bearing.name!r}: {err}")
+    warnings = load_distribution_warnings(bearing, rows, q)
+    if warnings:
+        log.info("bearing %r: %d validity warnings, the first: %s", bearing.name, len(warnings), warnings[0])
+    return LoadDistribution(bearing.name, load.as_array(), q, rb + rs, rows, iterations, error, held, warnings)
 
 
 def row_loads(bearing: Bearing, bg: BallGroup, sg: SliceGroup, balls, slices) -> tuple[RowLoads, ...]:

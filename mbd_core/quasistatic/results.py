@@ -1,0 +1,143 @@
+"""Results of the quasi-static load distribution: the ring load, per-row element loads, the equilibrium."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["DOF_NAMES", "LOAD_NAMES", "RingLoad", "RowLoads", "LoadDistribution", "LoadDistributionError"]
+
+#: Names of the unknowns and of the matching load components.
+DOF_NAMES = ("x", "y", "z", "rot_x", "rot_y")
+LOAD_NAMES = ("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm")
+
+
+class LoadDistributionError(RuntimeError):
+    """No equilibrium: the rows cannot carry the load, or the solver did not converge."""
+
+
+@dataclass(frozen=True)
+class RingLoad:
+    """External load on the moving ring at its reference point (the bearing centre).
+
+    Forces in N, moments in N·m, in the bearing frame (z along the axis).
+    """
+
+    Fx_N: float = 0.0
+    Fy_N: float = 0.0
+    Fz_N: float = 0.0
+    Mx_Nm: float = 0.0
+    My_Nm: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name in LOAD_NAMES:
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v)):
+                raise ValueError(f"load: {name} must be a finite number, got {v!r}")
+
+    def as_array(self) -> np.ndarray:
+        return np.array([getattr(self, n) for n in LOAD_NAMES], dtype=float)
+
+
+@dataclass(frozen=True)
+class RowLoads:
+    """Loads of one row at equilibrium.
+
+    Attributes (Z = elements in the row)
+    ----------
+    name, kind : str
+        Row name and "ball" or "roller".
+    azimuth_rad : (Z,) element azimuth ψ, rad
+    load_N : (Z,) normal load of a ball, or total load of a roller, N
+    approach_m : (Z,) ball approach δ, or the largest slice approach of a roller, m
+    contact_angle_rad : (Z,) loaded contact angle (balls); nominal 0 / π/2 (radial / thrust rollers)
+    unloaded : (Z,) True where the element carries no load
+    slice_load_N : (Z, n_s) slice loads of rollers, or None for balls
+    """
+
+    name: str
+    kind: str
+    azimuth_rad: np.ndarray
+    load_N: np.ndarray
+    approach_m: np.ndarray
+    contact_angle_rad: np.ndarray
+    unloaded: np.ndarray
+    slice_load_N: np.ndarray | None = None
+
+    @property
+    def max_load_N(self) -> float:
+        return float(self.load_N.max())
+
+    @property
+    def n_unloaded(self) -> int:
+        return int(self.unloaded.sum())
+
+    def to_dict(self) -> dict:
+        d = {
+            "name": self.name,
+            "kind": self.kind,
+            "azimuth_deg": np.degrees(self.azimuth_rad).tolist(),
+            "load_N": self.load_N.tolist(),
+            "approach_m": self.approach_m.tolist(),
+            "contact_angle_deg": np.degrees(self.contact_angle_rad).tolist(),
+            "unloaded": self.unloaded.tolist(),
+            "max_load_N": self.max_load_N,
+            "n_unloaded": self.n_unloaded,
+        }
+        if self.slice_load_N is not None:
+            d["slice_load_N"] = self.slice_load_N.tolist()
+        return d
+
+
+@dataclass(frozen=True)
+class LoadDistribution:
+    """Equilibrium of the moving ring and the loads of every element.
+
+    Attributes
+    ----------
+    bearing_name : str
+    load : (5,) applied (Fx, Fy, Fz, Mx, My), N and N·m
+    displacement : (5,) moving-ring (x, y, z, θx, θy), m and rad
+    reaction : (5,) resultant of the element forces on the moving ring, N and N·m
+    rows : tuple of RowLoads
+    iterations : int
+    equilibrium_error : float
+        |load + reaction| / max(|load|, Σ element loads), moments over the largest pitch radius.
+    held_dofs : tuple of str
+        Degrees of freedom held at zero (no stiffness and no load).
+    warnings : tuple of str
+        Where the result lies outside the model's validity (see :mod:`.validity`): contact
+        pressure above the ISO 76 static limit, contact ellipse beyond the groove edge, contact
+        angle at its limit, ring displacement too large for the small-displacement model.
+    """
+
+    bearing_name: str
+    load: np.ndarray
+    displacement: np.ndarray
+    reaction: np.ndarray
+    rows: tuple[RowLoads, ...]
+    iterations: int
+    equilibrium_error: float
+    held_dofs: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()
+
+    def row(self, name: str) -> RowLoads:
+        for r in self.rows:
+            if r.name == name:
+                return r
+        raise KeyError(f"no row named {name!r}; rows: {[r.name for r in self.rows]}")
+
+    def to_dict(self) -> dict:
+        return {
+            "bearing": self.bearing_name,
+            "load": dict(zip(LOAD_NAMES, self.load.tolist())),
+            "displacement": dict(zip(("x_m", "y_m", "z_m", "rot_x_rad", "rot_y_rad"), self.displacement.tolist())),
+            "reaction": dict(zip(LOAD_NAMES, self.reaction.tolist())),
+            "iterations": self.iterations,
+            "equilibrium_error": self.equilibrium_error,
+            "held_dofs": list(self.held_dofs),
+            "warnings": list(self.warnings),
+            "rows": [r.to_dict() for r in self.rows],
+        }
