@@ -76,6 +76,19 @@ class RunOutput:
     def note(self, line: str) -> None:
         self.report.append(line)
 
+    def warn(self, messages, context: str = "") -> None:
+        """Record validity warnings (once each) in ``summary["warnings"]`` and the printed report.
+
+        ``messages`` is an iterable of strings, e.g. ``LoadDistribution.warnings``; ``context``
+        says which load case or position they belong to.
+        """
+        seen = self.summary.setdefault("warnings", [])
+        for m in messages:
+            line = f"{context}: {m}" if context else str(m)
+            if line not in seen:
+                seen.append(line)
+                self.report.append(f"WARNING: {line}")
+
     def write_summary(self) -> Path:
         p = self.path("summary.json")
         p.write_text(json.dumps(_json_ready(self.summary), indent=1))

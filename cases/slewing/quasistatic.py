@@ -82,6 +82,7 @@ class Travel:
     axial_N : (n, Z) their axial components Q sin α_loaded
     displacement : (n, 5) rigid displacement of the top race (x, y, z m, θx, θy rad)
     eta : (n, m) modal coordinates of the top structure (m = 0 when rigid)
+    warnings : validity warnings of the equilibria, each naming its position
     """
 
     top_rotation_rad: np.ndarray
@@ -90,6 +91,7 @@ class Travel:
     axial_N: np.ndarray
     displacement: np.ndarray
     eta: np.ndarray
+    warnings: tuple[str, ...] = ()
 
     @property
     def worst(self) -> tuple[int, int]:
@@ -102,12 +104,13 @@ def travel(case: SlewingCase, bodies: scene.Bodies, steps: int, revolutions: flo
     """Equilibria at ``steps`` positions over ``revolutions`` turns of the top race (start included)."""
     phi = np.linspace(0.0, 2.0 * math.pi * revolutions, steps, endpoint=False)
     ratio = scene.orbit_ratio(case)
-    rows, q0 = [], None
+    rows, q0, warnings = [], None, []
     for p in (progress(phi, "positions") if progress else phi):
         res = equilibrium(case, bodies, float(p), float(ratio * p), q0)
         q0 = res.displacement
+        warnings += [f"top race at {math.degrees(p):.1f}°: {w}" for w in res.warnings]
         r = res.rows[0]
         eta = res.modal("top") if bodies.top is not None else np.zeros(0)
         rows.append((r.azimuth_rad, r.load_N, r.load_N * np.sin(r.contact_angle_rad), res.displacement, eta))
     az, q, ax, disp, eta = (np.array(x) for x in zip(*rows))
-    return Travel(phi, az, q, ax, disp, eta)
+    return Travel(phi, az, q, ax, disp, eta, tuple(warnings))

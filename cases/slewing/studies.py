@@ -73,6 +73,7 @@ def study_static(case: SlewingCase, out, progress=None) -> None:
         c = case.with_(top={"kind": kind}, undulation={"scale": 0.0}, thermal={"offset_m": 0.0})
         bodies = _bodies(c)
         res = equilibrium(c, bodies)
+        out.warn(res.warnings, f"{kind} top")
         q = res.rows[0].load_N
         curves[kind] = q
         figures[kind] = {"mean_ball_load_N": float(q.mean()), "max_error_vs_analytic": float(np.abs(q / Q - 1).max()),
@@ -105,6 +106,7 @@ def study_undulation(case: SlewingCase, out, progress=None) -> None:
         c = base.with_(top={"E_Pa": E}, undulation={"scale": h})
         bodies = scene.Bodies(scene.with_modulus(top0, E), scene.bottom_body(c))
         res = equilibrium(c, bodies)
+        out.warn(res.warnings, f"E {E / 1e9:g} GPa, undulation ×{h:g}")
         fig = _distribution_figures(res)
         curves[(E, h)] = res.rows[0].load_N
         table.append({"top_E_Pa": E, "undulation_scale": h, **fig})
@@ -153,6 +155,7 @@ def _travel_study(case: SlewingCase, out, offsets, stiffness, undulation: float,
             c = case.with_(thermal={"offset_m": d}, undulation={"scale": undulation},
                            top={"E_Pa": E} if case.top.kind == "modal" else {})
             tr = travel(c, _bodies(c), steps, a.travel_revolutions, progress)
+            out.warn(tr.warnings, f"{prefix} Δ = {d * 1e3:g} mm, E {E / 1e9:g} GPa")
             k, b = tr.worst
             # the ball that passes the worst place: its whole history
             histories[(E, d)] = (np.degrees(np.mod(tr.ball_azimuth_rad[:, b], 2 * math.pi)), tr.load_N[:, b],
@@ -228,6 +231,7 @@ def study_full_scale(case: SlewingCase, out, progress=None) -> None:
                        undulation={"scale": 1.0})
         bodies = _bodies(c)
         res = equilibrium(c, bodies)
+        out.warn(res.warnings, variant)
         q = res.rows[0].load_N
         results[variant] = (res.rows[0].azimuth_rad, q, nominal_ball_load_N(c))
         fig = _distribution_figures(res)
@@ -271,6 +275,7 @@ def run_study(case: SlewingCase, out, progress=None) -> None:
                         "worst_ball.png")
         return None
     res = equilibrium(case, bodies)
+    out.warn(res.warnings)
     out.summary.update(_distribution_figures(res), nominal_ball_load_N=nominal_ball_load_N(case),
                        ball_load_N=res.rows[0].load_N)
     _write_balls_vtu(out, "balls.vtu", case, res.rows[0].azimuth_rad, res.rows[0].load_N)

@@ -45,6 +45,7 @@ def study_static(case: WindCase, out, progress=None) -> None:
         res = solve_load_distribution(bearing, RingLoad(Fx_N=f[0], Fy_N=f[1] - INNER_RING_MASS_KG * G_M_S2,
                                                         Fz_N=f[2], Mx_Nm=f[3], My_Nm=f[4]))
         worst = max(worst, float(res.equilibrium_error))
+        out.warn(res.warnings, f"load case {k}")
         for r in res.rows:
             per_row[r.name].append((float(r.load_N.max()), int(np.sum(r.load_N > 0))))
     out.write_csv("max_roller_loads.csv", ["case", "time_share", *[f"{n} max load N" for n in per_row]],
