@@ -45,6 +45,10 @@ def _json_ready(x):
     return x
 
 
+#: validity warnings printed in the report; all of them go to summary.json
+PRINTED_WARNINGS = 5
+
+
 class RunOutput:
     """Collects the files, key figures and report lines of one run in ``folder``."""
 
@@ -85,9 +89,13 @@ class RunOutput:
         seen = self.summary.setdefault("warnings", [])
         for m in messages:
             line = f"{context}: {m}" if context else str(m)
-            if line not in seen:
-                seen.append(line)
+            if line in seen:
+                continue
+            seen.append(line)
+            if len(seen) <= PRINTED_WARNINGS:
                 self.report.append(f"WARNING: {line}")
+            elif len(seen) == PRINTED_WARNINGS + 1:
+                self.report.append("WARNING: more warnings in summary.json (key 'warnings')")
 
     def write_summary(self) -> Path:
         p = self.path("summary.json")
