@@ -18,23 +18,30 @@ Backends
     ``pip install "scikit-sparse<0.5"`` (the 0.5 series needs SuiteSparse ≥ 7, which Debian 12
     does not ship). Without OpenBLAS, CHOLMOD's supernodal factorisation runs on the reference
     BLAS and loses most of its speed.
+``"cvxopt"``
+    ``cvxopt.cholmod`` (optional, ``pip install cvxopt``): a wheel that bundles CHOLMOD with
+    OpenBLAS, so no system package is needed, and runs CHOLMOD's supernodal LLᵀ like
+    ``"cholmod"`` (it stops on a matrix that is not positive definite). The matrix is copied
+    into cvxopt's own sparse type (lower triangle) and each solve into its dense type.
 ``"cholespy"``
     ``cholespy.CholeskySolverD``, a normal dependency: a wheel that bundles CHOLMOD, so no system
     package is needed. Its CHOLMOD runs the simplicial LLᵀ factorisation (nested-dissection
-    ordering), which stops on a matrix that is not positive definite; it is slower than the
-    supernodal one on 3-D rings (``benchmarks/bench_solvers.py``) but many times faster than
-    SuperLU. It reads the lower triangle only. Each factor is checked by one probe solve (normwise
-    backward error, :func:`backward_error`); a factor that fails it is replaced by SuperLU with
-    a warning.
+    ordering), which stops on a matrix that is not positive definite (CHOLMOD also prints a
+    warning on stderr then); it is slower than the supernodal one on 3-D rings
+    (``benchmarks/bench_solvers.py``). It reads the lower triangle only.
+
+The factors of the two wheels are checked by one probe solve each (normwise backward error,
+:func:`backward_error`); under "auto" a factor that fails it is replaced by SuperLU with a
+warning.
 ``"superlu"``
     ``scipy.sparse.linalg.splu`` in symmetric mode: minimum-degree ordering of A + Aᵀ, diagonal
     pivots (``diag_pivot_thresh=0``), which for a symmetric positive definite matrix amounts to
     a Cholesky factorisation stored as LU. It does not test definiteness: a nonsingular
     indefinite matrix is factorised and solved without error (CHOLMOD refuses it).
 
-``"auto"`` takes the first of cholmod → cholespy → superlu that imports, SuperLU with a single
-``logging`` warning per process. The environment variable ``FLEXBEARING_SPARSE_SOLVER``
-(``auto``, ``cholmod``, ``cholespy`` or ``superlu``) replaces ``"auto"``; a backend passed
+``"auto"`` takes the first of cholmod → cvxopt → cholespy → superlu that imports, SuperLU with a
+single ``logging`` warning per process. The environment variable ``FLEXBEARING_SPARSE_SOLVER``
+(``auto`` or a backend name) replaces ``"auto"``; a backend passed
 explicitly wins over it. Every factorisation logs its backend, size and time at INFO level.
 """
 
@@ -61,10 +68,11 @@ __all__ = [
 log = logging.getLogger(__name__)
 
 CHOLMOD = "cholmod"
+CVXOPT = "cvxopt"
 CHOLESPY = "cholespy"
 SUPERLU = "superlu"
 #: all backends, in the order in which "auto" tries them
-BACKENDS = (CHOLMOD, CHOLESPY, SUPERLU)
+BACKENDS = (CHOLMOD, CVXOPT, CHOLESPY, SUPERLU)
 #: environment variable that replaces backend="auto"
 BACKEND_ENV = "FLEXBEARING_SPARSE_SOLVER"
 
@@ -74,11 +82,12 @@ INSTALL_HINT = (
     "apt-get install libsuitesparse-dev libopenblas0-pthread)"
 )
 CHOLESPY_HINT = "install cholespy (a dependency of flexbearing, a wheel that bundles CHOLMOD): pip install cholespy"
+CVXOPT_HINT = "install cvxopt (a wheel that bundles CHOLMOD and OpenBLAS): pip install cvxopt"
 NOT_PD_HINT = "is the model free of supports? use a negative shift"
 
 #: relative tolerance of the symmetry check, max|A − Aᵀ| ≤ tol · max|A|
 SYMMETRY_RTOL = 1e-10
-#: largest normwise backward error accepted from the probe solve of a cholespy factor; a
+#: largest normwise backward error accepted from the probe solve of a cvxopt or cholespy factor; a
 #: Cholesky solve is backward stable, a small multiple of ε ≈ 1.1e-16 (Higham 2002, Thm 10.4)
 PROBE_MAX_BACKWARD_ERROR = 1e-8
 
@@ -93,7 +102,7 @@ class SparseFactor:
     ----------
     n : int
         Order of A.
-    backend : {"cholmod", "cholespy", "superlu"}
+    backend : {"cholmod", "cvxopt", "cholespy", "superlu"}
         Library that holds the factor.
     _solve : callable
         Backend solve for real right-hand sides of shape (n,) or (n, k).
@@ -154,13 +163,20 @@ def _import_cholespy():
     return cholespy
 
 
+def _import_cvxopt():
+    """Return ``(cvxopt, cvxopt.cholmod)``, or ``None`` when cvxopt is not importable."""
+    try:
+        import cvxopt
+        from cvxopt import cholmod
+    except ImportError:
+        return None
+    return cvxopt, cholmod
+
+
 def _importable(backend: str) -> bool:
     """True when the library of ``backend`` imports (SuperLU always does)."""
-    if backend == CHOLMOD:
-        return _import_cholmod() is not None
-    if backend == CHOLESPY:
-        return _import_cholespy() is not None
-    return True
+    importer = {CHOLMOD: _import_cholmod, CVXOPT: _import_cvxopt, CHOLESPY: _import_cholespy}.get(backend)
+    return importer is None or importer() is not None
 
 
 def available_backends() -> tuple[str, ...]:
@@ -169,7 +185,7 @@ def available_backends() -> tuple[str, ...]:
     Returns
     -------
     tuple of str
-        A subsequence of ``("cholmod", "cholespy", "superlu")``; "superlu" is always there.
+        A subsequence of ``("cholmod", "cvxopt", "cholespy", "superlu")``; "superlu" is always there.
     """
     return tuple(b for b in BACKENDS if _importable(b))
 
@@ -215,7 +231,7 @@ def _resolve_backend(requested: str) -> str:
     Raises
     ------
     ImportError
-        If "cholmod" or "cholespy" is asked for and its library does not import.
+        If "cholmod", "cvxopt" or "cholespy" is asked for and its library does not import.
     """
     if requested == "auto":
         chosen = next(b for b in BACKENDS if _importable(b))
@@ -223,8 +239,8 @@ def _resolve_backend(requested: str) -> str:
             _warn_fallback_once()
         return chosen
     if not _importable(requested):
-        hint = INSTALL_HINT if requested == CHOLMOD else CHOLESPY_HINT
-        library = "scikit-sparse" if requested == CHOLMOD else "cholespy"
+        library, hint = {CHOLMOD: ("scikit-sparse", INSTALL_HINT), CVXOPT: ("cvxopt", CVXOPT_HINT),
+                         CHOLESPY: ("cholespy", CHOLESPY_HINT)}[requested]
         raise ImportError(f"backend {requested!r} requested but {library} is missing: {hint}")
     return requested
 
@@ -286,7 +302,49 @@ def _factor_cholmod(A: sp.csc_matrix) -> SparseFactor:
 
 
 class _ProbeFailed(RuntimeError):
-    """A cholespy factor whose probe solve has a backward error above the bound."""
+    """A factor whose probe solve has a backward error above the bound (or that cannot be made)."""
+
+
+def _probed(A: sp.csc_matrix, factor: SparseFactor) -> SparseFactor:
+    """Return ``factor`` after one probe solve with a seeded random solution; else _ProbeFailed."""
+    b = A @ np.random.default_rng(0).standard_normal(A.shape[0])
+    eta = backward_error(A, factor.solve(b), b)
+    if not eta <= PROBE_MAX_BACKWARD_ERROR:   # also catches NaN
+        raise _ProbeFailed(f"probe solve has backward error {eta:.3g} > {PROBE_MAX_BACKWARD_ERROR:g}")
+    log.debug("%s probe solve: backward error %.3g", factor.backend, eta)
+    return factor
+
+
+def _factor_cvxopt(A: sp.csc_matrix) -> SparseFactor:
+    """Supernodal Cholesky with cvxopt's CHOLMOD, checked by one probe solve.
+
+    Raises
+    ------
+    numpy.linalg.LinAlgError
+        If CHOLMOD finds A not positive definite.
+    _ProbeFailed
+        If the probe solve's backward error exceeds ``PROBE_MAX_BACKWARD_ERROR``.
+    """
+    cvxopt, cholmod = _import_cvxopt()
+    n = A.shape[0]
+    lower = sp.tril(A, format="coo")
+    S = cvxopt.spmatrix(cvxopt.matrix(lower.data), cvxopt.matrix(lower.row.astype(np.int64)),
+                        cvxopt.matrix(lower.col.astype(np.int64)), (n, n))
+    del lower
+    cholmod.options["supernodal"] = 2   # supernodal always (cvxopt's default)
+    try:
+        F = cholmod.symbolic(S, uplo="L")
+        cholmod.numeric(S, F)
+    except ArithmeticError as err:
+        raise np.linalg.LinAlgError(f"matrix is not positive definite (cvxopt: {err}); {NOT_PD_HINT}") from err
+    del S
+
+    def solve(b: np.ndarray) -> np.ndarray:
+        B = cvxopt.matrix(np.asfortranarray(b, dtype=np.float64))   # a copy, overwritten by x
+        cholmod.solve(F, B)
+        return np.array(B)
+
+    return _probed(A, SparseFactor(n=n, backend=CVXOPT, _solve=solve))
 
 
 def _factor_cholespy(A: sp.csc_matrix) -> SparseFactor:
@@ -310,8 +368,8 @@ def _factor_cholespy(A: sp.csc_matrix) -> SparseFactor:
     try:
         solver = cholespy.CholeskySolverD(
             n,
-            lower.indptr.astype(np.int32),
-            lower.indices.astype(np.int32),
+            lower.indptr.astype(np.int32, copy=False),
+            lower.indices.astype(np.int32, copy=False),
             np.ascontiguousarray(lower.data),
             cholespy.MatrixType.CSR,
         )
@@ -327,13 +385,7 @@ def _factor_cholespy(A: sp.csc_matrix) -> SparseFactor:
         solver.solve(b, x)
         return x
 
-    factor = SparseFactor(n=n, backend=CHOLESPY, _solve=solve)
-    b = A @ np.random.default_rng(0).standard_normal(n)
-    eta = backward_error(A, factor.solve(b), b)
-    if not eta <= PROBE_MAX_BACKWARD_ERROR:   # also catches NaN
-        raise _ProbeFailed(f"probe solve has backward error {eta:.3g} > {PROBE_MAX_BACKWARD_ERROR:g}")
-    log.debug("cholespy probe solve: backward error %.3g", eta)
-    return factor
+    return _probed(A, SparseFactor(n=n, backend=CHOLESPY, _solve=solve))
 
 
 def _factor_superlu(A: sp.csc_matrix) -> SparseFactor:
@@ -353,17 +405,17 @@ def _factor_superlu(A: sp.csc_matrix) -> SparseFactor:
 
 
 def _factor_with(chosen: str, A: sp.csc_matrix, requested: str) -> SparseFactor:
-    """Factorise with the chosen backend; a failed cholespy probe under "auto" falls back to SuperLU."""
+    """Factorise with the chosen backend; a failed probe under "auto" falls back to SuperLU."""
     if chosen == CHOLMOD:
         return _factor_cholmod(A)
     if chosen == SUPERLU:
         return _factor_superlu(A)
     try:
-        return _factor_cholespy(A)
+        return _factor_cvxopt(A) if chosen == CVXOPT else _factor_cholespy(A)
     except _ProbeFailed as err:
         if requested != "auto":
-            raise np.linalg.LinAlgError(f"cholespy factor rejected: {err}") from err
-        log.warning("cholespy factor rejected (%s); this matrix is factorised with SciPy's SuperLU instead", err)
+            raise np.linalg.LinAlgError(f"{chosen} factor rejected: {err}") from err
+        log.warning("%s factor rejected (%s); this matrix is factorised with SciPy's SuperLU instead", chosen, err)
         return _factor_superlu(A)
 
 
@@ -374,9 +426,9 @@ def factorize_spd(A: Any, backend: str = "auto") -> SparseFactor:
     ----------
     A : sparse matrix or array, shape (n, n)
         Symmetric positive definite matrix (converted to float64 CSC).
-    backend : {"auto", "cholmod", "cholespy", "superlu"}
+    backend : {"auto", "cholmod", "cvxopt", "cholespy", "superlu"}
         "auto" takes ``$FLEXBEARING_SPARSE_SOLVER`` when set, else the first of cholmod →
-        cholespy → superlu that imports (SuperLU with a one-time warning naming the packages
+        cvxopt → cholespy → superlu that imports (SuperLU with a one-time warning naming the packages
         to install).
 
     Returns
@@ -389,8 +441,8 @@ def factorize_spd(A: Any, backend: str = "auto") -> SparseFactor:
     ImportError
         If ``backend`` names a library that is not installed.
     numpy.linalg.LinAlgError
-        If CHOLMOD (either backend) finds A not positive definite, SuperLU finds it singular, or
-        an explicitly requested cholespy factor fails its probe solve.
+        If CHOLMOD (any of the three backends) finds A not positive definite, SuperLU finds it
+        singular, or an explicitly requested cvxopt or cholespy factor fails its probe solve.
     ValueError
         For an unknown backend (argument or environment variable) or a non-square or
         non-symmetric A.
@@ -421,7 +473,7 @@ def shift_invert_operator(
         Symmetric stiffness (positive semi-definite) and mass (positive definite) matrices.
     sigma : float
         Shift σ in the units of the eigenvalue (ω² in rad²/s² for K, M in SI units).
-    backend : {"auto", "cholmod", "cholespy", "superlu"}
+    backend : {"auto", "cholmod", "cvxopt", "cholespy", "superlu"}
         As for :func:`factorize_spd`.
 
     Returns

@@ -25,15 +25,14 @@ import scipy.sparse.linalg as spla
 from fem_rings import linalg
 from fem_rings.linalg import available_backends, factorize_spd, shift_invert_operator
 
-BACKENDS = ["superlu", "cholmod", "cholespy"]
+BACKENDS = ["superlu", "cholmod", "cvxopt", "cholespy"]
+LIBRARIES = {"cholmod": "sksparse.cholmod", "cvxopt": "cvxopt.cholmod", "cholespy": "cholespy"}
 
 
 def _require(backend: str) -> None:
-    """Skip a CHOLMOD or cholespy case when its library is not installed."""
-    if backend == "cholmod":
-        pytest.importorskip("sksparse.cholmod")
-    if backend == "cholespy":
-        pytest.importorskip("cholespy")
+    """Skip a case whose library is not installed."""
+    if backend in LIBRARIES:
+        pytest.importorskip(LIBRARIES[backend])
 
 
 def _random_spd(n: int = 300, seed: int = 7) -> sp.csc_matrix:
@@ -61,8 +60,9 @@ def _q1_laplacian(cells: int, clamped: bool) -> tuple[sp.csc_matrix, sp.csc_matr
 
 @pytest.fixture
 def fresh_warning(monkeypatch):
-    """Pretend scikit-sparse and cholespy are absent and the fallback warning has not been logged yet."""
+    """Pretend scikit-sparse, cvxopt and cholespy are absent and the fallback warning is unsaid."""
     monkeypatch.setattr(linalg, "_import_cholmod", lambda: None)
+    monkeypatch.setattr(linalg, "_import_cvxopt", lambda: None)
     monkeypatch.setattr(linalg, "_import_cholespy", lambda: None)
     monkeypatch.setattr(linalg, "_fallback_warned", False)
     monkeypatch.delenv("FLEXBEARING_SPARSE_SOLVER", raising=False)
@@ -108,7 +108,7 @@ def test_shift_invert_free_free_needs_negative_shift(backend):
     np.testing.assert_allclose(found[1:], reference[1:], rtol=1e-9)
 
 
-@pytest.mark.parametrize("backend", ["cholmod", "cholespy"])
+@pytest.mark.parametrize("backend", ["cholmod", "cvxopt", "cholespy"])
 def test_cholesky_not_positive_definite_message(backend):
     _require(backend)
     K, M = _q1_laplacian(cells=8, clamped=True)
@@ -153,3 +153,5 @@ def test_cholmod_requested_but_missing(fresh_warning):
         factorize_spd(_random_spd(n=20), backend="cholmod")
     with pytest.raises(ImportError, match="cholespy is missing.*pip install cholespy"):
         factorize_spd(_random_spd(n=20), backend="cholespy")
+    with pytest.raises(ImportError, match="cvxopt is missing.*pip install cvxopt"):
+        factorize_spd(_random_spd(n=20), backend="cvxopt")

@@ -1,5 +1,6 @@
-"""Backend choice of ``fem_rings.linalg``: cholespy as the default install's CHOLMOD, the order
-cholmod → cholespy → superlu, the ``FLEXBEARING_SPARSE_SOLVER`` override and the probe check.
+"""Backend choice of ``fem_rings.linalg``: the CHOLMOD wheels (cvxopt, cholespy), the order
+cholmod → cvxopt → cholespy → superlu, the ``FLEXBEARING_SPARSE_SOLVER`` override and the probe
+check.
 
 References used below:
 
@@ -110,15 +111,19 @@ def _dense_reference(A: sp.spmatrix, b: np.ndarray) -> tuple[np.ndarray, float]:
     return scipy.linalg.cho_solve((c, lower), b), 100.0 * EPS / rcond
 
 
-# --- cholespy against references -------------------------------------------------------------
+WHEELS = {"cvxopt": "cvxopt.cholmod", "cholespy": "cholespy"}
 
-def test_cholespy_ring_matrix_matches_dense_and_superlu(ring_matrix):
-    pytest.importorskip("cholespy")
+
+# --- the wheels against references ------------------------------------------------------------
+
+@pytest.mark.parametrize("backend", sorted(WHEELS))
+def test_wheel_ring_matrix_matches_dense_and_superlu(ring_matrix, backend):
+    pytest.importorskip(WHEELS[backend])
     A = ring_matrix
     B = np.random.default_rng(5).standard_normal((A.shape[0], 3))
     X_ref, rtol = _dense_reference(A, B)
     assert rtol < 1e-3  # the comparison below is meaningful
-    X = factorize_spd(A, backend="cholespy").solve(B)
+    X = factorize_spd(A, backend=backend).solve(B)
     X_lu = factorize_spd(A, backend="superlu").solve(B)
     for k in range(B.shape[1]):
         scale = np.abs(X_ref[:, k]).sum()
@@ -128,20 +133,22 @@ def test_cholespy_ring_matrix_matches_dense_and_superlu(ring_matrix):
         assert backward_error(A, X[:, k], B[:, k]) <= 100 * EPS
 
 
-def test_cholespy_random_spd_matches_dense():
-    pytest.importorskip("cholespy")
+@pytest.mark.parametrize("backend", sorted(WHEELS))
+def test_wheel_random_spd_matches_dense(backend):
+    pytest.importorskip(WHEELS[backend])
     A = _random_spd()
     b = np.random.default_rng(6).standard_normal(A.shape[0])
     x_ref, rtol = _dense_reference(A, b)
-    x = factorize_spd(A, backend="cholespy").solve(b)
+    x = factorize_spd(A, backend=backend).solve(b)
     assert np.abs(x - x_ref).sum() <= rtol * np.abs(x_ref).sum()
 
 
-def test_cholespy_block_solve_equals_column_solves():
+@pytest.mark.parametrize("backend", sorted(WHEELS))
+def test_wheel_block_solve_equals_column_solves(backend):
     """One (n, k) solve gives the k single-vector solves, whatever the layout and dtype of b."""
-    pytest.importorskip("cholespy")
+    pytest.importorskip(WHEELS[backend])
     A = _random_spd(n=200)
-    factor = factorize_spd(A, backend="cholespy")
+    factor = factorize_spd(A, backend=backend)
     B = np.random.default_rng(7).standard_normal((200, 5))
     X = factor.solve(B)
     assert X.shape == (200, 5)
@@ -149,7 +156,7 @@ def test_cholespy_block_solve_equals_column_solves():
     np.testing.assert_allclose(X, columns, rtol=1e-13, atol=0)
     X_ref = spla.spsolve(A, B)
     assert np.linalg.norm(X - X_ref) <= 1e-10 * np.linalg.norm(X_ref)
-    # layouts that cholespy itself refuses (Fortran order, strided views, float32, int, complex)
+    # layouts that cholespy itself refuses (Fortran order, strided views, float32, complex)
     np.testing.assert_allclose(factor.solve(np.asfortranarray(B)), X, rtol=1e-13, atol=0)
     np.testing.assert_allclose(factor.solve(B[:, ::2]), X[:, ::2], rtol=1e-13, atol=0)
     assert factor.solve(B[:, :1]).shape == (200, 1)
@@ -169,11 +176,18 @@ def test_backward_error_formula():
     assert backward_error(A, x, b) == pytest.approx(expected, rel=1e-12)
 
 
-# --- order cholmod → cholespy → superlu, by hiding imports ------------------------------------
+# --- order cholmod → cvxopt → cholespy → superlu, by hiding imports ----------------------------
+
+def test_cvxopt_comes_before_cholespy(monkeypatch):
+    pytest.importorskip("cvxopt.cholmod")
+    _hide(monkeypatch, "sksparse", "sksparse.cholmod")
+    assert available_backends()[0] == "cvxopt"
+    assert factorize_spd(_random_spd(n=50)).backend == "cvxopt"
+
 
 def test_cholespy_is_chosen_without_scikit_sparse(monkeypatch, caplog):
     pytest.importorskip("cholespy")
-    _hide(monkeypatch, "sksparse", "sksparse.cholmod")
+    _hide(monkeypatch, "sksparse", "sksparse.cholmod", "cvxopt", "cvxopt.cholmod")
     assert available_backends() == ("cholespy", "superlu")
     with caplog.at_level(logging.INFO, logger="fem_rings.linalg"):
         factor = factorize_spd(_random_spd(n=50))
@@ -189,7 +203,7 @@ def test_scikit_sparse_comes_first(monkeypatch):
 
 
 def test_superlu_last_with_warning(monkeypatch, caplog):
-    _hide(monkeypatch, "sksparse", "sksparse.cholmod", "cholespy")
+    _hide(monkeypatch, "sksparse", "sksparse.cholmod", "cvxopt", "cvxopt.cholmod", "cholespy")
     assert available_backends() == ("superlu",)
     with caplog.at_level(logging.WARNING, logger="fem_rings.linalg"):
         assert factorize_spd(_random_spd(n=50)).backend == "superlu"
@@ -214,7 +228,7 @@ def test_environment_override(monkeypatch, name):
 
 def test_environment_override_errors(monkeypatch):
     monkeypatch.setenv("FLEXBEARING_SPARSE_SOLVER", "pardiso")
-    with pytest.raises(ValueError, match="FLEXBEARING_SPARSE_SOLVER must be one of auto, cholmod, cholespy, superlu"):
+    with pytest.raises(ValueError, match="FLEXBEARING_SPARSE_SOLVER must be one of auto, cholmod, cvxopt, cholespy"):
         factorize_spd(_random_spd(n=20))
     _hide(monkeypatch, "cholespy")
     monkeypatch.setenv("FLEXBEARING_SPARSE_SOLVER", "cholespy")
@@ -225,7 +239,7 @@ def test_environment_override_errors(monkeypatch):
 # --- a factor that fails its probe solve ------------------------------------------------------
 
 def test_failed_probe_falls_back_to_superlu(monkeypatch, caplog):
-    _hide(monkeypatch, "sksparse", "sksparse.cholmod")
+    _hide(monkeypatch, "sksparse", "sksparse.cholmod", "cvxopt", "cvxopt.cholmod")
     _broken_cholespy(monkeypatch)
     A = _random_spd(n=100)
     with caplog.at_level(logging.WARNING, logger="fem_rings.linalg"):
