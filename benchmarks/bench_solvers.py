@@ -3,7 +3,8 @@
 Ring: the slewing-ring bottom race at Ø2 m (steel E = 200 GPa, ν = 0.3, ρ = 7850 kg/m³), swept
 27-node hexahedra of 36 mm in the section and 170 round the circumference: 150k DOF. Every
 backend of :mod:`fem_rings.linalg` that imports here — ``cholmod`` (scikit-sparse, supernodal),
-``cholespy`` (the default install's CHOLMOD wheel, simplicial), ``superlu`` (SciPy) — runs in a
+``cvxopt`` (optional CHOLMOD wheel, supernodal, OpenBLAS), ``cholespy`` (the default install's
+CHOLMOD wheel, simplicial), ``superlu`` (SciPy) — runs in a
 process of its own (``FLEXBEARING_SPARSE_SOLVER=<backend>``, one BLAS thread as in the library),
 so that its memory is its own:
 
@@ -18,15 +19,16 @@ Craig–Bampton
 
 Times are CPU seconds of the process (``time.process_time``) and wall seconds; the machine may be
 shared, so compare CPU times. Ratios are CPU time over cholespy's. SuperLU needed > 900 s for the
-factor of a 150k-DOF hex27 ring (DESIGN §3): in the full run its process is stopped after
-``--superlu-cap-s`` wall seconds (default 300), and all backends are run a second time on the
-same ring in 10-node tetrahedra of 30 mm (about 156k DOF, much less fill), where SuperLU finishes.
+factor of a 150k-DOF hex27 ring with SciPy's default ordering (DESIGN §3): in the full run its
+process is stopped after ``--superlu-cap-s`` wall seconds (default 300; the table then shows the
+CPU seconds it had used, its start-up included). ``--tet10`` runs all backends a second time on the same ring in 10-node
+tetrahedra of 30 mm (about 156k DOF, much less fill).
 ``--quick`` (CI): hex27 of 0.15 m, 10 modes, a 6-mode reduction with 8 bolt patches of ±0.18 m
 (a patch must span more than one row of nodes), one ring.
 
 The models are meshed once into a temporary cache. Run::
 
-    python benchmarks/bench_solvers.py [--quick] [--superlu-cap-s S]
+    python benchmarks/bench_solvers.py [--quick] [--superlu-cap-s S] [--tet10]
 
 Ends with one line of ``name=value`` figures (``dofs=… factor_cpu_s_cholespy=…
 modes_cpu_s_cholespy=… cb_cpu_s_cholespy=… peak_rss_mb_cholespy=…`` per backend and model).
@@ -147,9 +149,18 @@ def child_backend(ring: Ring) -> None:
 
 # --- parent: one child per backend, a table, ratios, the name=value line ------------------------
 
+def _children_cpu_s() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def _run_child(ring: Ring, what: str, env: dict, cap_s: float | None) -> tuple[dict, bool]:
-    """Run a child; return its records by step and whether it was stopped at the cap."""
+    """Run a child; return its records by step and whether it was stopped at the cap.
+
+    A stopped child's records get a "capped" entry with the CPU seconds it had used.
+    """
     cmd = [sys.executable, __file__, "--child", what, *ring.args()]
+    cpu0 = _children_cpu_s()
     try:
         out = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=cap_s, check=True).stdout
         capped = False
@@ -158,22 +169,32 @@ def _run_child(ring: Ring, what: str, env: dict, cap_s: float | None) -> tuple[d
         capped = True
     except subprocess.CalledProcessError as err:
         sys.exit(f"{what} on {ring.label} failed:\n{err.stderr[-2000:]}")
-    records = [json.loads(line) for line in out.splitlines() if line.startswith("{")]
-    return {r["step"]: r for r in records}, capped
+    records = {r["step"]: r for r in (json.loads(line) for line in out.splitlines() if line.startswith("{"))}
+    if capped:
+        done = sum(r.get("cpu_s", 0.0) for r in records.values())
+        records["capped"] = {"cpu_s": round(_children_cpu_s() - cpu0 - done, 1), "wall_s": cap_s}
+    return records, capped
 
 
-def _cell(rec: dict | None, capped: bool, cap_s: float | None) -> str:
+def _cell(rec: dict | None, stopped: dict | None) -> str:
+    """CPU s (wall s) of a step; for the step a cap stopped, the CPU it had used."""
     if rec is None:
-        return f"> {cap_s:g} s wall (cap)" if capped else "not run"
+        return f"> {stopped['cpu_s']:.0f} (cap {stopped['wall_s']:g})" if stopped else "–"
     return f"{rec['cpu_s']:>8.1f} ({rec['wall_s']:.1f})"
 
 
-def _ratio(rec: dict | None, ref: dict | None, capped: bool, ref_cap: float | None) -> str:
+def _ratio(rec: dict | None, ref: dict | None, stopped: dict | None) -> str:
     if ref is None:
         return "–"
     if rec is None:
-        return f"> {ref_cap / ref['cpu_s']:.0f}" if capped and ref_cap else "–"
+        return f"> {stopped['cpu_s'] / ref['cpu_s']:.1f}" if stopped else "–"
     return f"{rec['cpu_s'] / ref['cpu_s']:.2f}"
+
+
+def _stopped_at(rec: dict, step: str) -> dict | None:
+    """The "capped" record if the cap stopped the child during ``step`` (the first missing step)."""
+    missing = [s for s in STEPS if s not in rec]
+    return rec.get("capped") if missing and missing[0] == step else None
 
 
 def bench_ring(ring: Ring, backends: tuple, cap_s: float | None, env: dict) -> dict:
@@ -192,8 +213,8 @@ def bench_ring(ring: Ring, backends: tuple, cap_s: float | None, env: dict) -> d
     figures = {f"dofs_{ring.label}": b["dofs"]}
     for name, (rec, capped) in results.items():
         f, m, c = (rec.get(s) for s in STEPS)
-        print(f"  {name:<9} {_cell(f, capped, cap_s):>21} {f['mem_mb'] if f else '–':>9} "
-              f"{_cell(m, capped and f is not None, cap_s):>22} {_cell(c, capped and m is not None, cap_s):>19} "
+        cells = [_cell(rec.get(s), _stopped_at(rec, s)) for s in STEPS]
+        print(f"  {name:<9} {cells[0]:>21} {f['mem_mb'] if f else '–':>9} {cells[1]:>22} {cells[2]:>19} "
               f"{c['peak_mb'] if c else '–':>8} {m['f_first_Hz'] if m else float('nan'):>10.4f}")
         for step in STEPS:
             if rec.get(step):
@@ -205,8 +226,8 @@ def bench_ring(ring: Ring, backends: tuple, cap_s: float | None, env: dict) -> d
     ref = results.get("cholespy", ({}, False))[0]
     if ref:
         print("  CPU time / cholespy's:  " + "; ".join(
-            f"{name} " + " ".join(f"{s} {_ratio(rec.get(s), ref.get(s), capped, cap_s)}" for s in STEPS)
-            for name, (rec, capped) in results.items() if name != "cholespy"))
+            f"{name} " + " ".join(f"{s} {_ratio(rec.get(s), ref.get(s), _stopped_at(rec, s))}" for s in STEPS)
+            for name, (rec, _) in results.items() if name != "cholespy"))
     freqs = [rec["modes"]["f_first_Hz"] for rec, _ in results.values() if rec.get("modes")]
     if len(freqs) > 1:
         spread = (max(freqs) - min(freqs)) / min(freqs)
@@ -219,6 +240,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="one small ring, 10 modes, small reduction (CI)")
     ap.add_argument("--superlu-cap-s", type=float, default=300.0, help="wall-time cap of each SuperLU process, s")
+    ap.add_argument("--tet10", action="store_true", help="also the tet10 ring of the same size (full run only)")
     ap.add_argument("--child", nargs="+", help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.child:
@@ -228,12 +250,13 @@ def main() -> None:
     from fem_rings.linalg import available_backends
 
     backends = available_backends()
-    print(f"backends here: {', '.join(backends)} (cholmod: scikit-sparse; cholespy: CHOLMOD wheel; superlu: SciPy)")
-    rings = QUICK if args.quick else FULL
+    print(f"backends here: {', '.join(backends)} (cholmod: scikit-sparse, supernodal; cvxopt: supernodal CHOLMOD "
+          "wheel; cholespy: simplicial CHOLMOD wheel; superlu: SciPy)")
+    rings = QUICK if args.quick else (FULL if args.tet10 else FULL[:1])
     cap = None if args.quick else args.superlu_cap_s
     if cap:
-        print(f"SuperLU processes are stopped after {cap:g} s wall (> 900 s for the hex27 factor, DESIGN §3); "
-              "the tet10 ring of the same size is where SuperLU finishes")
+        print(f"SuperLU processes are stopped after {cap:g} s wall (> 900 s for a hex27 factor of this size with "
+              "SciPy's default ordering, DESIGN §3); a stopped step shows the CPU seconds it had used")
     figures = {}
     with tempfile.TemporaryDirectory(prefix="bench-solvers-") as cache:
         env = {**os.environ, "FLEXBEARING_CACHE": cache}
