@@ -1,15 +1,15 @@
 """Sparse Cholesky backends compared on the 150k-DOF ring: factor, 30 modes, Craig–Bampton.
 
 Ring: the slewing-ring bottom race at Ø2 m (steel E = 200 GPa, ν = 0.3, ρ = 7850 kg/m³), swept
-27-node hexahedra of 36 mm in the section and 170 round the circumference: 150k DOF. Every
+27-node hexahedra of 36 mm in the section and 170 round the circumference: 152k DOF. Every
 backend of :mod:`fem_rings.linalg` that imports here — ``cholmod`` (scikit-sparse, supernodal),
 ``cvxopt`` (optional CHOLMOD wheel, supernodal, OpenBLAS), ``cholespy`` (the default install's
-CHOLMOD wheel, simplicial), ``superlu`` (SciPy) — runs in a
-process of its own (``FLEXBEARING_SPARSE_SOLVER=<backend>``, one BLAS thread as in the library),
-so that its memory is its own:
+CHOLMOD wheel, simplicial), ``superlu`` (SciPy) — runs in a process of its own
+(``FLEXBEARING_SPARSE_SOLVER=<backend>``, one BLAS thread as in the library), so that its memory
+is its own:
 
 factor
-    ``factorize_spd(K − σM)``, σ = −(2π·1 Hz)², and the rise of resident memory it causes.
+    ``factorize_spd(K − σM)``, σ = −(2π·1 Hz)², and the rise of peak resident memory it causes.
 30 modes
     ``modal_analysis(model, 30)``: ``eigsh`` in shift-invert mode, its factorisation included.
 Craig–Bampton
@@ -19,12 +19,13 @@ Craig–Bampton
 
 Times are CPU seconds of the process (``time.process_time``) and wall seconds; the machine may be
 shared, so compare CPU times. Ratios are CPU time over cholespy's. SuperLU needed > 900 s for the
-factor of a 150k-DOF hex27 ring with SciPy's default ordering (DESIGN §3): in the full run its
-process is stopped after ``--superlu-cap-s`` wall seconds (default 300; the table then shows the
-CPU seconds it had used, its start-up included). ``--tet10`` runs all backends a second time on the same ring in 10-node
-tetrahedra of 30 mm (about 156k DOF, much less fill).
-``--quick`` (CI): hex27 of 0.15 m, 10 modes, a 6-mode reduction with 8 bolt patches of ±0.18 m
-(a patch must span more than one row of nodes), one ring.
+factor of a 150k-DOF hex27 ring with SciPy's default ordering (DESIGN §3; the library uses a
+minimum-degree ordering of A + Aᵀ instead): in the full run its process is stopped after
+``--superlu-cap-s`` wall seconds (default 300; the table then shows the CPU seconds it had used,
+its start-up included). ``--tet10`` runs all backends a second time on the same ring in 10-node
+tetrahedra of 30 mm (about 156k DOF, much less fill). ``--quick`` (CI): hex27 of 0.15 m, 10
+modes, a 6-mode reduction with 8 bolt patches of ±0.18 m (a patch must span more than one row of
+nodes), one ring.
 
 The models are meshed once into a temporary cache. Run::
 
