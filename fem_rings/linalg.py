@@ -2,8 +2,8 @@
 
 The stiffness matrices of the 3-D ring models (about 10⁵ degrees of freedom, quadratic
 tetrahedra and hexahedra) are solved many times: static condensation, Craig–Bampton constraint
-modes and the shift-invert Lanczos iteration of the modal analysis. A sparse Cholesky
-factorisation with CHOLMOD (SuiteSparse) is many times faster and leaner than SciPy's SuperLU for
+modes and the shift-invert Lanczos iteration of the modal analysis. CHOLMOD's supernodal
+Cholesky factorisation (SuiteSparse) is several times faster and leaner than SciPy's SuperLU for
 these matrices, and ``scipy.sparse.linalg.eigsh(..., sigma=...)`` uses SuperLU internally. This
 module factorises once with the best available backend and exposes the factor as a solver and
 as the ``OPinv`` operator of ``eigsh``.
@@ -27,8 +27,9 @@ Backends
     ``cholespy.CholeskySolverD``, a normal dependency: a wheel that bundles CHOLMOD, so no system
     package is needed. Its CHOLMOD runs the simplicial LLᵀ factorisation (nested-dissection
     ordering), which stops on a matrix that is not positive definite (CHOLMOD also prints a
-    warning on stderr then); it is slower than the supernodal one on 3-D rings
-    (``benchmarks/bench_solvers.py``). It reads the lower triangle only.
+    warning on stderr then). On the 152k-DOF hex27 ring (``benchmarks/bench_solvers.py``) it
+    factorises 5× slower than the supernodal one and 1.7× slower than SuperLU, but needs less
+    memory than SuperLU and solves many right-hand sides faster. It reads the lower triangle only.
 
 The factors of the two wheels are checked by one probe solve each (normwise backward error,
 :func:`backward_error`); under "auto" a factor that fails it is replaced by SuperLU with a
@@ -197,9 +198,9 @@ def _warn_fallback_once() -> None:
         return
     _fallback_warned = True
     log.warning(
-        "neither cholespy nor scikit-sparse (CHOLMOD) is available: sparse factorisations use "
-        "SciPy's SuperLU, which is many times slower and needs more memory on 3-D ring models; "
-        "%s; or %s",
+        "no CHOLMOD (scikit-sparse, cvxopt or cholespy) is available: sparse factorisations use "
+        "SciPy's SuperLU, which needs more memory on 3-D ring models and is several times slower "
+        "than a supernodal CHOLMOD; %s; or %s",
         CHOLESPY_HINT,
         INSTALL_HINT,
     )
