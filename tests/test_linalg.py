@@ -25,13 +25,14 @@ import scipy.sparse.linalg as spla
 from fem_rings import linalg
 from fem_rings.linalg import available_backends, factorize_spd, shift_invert_operator
 
-BACKENDS = ["superlu", "cholmod"]
+BACKENDS = ["superlu", "cholmod", "cvxopt", "cholespy"]
+LIBRARIES = {"cholmod": "sksparse.cholmod", "cvxopt": "cvxopt.cholmod", "cholespy": "cholespy"}
 
 
 def _require(backend: str) -> None:
-    """Skip a CHOLMOD case when scikit-sparse is not installed."""
-    if backend == "cholmod":
-        pytest.importorskip("sksparse.cholmod")
+    """Skip a case whose library is not installed."""
+    if backend in LIBRARIES:
+        pytest.importorskip(LIBRARIES[backend])
 
 
 def _random_spd(n: int = 300, seed: int = 7) -> sp.csc_matrix:
@@ -59,9 +60,12 @@ def _q1_laplacian(cells: int, clamped: bool) -> tuple[sp.csc_matrix, sp.csc_matr
 
 @pytest.fixture
 def fresh_warning(monkeypatch):
-    """Pretend scikit-sparse is absent and the fallback warning has not been logged yet."""
+    """Pretend scikit-sparse, cvxopt and cholespy are absent and the fallback warning is unsaid."""
     monkeypatch.setattr(linalg, "_import_cholmod", lambda: None)
+    monkeypatch.setattr(linalg, "_import_cvxopt", lambda: None)
+    monkeypatch.setattr(linalg, "_import_cholespy", lambda: None)
     monkeypatch.setattr(linalg, "_fallback_warned", False)
+    monkeypatch.delenv("FLEXBEARING_SPARSE_SOLVER", raising=False)
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
@@ -104,13 +108,14 @@ def test_shift_invert_free_free_needs_negative_shift(backend):
     np.testing.assert_allclose(found[1:], reference[1:], rtol=1e-9)
 
 
-def test_cholmod_not_positive_definite_message():
-    pytest.importorskip("sksparse.cholmod")
+@pytest.mark.parametrize("backend", ["cholmod", "cvxopt", "cholespy"])
+def test_cholesky_not_positive_definite_message(backend):
+    _require(backend)
     K, M = _q1_laplacian(cells=8, clamped=True)
     with pytest.raises(np.linalg.LinAlgError, match="not positive definite.*negative shift"):
-        factorize_spd(K - 100.0 * M, backend="cholmod")  # above the lowest eigenvalue ≈ 24.7
+        factorize_spd(K - 100.0 * M, backend=backend)  # above the lowest eigenvalue ≈ 24.7
     with pytest.raises(np.linalg.LinAlgError, match="sigma = 100.*not positive definite"):
-        shift_invert_operator(K, M, sigma=100.0, backend="cholmod")
+        shift_invert_operator(K, M, sigma=100.0, backend=backend)
 
 
 def test_superlu_singular_matrix_is_linalg_error():
@@ -137,6 +142,7 @@ def test_fallback_warns_once(fresh_warning, caplog):
     assert first.backend == second.backend == "superlu"
     warnings = [r for r in caplog.records if r.levelno == logging.WARNING]
     assert len(warnings) == 1
+    assert "pip install cholespy" in warnings[0].getMessage()
     assert 'pip install "scikit-sparse<0.5"' in warnings[0].getMessage()
     assert "libsuitesparse-dev" in warnings[0].getMessage()
     assert available_backends() == ("superlu",)
@@ -145,3 +151,7 @@ def test_fallback_warns_once(fresh_warning, caplog):
 def test_cholmod_requested_but_missing(fresh_warning):
     with pytest.raises(ImportError, match=r"scikit-sparse<0\.5.*libsuitesparse-dev"):
         factorize_spd(_random_spd(n=20), backend="cholmod")
+    with pytest.raises(ImportError, match="cholespy is missing.*pip install cholespy"):
+        factorize_spd(_random_spd(n=20), backend="cholespy")
+    with pytest.raises(ImportError, match="cvxopt is missing.*pip install cvxopt"):
+        factorize_spd(_random_spd(n=20), backend="cvxopt")
