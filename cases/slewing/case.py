@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from typing import Literal
+from typing import ClassVar, Literal
 
 from fem_rings.sections import SlewingSection
 from mbd_core.contact.friction import Coulomb
@@ -249,6 +249,8 @@ class Analysis:
 
 
 Kind = Literal["single", "static", "rotation", "undulation", "thermal", "combined", "life", "full-scale"]
+#: studies that make the top structure modal whatever ``top.kind`` says (:mod:`.studies`)
+_STUDIES_WITH_MODAL_TOP = ("static", "undulation", "combined", "life", "full-scale")
 
 
 @dataclass(frozen=True)
@@ -289,6 +291,8 @@ class Study:
 class SlewingCase:
     """A run of the slewing ring (module docstring)."""
 
+    FAMILY: ClassVar[str] = "slewing"  # the ``family`` key of its case files
+
     name: str = "slewing"
     description: str = ""
     geometry: Geometry = field(default_factory=Geometry)
@@ -304,6 +308,24 @@ class SlewingCase:
     def __post_init__(self) -> None:
         if not self.name or not all(c.isalnum() or c in "-_." for c in self.name):
             raise ValueError(f"name must be a non-empty word of letters, digits, '-', '_' or '.', got {self.name!r}")
+        self._check_model_sizes()
+
+    def _check_model_sizes(self) -> None:
+        """Each modal race can give its modes and fits in memory (before anything is meshed)."""
+        from fem_rings.sections import slewing_bottom_race, slewing_top_race, slewing_top_structure
+
+        from ..mesh_budget import check_model_size
+        from .scene import DEFAULT_ELEMENT_SIZE_M
+
+        g = self.geometry
+        top_modal = self.top.kind == "modal" or self.study.kind in _STUDIES_WITH_MODAL_TOP
+        make_top = slewing_top_structure if self.top.include_tmr else slewing_top_race
+        for key, fidelity, modal, make in (("top", self.top, top_modal, make_top),
+                                           ("bottom", self.bottom, self.bottom.kind == "modal", slewing_bottom_race)):
+            if modal:
+                size = fidelity.element_size_m or DEFAULT_ELEMENT_SIZE_M[g.variant]
+                check_model_size(make(g.pitch_diameter_m, g.section()), size, fidelity.n_modes,
+                                 f"{key}.element_size_m", f"{key}.n_modes")
 
     @property
     def dead_load_t(self) -> float:
