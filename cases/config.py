@@ -14,6 +14,7 @@ re-raised as :class:`CaseError` carrying the dotted path of the table.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import re
 import sys
@@ -48,6 +49,12 @@ def _show(value: Any) -> str:
     """A value as it is spelled in TOML where that differs from Python (booleans), kept short."""
     text = str(value).lower() if isinstance(value, bool) else repr(value)
     return text if len(text) <= 60 else text[:57] + "..."
+
+
+@functools.lru_cache(maxsize=256)
+def _hints(cls: type) -> dict[str, Any]:
+    """The resolved type hints of a dataclass (kept: resolving them is slow)."""
+    return get_type_hints(cls)
 
 
 def _init_fields(cls: type) -> dict[str, dataclasses.Field]:
@@ -134,7 +141,7 @@ def from_mapping(cls: type, data: Mapping, where: str = "") -> Any:
         raise CaseError(f"{where or '<case>'}: expected a table, got {_show(data)}")
     if not where and hasattr(cls, "FAMILY"):
         data = _without_family(cls, data)
-    hints = get_type_hints(cls)
+    hints = _hints(cls)
     fields = _init_fields(cls)
     unknown = sorted(set(data) - set(fields))
     if unknown:
@@ -250,7 +257,7 @@ def _check_path(cls: type, parts: Sequence[str]) -> None:
         fields = _init_fields(cls)
         if name not in fields:
             raise CaseError(f"{where}: unknown key (known: {', '.join(sorted(fields))})")
-        cls = _strip_optional(get_type_hints(cls)[name])
+        cls = _strip_optional(_hints(cls)[name])
 
 
 def with_overrides(obj: Any, assignments: Sequence[str]) -> Any:

@@ -16,10 +16,11 @@ from __future__ import annotations
 
 import math
 import os
+from functools import lru_cache
 
 from fem_rings.profile import Arc, Profile
 
-__all__ = ["BYTES_PER_DOF", "estimate_dofs", "estimate_memory_bytes", "machine_memory_bytes", "check_model_size"]
+__all__ = ["BYTES_PER_DOF", "cached_profile", "estimate_dofs", "estimate_memory_bytes", "machine_memory_bytes", "check_model_size"]
 
 #: peak memory per degree of freedom of meshing, assembly, factorisation and the eigen solve,
 #: measured with ``flexbearing modes slewing-bottom-race-1m --modes 16 --no-cache`` at 60, 40 and
@@ -28,13 +29,18 @@ __all__ = ["BYTES_PER_DOF", "estimate_dofs", "estimate_memory_bytes", "machine_m
 BYTES_PER_DOF = 12e3
 
 
-def _boundary_edges(profile: Profile, size_m: float) -> float:
-    """Boundary edges of the section mesh: at least two per segment (arcs over 90° are two)."""
-    n = 0.0
-    for s in profile.segments:
-        pieces = 2 if isinstance(s, Arc) and s.sweep_rad > 0.5 * math.pi + 1e-12 else 1
-        n += pieces * max(2.0, s.length_m / pieces / size_m)
-    return n
+@lru_cache(maxsize=32)
+def cached_profile(make, *args) -> Profile:
+    """``make(*args)``, kept: building a section takes milliseconds, and cases are validated often."""
+    return make(*args)
+
+
+@lru_cache(maxsize=64)
+def _section_numbers(profile: Profile) -> tuple[float, float, tuple[tuple[float, int], ...]]:
+    """Area m², outer radius m and (length m, gmsh curves) of each segment (arcs over 90° are two)."""
+    pieces = tuple((s.length_m, 2 if isinstance(s, Arc) and s.sweep_rad > 0.5 * math.pi + 1e-12 else 1)
+                   for s in profile.segments)
+    return profile.area_m2, profile.bounds_m[1], pieces
 
 
 def estimate_dofs(profile: Profile, size_m: float, sector_rad: float = 2.0 * math.pi) -> float:
@@ -54,8 +60,10 @@ def estimate_dofs(profile: Profile, size_m: float, sector_rad: float = 2.0 * mat
     float
         Three times the node count of the module docstring's estimate (may be ``inf``).
     """
-    section_nodes = 4.0 * profile.area_m2 / size_m / size_m + _boundary_edges(profile, size_m) + 1.0
-    layers = max(8.0, profile.bounds_m[1] * sector_rad / size_m)
+    area_m2, r_out_m, pieces = _section_numbers(profile)
+    boundary_edges = sum(n * max(2.0, length / n / size_m) for length, n in pieces)
+    section_nodes = 4.0 * area_m2 / size_m / size_m + boundary_edges + 1.0
+    layers = max(8.0, r_out_m * sector_rad / size_m)
     return 3.0 * 2.0 * layers * section_nodes
 
 

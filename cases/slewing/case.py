@@ -83,7 +83,7 @@ class Geometry:
         _positive("geometry", ball_diameter_m=self.ball_diameter_m, spacer_diameter_m=self.spacer_diameter_m)
         if not 0.0 < self.contact_angle_deg < 90.0:
             raise ValueError(f"contact_angle_deg must lie in (0, 90), got {self.contact_angle_deg}")
-        if not self.conformity > 0.5:
+        if not (math.isfinite(self.conformity) and self.conformity > 0.5):
             raise ValueError(f"conformity must be > 0.5 (the ball must be smaller than its groove), "
                              f"got {self.conformity}")
         if self.spacer_diameter_m is not None and not self.spacer_diameter_m < self.ball_diameter_m:
@@ -134,6 +134,8 @@ class Undulation:
     def __post_init__(self) -> None:
         if not (math.isfinite(self.scale) and self.scale >= 0.0):
             raise ValueError(f"scale must be ≥ 0, got {self.scale}")
+        if not all(len(p) == 2 and all(math.isfinite(v) for v in p) for p in self.profile_deg_mm):
+            raise ValueError(f"profile_deg_mm must list finite (θ deg, h mm) pairs, got {list(self.profile_deg_mm)}")
         deg = [p[0] for p in self.profile_deg_mm]
         if len(deg) < 4 or deg[0] != 0.0 or any(b <= a for a, b in zip(deg, deg[1:])) or deg[-1] >= 360.0:
             raise ValueError("profile_deg_mm must list ≥ 4 points (θ deg, h mm) with θ rising from 0 to "
@@ -314,7 +316,7 @@ class SlewingCase:
         """Each modal race can give its modes and fits in memory (before anything is meshed)."""
         from fem_rings.sections import slewing_bottom_race, slewing_top_race, slewing_top_structure
 
-        from ..mesh_budget import check_model_size
+        from ..mesh_budget import cached_profile, check_model_size
         from .scene import DEFAULT_ELEMENT_SIZE_M
 
         g = self.geometry
@@ -324,7 +326,7 @@ class SlewingCase:
                                            ("bottom", self.bottom, self.bottom.kind == "modal", slewing_bottom_race)):
             if modal:
                 size = fidelity.element_size_m or DEFAULT_ELEMENT_SIZE_M[g.variant]
-                check_model_size(make(g.pitch_diameter_m, g.section()), size, fidelity.n_modes,
+                check_model_size(cached_profile(make, g.pitch_diameter_m, g.section()), size, fidelity.n_modes,
                                  f"{key}.element_size_m", f"{key}.n_modes")
 
     @property

@@ -232,15 +232,15 @@ class WindCase:
         from fem_rings.cages import three_row_cages
         from fem_rings.sections import three_row_inner_ring, three_row_outer_ring
 
-        from ..mesh_budget import check_model_size
+        from ..mesh_budget import cached_profile, check_model_size
 
         b = self.bodies
         if b.rings == "modal":
-            for profile in (three_row_inner_ring(), three_row_outer_ring()):
+            for profile in (cached_profile(three_row_inner_ring), cached_profile(three_row_outer_ring)):
                 check_model_size(profile, b.ring_element_size_m, b.n_modes, "bodies.ring_element_size_m",
                                  "bodies.n_modes")
         if b.cages == "modal":
-            for profile, _ in three_row_cages().values():
+            for profile, _ in cached_profile(three_row_cages).values():
                 check_model_size(profile, b.cage_element_size_m, b.n_modes, "bodies.cage_element_size_m",
                                  "bodies.n_modes")
 
