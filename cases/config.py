@@ -279,12 +279,18 @@ def with_overrides(obj: Any, assignments: Sequence[str]) -> Any:
     data = to_mapping(obj)
     for item in assignments:
         key, sep, rhs = item.partition("=")
+        plain = item.strip() and item.isprintable() and len(item) <= 60
         if not sep:
-            raise CaseError(f"{item if item.isprintable() and len(item) <= 60 else _show(item)}: expected key=value")
+            raise CaseError(f"{item if plain else '--set ' + _show(item)}: expected key=value")
+        if not key.strip():
+            raise CaseError(f"--set {_show(item)}: no key before '='")
         parts = [p.strip() for p in key.strip().split(".")]
         _check_path(type(obj), parts)
         node = data
-        for name in parts[:-1]:
+        for i, name in enumerate(parts[:-1]):
             node = node.setdefault(name, {})  # a None-valued table is absent from the mapping
+            if not isinstance(node, dict):  # an earlier assignment put a value in place of the table
+                where = ".".join(_join("", p) for p in parts[: i + 1])
+                raise CaseError(f"{where}: expected a table, got {_show(node)}")
         node[parts[-1]] = _parse_value(rhs.strip(), ".".join(parts))
     return from_mapping(type(obj), data)

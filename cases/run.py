@@ -53,8 +53,8 @@ def _case_class(data: dict, source: str) -> type:
             return owners[0]
         raise CaseError(f"{source}: {FAMILY_KEY}: missing key; add {FAMILY_KEY} = "
                         f"{' or '.join(repr(f) for f in by_name)} at the top of the file")
-    if family not in by_name:
-        raise CaseError(f"{source}: {FAMILY_KEY}: must be one of {', '.join(map(repr, by_name))}, got {family!r}")
+    if not isinstance(family, str) or family not in by_name:
+        raise CaseError(f"{source}: {FAMILY_KEY}: must be one of {', '.join(map(repr, by_name))}, got {family!r:.60}")
     return by_name[family]
 
 

@@ -90,11 +90,20 @@ class Geometry:
             raise ValueError(f"spacer_diameter_m ({self.spacer_diameter_m}) must be below ball_diameter_m "
                              f"({self.ball_diameter_m}): spacer balls touch the bottom race only")
         self.section()  # the section checks its own sizes (groove depth, widths)
+        self._races()  # and the races their grooves (the contact point inside the groove)
         pitch, n, spacer, _ = VARIANTS[self.variant]
         pair = self.ball_diameter_m + (spacer if self.spacer_diameter_m is None else self.spacer_diameter_m)
         if n * pair > math.pi * pitch:
             raise ValueError(f"spacer_diameter_m: {n} load and {n} spacer balls do not fit on the "
                              f"{pitch} m pitch circle")
+
+    def _races(self) -> None:
+        from fem_rings.sections import slewing_bottom_race, slewing_top_race
+
+        from ..mesh_budget import cached_profile
+
+        for make in (slewing_bottom_race, slewing_top_race):
+            cached_profile(make, self.pitch_diameter_m, self.section())
 
     def section(self) -> SlewingSection:
         return SlewingSection(self.ball_diameter_m, self.conformity, self.contact_angle_deg, self.groove_depth_m,
