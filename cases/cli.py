@@ -58,10 +58,18 @@ def _option(dest: str) -> str:
     return "--" + dest.replace("_", "-")
 
 
+#: (unit suffix, low, high): where the contact formulas stay finite in double precision, far
+#: beyond any bearing — lengths 1 nm … 1000 km, loads 1e-30 … 1e30 N, moduli 1 kPa … 1e6 GPa
+_RANGES = (("_mm", 1e-6, 1e9), ("_N", 1e-30, 1e30), ("_GPa", 1e-6, 1e6))
+
+
 def _require_positive(**values: float) -> None:
     for name, v in values.items():
         if not (math.isfinite(v) and v > 0.0):
             raise UserError(f"{_option(name)} must be a positive number, got {v}")
+        for suffix, low, high in _RANGES:
+            if name.endswith(suffix) and not low <= v <= high:
+                raise UserError(f"{_option(name)} must lie in [{low:g}, {high:g}], got {v:g}")
 
 
 #: options where an infinite value means something (a flat raceway)
@@ -154,6 +162,8 @@ def cmd_hertz_line(args) -> dict:
     _require_positive(roller_diameter_mm=args.roller_diameter_mm, length_mm=args.length_mm, load_N=args.load_N)
     if not args.raceway_diameter_mm > 0:
         raise UserError(f"--raceway-diameter-mm must be > 0 (inf for a flat raceway), got {args.raceway_diameter_mm}")
+    if args.raceway_diameter_mm != math.inf:
+        _require_positive(raceway_diameter_mm=args.raceway_diameter_mm)
     mat = _material(args)
     try:
         c = line_contact(args.roller_diameter_mm * 1e-3, args.raceway_diameter_mm * 1e-3, args.length_mm * 1e-3,
@@ -352,7 +362,7 @@ def _attach_negative_values(argv: list[str]) -> list[str]:
 def _json_safe(value, where: str, bad: list[str]):
     """``value`` with arrays as lists and non-finite floats as None (their paths go to ``bad``)."""
     if isinstance(value, dict):
-        return {k: _json_safe(v, f"{where}.{k}" if where else str(k), bad) for k, v in value.items()}
+        return {str(k): _json_safe(v, f"{where}.{k}" if where else str(k), bad) for k, v in value.items()}
     if isinstance(value, (list, tuple, np.ndarray)):
         return [_json_safe(v, f"{where}[{i}]", bad) for i, v in enumerate(value)]
     if isinstance(value, np.generic):
@@ -418,7 +428,8 @@ def _run(args: argparse.Namespace) -> int:
     except _USER_FAILURES as e:
         if args.debug:
             traceback.print_exc()
-        print(f"flexbearing: error: {_one_line(e)}", file=sys.stderr)
+        stopped = "the simulation stopped: " if isinstance(e, SimulationError) else ""
+        print(f"flexbearing: error: {stopped}{_one_line(e)}", file=sys.stderr)
         return 2
     except OSError as e:
         if args.debug:

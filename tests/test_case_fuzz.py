@@ -13,6 +13,7 @@ the ``--quick`` or ``--set`` option that carried it).
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 import random
 import re
@@ -231,3 +232,34 @@ def test_non_finite_numbers_are_refused_naming_the_key(rhs):
     # before the fix, NaN and ±inf passed every `x > 0` style check (comparisons with NaN are false)
     with pytest.raises(CaseError, match=r"^undulation\.profile_deg_mm\[1\]\[1\]: expected a finite number"):
         resolve_case("slewing-undulation", overrides=[f"undulation.profile_deg_mm=[[0, 0], [90, {rhs}], [180, 0], [270, 0]]"])
+
+
+HERTZ = {
+    "ball": ["--ball-diameter-mm", "--conformity", "--pitch-diameter-mm", "--contact-angle-deg", "--load-N", "--E-GPa",
+             "--nu"],
+    "spheres": ["--diameter-1-mm", "--diameter-2-mm", "--load-N", "--E-GPa", "--nu"],
+    "line": ["--roller-diameter-mm", "--raceway-diameter-mm", "--length-mm", "--load-N", "--E-GPa", "--nu"],
+}
+GOOD = {"--ball-diameter-mm": 95.25, "--conformity": 0.525, "--pitch-diameter-mm": 6690, "--contact-angle-deg": 60,
+        "--load-N": 5e4, "--E-GPa": 207, "--nu": 0.29, "--diameter-1-mm": 95.25, "--diameter-2-mm": 85.25,
+        "--roller-diameter-mm": 55, "--raceway-diameter-mm": 1908, "--length-mm": 55}
+
+
+def test_fuzz_hertz_numbers(capsys):
+    """``flexbearing hertz`` with one or two numbers replaced by NaN, ±inf, huge, tiny, negative or
+    zero values: exit status 0 with strict JSON, or 2 with one line naming an option."""
+    rng = random.Random(SEED + 3)
+    for _ in range(300):
+        geometry = rng.choice(sorted(HERTZ))
+        values = {k: GOOD[k] for k in HERTZ[geometry]}
+        for k in rng.sample(HERTZ[geometry], rng.randint(1, 2)):
+            values[k] = rng.choice(NUMBERS)
+        argv = ["hertz", geometry, *(f"{k}={v!r}" for k, v in values.items()), "--json"]
+        status = main(argv)
+        out, err = capsys.readouterr()
+        assert status in (0, 2) and "Traceback" not in err, (argv, err)
+        if status == 0:
+            json.loads(out, parse_constant=lambda c: pytest.fail(f"{argv}: non-standard JSON constant {c}"))
+        else:
+            assert err.startswith("flexbearing: error: ") and err.count("\n") == 1, (argv, err)
+            assert any(k in err for k in HERTZ[geometry]) or "roller" in err, (argv, err)

@@ -14,6 +14,7 @@ import subprocess
 import sys
 import time
 
+import numpy as np
 import pytest
 
 import cases.cli
@@ -118,17 +119,19 @@ def test_infinite_conformity_is_refused(capsys):
     assert "--conformity" in one_line_error(capsys, argv)
 
 
-def test_json_is_strict_and_an_overflow_is_null_with_a_warning(capsys):
-    # Q = 1e300 N: δ = (Q/K)^(2/3) overflows (Q² in the cube root); the other values stay finite.
-    # Reference: the Hertz scaling a ∝ Q^(1/3) against the same contact at 1 N (rel 1e-12).
-    assert main([*BALL, "--load-N", "1e300", "--json"]) == 0
+def test_a_load_beyond_the_range_of_the_formulas_is_refused(capsys):
+    # before: exit 0 and `"approach_m": Infinity` on stdout (invalid JSON); δ = (Q/K)^(2/3) overflows
+    err = one_line_error(capsys, [*BALL, "--load-N", "1e300", "--json"])
+    assert "--load-N must lie in [1e-30, 1e+30], got 1e+300" in err
+    assert capsys.readouterr().out == ""
+
+
+def test_json_output_is_strict_with_non_finite_values_as_null(capsys):
+    cases.cli._print_json({"a": math.inf, "b": [1.0, math.nan], "c": np.array([1, 2]), "d": np.float64(2.5), 3: "x"})
     out, err = capsys.readouterr()
-    d = json.loads(out, parse_constant=lambda c: pytest.fail(f"non-standard JSON constant {c}"))
-    assert d["approach_m"] is None
-    assert "approach_m" in err and "null" in err
-    assert main([*BALL, "--load-N", "1", "--json"]) == 0
-    d1 = json.loads(capsys.readouterr().out)
-    assert d["semi_major_axis_a_m"] == pytest.approx(d1["semi_major_axis_a_m"] * 1e100, rel=1e-12)
+    assert json.loads(out, parse_constant=lambda c: pytest.fail(f"non-standard JSON constant {c}")) == \
+        {"a": None, "b": [1.0, None], "c": [1, 2], "d": 2.5, "3": "x"}
+    assert err == "flexbearing: warning: not finite, written as null: a, b[1]\n"
 
 
 # -- modes: model size before meshing -------------------------------------------------------------
