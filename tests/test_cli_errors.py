@@ -6,6 +6,7 @@ Exit status 2 with one line naming the cause and the option or key for anything 
 
 from __future__ import annotations
 
+import argparse
 import errno
 import json
 import math
@@ -13,6 +14,7 @@ import re
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -241,3 +243,26 @@ def test_infinite_and_nan_set_values_are_refused():
         with pytest.raises(CaseError, match="^geometry.conformity: expected a finite number"):
             resolve_case("slewing-static", overrides=[f"geometry.conformity={rhs}"])
     assert math.isfinite(resolve_case("slewing-static", overrides=["geometry.conformity=0.53"]).geometry.conformity)
+
+
+def test_no_static_equilibrium_raises_its_own_class():
+    # a load lifting the top race off its balls: contacts only push, so no equilibrium exists
+    # (the residual stays at the whole load). A RuntimeError before; now a class the CLI reports.
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_multibody import G, SLEWING_ROW, slewing_model
+
+    from mbd_core.multibody.statics import static_equilibrium
+    from mbd_core.quasistatic import RingLoad
+
+    model, state, _ = slewing_model(SLEWING_ROW, RingLoad(Fz_N=+68.9e3 * G))
+    with pytest.raises(StaticEquilibriumError, match="static equilibrium not found.*can the bearing carry the load"):
+        static_equilibrium(model, state, max_evaluations=20)
+    assert issubclass(StaticEquilibriumError, RuntimeError)  # callers catching RuntimeError still do
+
+
+def test_an_os_error_in_the_cache_names_the_setting(monkeypatch, tmp_path):
+    cache = tmp_path / "cache-is-a-file"
+    monkeypatch.setenv("FLEXBEARING_CACHE", str(cache))
+    exc = NotADirectoryError(errno.ENOTDIR, "Not a directory", str(cache / "fe-model"))
+    text = cases.cli._os_error_text(exc, argparse.Namespace(out=None))
+    assert text == f"cannot write {cache / 'fe-model'}: Not a directory (the cache folder, $FLEXBEARING_CACHE)"
