@@ -8,7 +8,7 @@ about ``A/h²`` quadrilaterals and at least two edges per boundary segment, and 
 edges has ``4Q + N_b + 1`` quadratic (9-node) nodes (Euler's formula ``V − E + F = 1`` with
 ``4Q = 2E − N_b``), and each layer of 27-node hexahedra adds two node layers. Measured against
 meshes of the built-in parts at their default and twice their default element size, the estimate
-lies between 0.16 and 0.85 of the true count (hex27 and tet10): a lower estimate, so that a mesh
+lies between 0.19 and 0.76 of the true count (hex27 and tet10): a lower estimate, so that a mesh
 is never refused for a size it does not reach.
 """
 
