@@ -20,7 +20,8 @@ from functools import lru_cache
 
 from fem_rings.profile import Arc, Profile
 
-__all__ = ["BYTES_PER_DOF", "cached_profile", "estimate_dofs", "estimate_memory_bytes", "machine_memory_bytes", "check_model_size"]
+__all__ = ["BYTES_PER_DOF", "cached_profile", "estimate_dofs", "estimate_memory_bytes", "machine_memory_bytes",
+           "check_model_size"]
 
 #: peak memory per degree of freedom of meshing, assembly, factorisation and the eigen solve,
 #: measured with ``flexbearing modes slewing-bottom-race-1m --modes 16 --no-cache`` at 60, 40 and

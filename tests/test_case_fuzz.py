@@ -70,7 +70,8 @@ def _value(rng: random.Random, depth: int = 0):
     if kind < 0.88 and depth < 3:
         return [_value(rng, depth + 1) for _ in range(rng.randint(0, 5))]
     if depth < 3:
-        return {rng.choice(["a", "kind", "n_modes", "x y", "scale"]): _value(rng, depth + 1) for _ in range(rng.randint(0, 3))}
+        keys = ["a", "kind", "n_modes", "x y", "scale"]
+        return {rng.choice(keys): _value(rng, depth + 1) for _ in range(rng.randint(0, 3))}
     return rng.choice(NUMBERS)
 
 
@@ -231,7 +232,8 @@ def test_fuzz_command_line(tmp_path, monkeypatch, capsys):
 def test_non_finite_numbers_are_refused_naming_the_key(rhs):
     # before the fix, NaN and ±inf passed every `x > 0` style check (comparisons with NaN are false)
     with pytest.raises(CaseError, match=r"^undulation\.profile_deg_mm\[1\]\[1\]: expected a finite number"):
-        resolve_case("slewing-undulation", overrides=[f"undulation.profile_deg_mm=[[0, 0], [90, {rhs}], [180, 0], [270, 0]]"])
+        resolve_case("slewing-undulation",
+                     overrides=[f"undulation.profile_deg_mm=[[0, 0], [90, {rhs}], [180, 0], [270, 0]]"])
 
 
 HERTZ = {
