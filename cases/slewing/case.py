@@ -322,17 +322,21 @@ class SlewingCase:
         self._check_model_sizes()
 
     def _check_model_sizes(self) -> None:
-        """Each modal race can give its modes and fits in memory (before anything is meshed)."""
+        """Each modal race can give its modes, fits in memory and has raceway load shapes its
+        samples resolve (before anything is meshed)."""
         from fem_rings.sections import slewing_bottom_race, slewing_top_race, slewing_top_structure
 
         from ..mesh_budget import cached_profile, check_model_size
-        from .scene import DEFAULT_ELEMENT_SIZE_M
+        from .scene import DEFAULT_ELEMENT_SIZE_M, N_THETA
 
         g = self.geometry
         top_modal = self.top.kind == "modal" or self.study.kind in _STUDIES_WITH_MODAL_TOP
         make_top = slewing_top_structure if self.top.include_tmr else slewing_top_race
         for key, fidelity, modal, make in (("top", self.top, top_modal, make_top),
                                            ("bottom", self.bottom, self.bottom.kind == "modal", slewing_bottom_race)):
+            if modal and fidelity.groove_harmonics >= N_THETA // 2:
+                raise ValueError(f"{key}.groove_harmonics must be below {N_THETA // 2}: the {N_THETA} raceway "
+                                 f"samples round the ring resolve no higher harmonic; got {fidelity.groove_harmonics}")
             if modal:
                 size = fidelity.element_size_m or DEFAULT_ELEMENT_SIZE_M[g.variant]
                 check_model_size(cached_profile(make, g.pitch_diameter_m, g.section()), size, fidelity.n_modes,
