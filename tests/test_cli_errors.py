@@ -61,6 +61,17 @@ def test_a_run_that_fails_numerically_is_one_line_exit_2(exc, words, monkeypatch
     assert err.startswith("flexbearing: error: ") and words in err
 
 
+def test_a_run_with_friction_it_cannot_integrate_ends_in_one_line(capsys, tmp_path):
+    # the reproduction: μ = 1 makes a thrust roller push through its cage pocket within 0.03 s
+    argv = ["run", "wind-speeds", "--quick", "--set", "contact.mu_static=1", "--set", "contact.mu_dynamic=1",
+            "--out", str(tmp_path / "r")]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    last = err.replace("\r", "\n").strip().splitlines()[-1]
+    assert last.startswith("flexbearing: error: the simulation stopped: ") and "Traceback" not in err
+    assert not (tmp_path / "r").exists()
+
+
 def test_disk_full_names_the_path_and_the_option(monkeypatch, capsys, tmp_path):
     out = tmp_path / "r"
     monkeypatch.setattr(cases.run, "run_case", _raising(OSError(errno.ENOSPC, "No space left on device",
