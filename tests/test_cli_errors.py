@@ -233,11 +233,14 @@ def test_models_too_large_are_refused_when_the_case_is_read(overrides, start):
         resolve_case(name, True, overrides)
 
 
-def test_a_groove_the_ball_cannot_touch_is_a_geometry_error():
-    # a conformity so loose that the contact point leaves the groove: the race profiles refuse it,
-    # which used to happen only when the run built them
-    with pytest.raises(CaseError, match="^geometry: groove"):
-        resolve_case("slewing-static", overrides=["geometry.conformity=5"])
+@pytest.mark.parametrize("override, start", [
+    ("geometry.conformity=5", "geometry: groove"),          # the contact point leaves the groove
+    ("geometry.tmr_height_m=1e-9", "geometry: profile 'TMR'"),  # a TMR of no thickness
+])
+def test_sections_the_geometry_cannot_make_are_geometry_errors(override, start):
+    # the sections refuse these, which used to happen only when the run built them
+    with pytest.raises(CaseError, match=f"^{re.escape(start)}"):
+        resolve_case("slewing-static", overrides=[override])
 
 
 @pytest.mark.parametrize("overrides, start", [

@@ -90,7 +90,7 @@ class Geometry:
             raise ValueError(f"spacer_diameter_m ({self.spacer_diameter_m}) must be below ball_diameter_m "
                              f"({self.ball_diameter_m}): spacer balls touch the bottom race only")
         self.section()  # the section checks its own sizes (groove depth, widths)
-        self._races()  # and the races their grooves (the contact point inside the groove)
+        self._races()  # and the sections made from it theirs
         pitch, n, spacer, _ = VARIANTS[self.variant]
         pair = self.ball_diameter_m + (spacer if self.spacer_diameter_m is None else self.spacer_diameter_m)
         if n * pair > math.pi * pitch:
@@ -98,11 +98,13 @@ class Geometry:
                              f"{pitch} m pitch circle")
 
     def _races(self) -> None:
-        from fem_rings.sections import slewing_bottom_race, slewing_top_race
+        """Build every section of the variant: each checks its own shape (a groove the ball can
+        touch, a TMR of non-zero thickness on the top race)."""
+        from fem_rings.sections import slewing_bottom_race, slewing_tmr, slewing_top_race, slewing_top_structure
 
         from ..mesh_budget import cached_profile
 
-        for make in (slewing_bottom_race, slewing_top_race):
+        for make in (slewing_bottom_race, slewing_top_race, slewing_tmr, slewing_top_structure):
             cached_profile(make, self.pitch_diameter_m, self.section())
 
     def section(self) -> SlewingSection:
