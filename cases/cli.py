@@ -390,7 +390,7 @@ def _one_line(exc: BaseException) -> str:
 def _os_error_text(exc: OSError, args: argparse.Namespace) -> str:
     """``cannot write PATH: reason``, naming the option or setting the path came from."""
     path = exc.filename if exc.filename is not None else ""
-    verb = "cannot read" if isinstance(exc, FileNotFoundError) else "cannot write"
+    verb = "cannot read" if isinstance(exc, (FileNotFoundError, IsADirectoryError)) else "cannot write"
     text = f"{verb} {path}: {exc.strerror or exc}" if path else f"{verb}: {exc.strerror or exc}"
     out = getattr(args, "out", None)
     cache = os.environ.get("FLEXBEARING_CACHE")

@@ -78,7 +78,11 @@ def resolve_case(name_or_path: str, quick_run: bool = False, overrides=()):
             case = _FAMILIES[type(case)][0].quick(case)
         except ValueError as exc:  # a dataclass's own check, without the table's name
             raise CaseError(f"--quick: {exc}") from None
-    return with_overrides(case, list(overrides)) if overrides else case
+    case = with_overrides(case, list(overrides)) if overrides else case
+    for key, file in getattr(case, "input_files", dict)().items():
+        if not Path(file).is_file():
+            raise CaseError(f"{key}: no such file: {file!r}")
+    return case
 
 
 def _peak_rss_mb() -> float:

@@ -253,6 +253,14 @@ def test_set_values_that_used_to_crash_or_pass_silently(overrides, start):
         resolve_case("wind-speeds" if "loads" in overrides[0] else "slewing-undulation", False, overrides)
 
 
+@pytest.mark.parametrize("csv", ["/nonexistent/loads.csv", "."])
+def test_a_missing_load_file_is_refused_naming_the_key(csv):
+    # before: the static study ran all 32 load cases, then "cannot read ...: No such file" (or
+    # "Is a directory") without the key
+    with pytest.raises(CaseError, match=f"^loads.csv_path: no such file: {re.escape(repr(csv))}$"):
+        resolve_case("wind-static", True, ["loads.source=csv", f"loads.csv_path={csv!r}"])
+
+
 def test_infinite_and_nan_set_values_are_refused():
     for rhs in ("inf", "-inf", "nan"):
         with pytest.raises(CaseError, match="^geometry.conformity: expected a finite number"):

@@ -244,6 +244,10 @@ class WindCase:
                 check_model_size(profile, b.cage_element_size_m, b.n_modes, "bodies.cage_element_size_m",
                                  "bodies.n_modes")
 
+    def input_files(self) -> dict[str, str]:
+        """The files the case reads, by key (checked when a run is resolved)."""
+        return {"loads.csv_path": self.loads.csv_path} if self.loads.source == "csv" else {}
+
     def with_(self, **tables) -> "WindCase":
         """A copy with some tables changed: ``case.with_(analysis={"speed_rpm": 20})``."""
         return replace(self, **{k: replace(getattr(self, k), **v) for k, v in tables.items()})
