@@ -26,8 +26,8 @@ from typing import Any, Literal, Union, get_args, get_origin, get_type_hints
 
 import tomli_w
 
-__all__ = ["CaseError", "FAMILY_KEY", "dumps_case", "from_mapping", "loads_case", "parse_toml", "read_case",
-           "read_toml", "to_mapping", "with_overrides", "write_case"]
+__all__ = ["CaseError", "FAMILY_KEY", "dumps_case", "from_mapping", "loads_case", "parse_toml", "qualified_message",
+           "read_case", "read_toml", "to_mapping", "with_overrides", "write_case"]
 
 _TYPE_NAMES = {int: "an integer", bool: "true or false", str: "a string"}
 _LARGEST_FLOAT = sys.float_info.max
@@ -113,6 +113,24 @@ def _post_init_message(where: str, message: str, names: Sequence[str]) -> str:
         return message
     first = re.match(r"(\w+)[ :]", message)
     return f"{where}.{message}" if first and first.group(1) in names else f"{where}: {message}"
+
+
+def _tables_with_field(cls: type, name: str, where: str = "") -> list[str]:
+    """Dotted paths of the tables in the dataclass tree of ``cls`` that have a field ``name``."""
+    out = [where] if name in _init_fields(cls) and where else []
+    for field_name, hint in _hints(cls).items():
+        hint = _strip_optional(hint)
+        if isinstance(hint, type) and dataclasses.is_dataclass(hint):
+            out += _tables_with_field(hint, name, _join(where, field_name))
+    return out
+
+
+def qualified_message(cls: type, message: str) -> str:
+    """A dataclass's own validation message with its table's path in front of the field it
+    starts with (``tmr_width_m … `` → ``geometry.tmr_width_m …``), where only one table has it."""
+    first = re.match(r"(\w+)[ :]", message)
+    tables = _tables_with_field(cls, first.group(1)) if first else []
+    return f"{tables[0]}.{message}" if len(tables) == 1 else message
 
 
 def from_mapping(cls: type, data: Mapping, where: str = "") -> Any:

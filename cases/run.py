@@ -13,7 +13,7 @@ import resource
 import time
 from pathlib import Path
 
-from .config import FAMILY_KEY, CaseError, dumps_case, from_mapping, read_toml, with_overrides
+from .config import FAMILY_KEY, CaseError, dumps_case, from_mapping, qualified_message, read_toml, with_overrides
 from .report import atomic_folder
 from .results import RunOutput
 from .slewing import presets as slewing_presets
@@ -77,7 +77,7 @@ def resolve_case(name_or_path: str, quick_run: bool = False, overrides=()):
         try:
             case = _FAMILIES[type(case)][0].quick(case)
         except ValueError as exc:  # a dataclass's own check, without the table's name
-            raise CaseError(f"--quick: {exc}") from None
+            raise CaseError(f"--quick: {qualified_message(type(case), str(exc))}") from None
     case = with_overrides(case, list(overrides)) if overrides else case
     for key, file in getattr(case, "input_files", dict)().items():
         if not Path(file).is_file():

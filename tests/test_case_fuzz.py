@@ -107,10 +107,12 @@ def _set(node: dict, path: list[str], value) -> None:
     node[path[-1]] = value
 
 
-def _mutated_mapping(rng: random.Random, cls: type, case) -> dict:
+def _mutated_mapping(rng: random.Random, cls: type, case, used: set[str]) -> dict:
+    """The case's table with keys set to random values, removed or made up (their parts go to ``used``)."""
     data = {FAMILY_KEY: cls.FAMILY, **to_mapping(case)} if rng.random() < 0.8 else to_mapping(case)
     for _ in range(rng.randint(1, 4)):
         key = [p for p in _key(rng, cls).split(".") if p] or ["name"]
+        used.update(key)
         r = rng.random()
         if r < 0.75:
             _set(data, key, _value(rng))
@@ -146,13 +148,22 @@ def _broken_file(rng: random.Random, text: str) -> bytes:
     return bytes(rng.randrange(256) for _ in range(rng.randint(1, 200)))
 
 
+#: what a message about the file as a whole (rather than one key) says after the file's name
+FILE_LEVEL = ("invalid TOML", "not UTF-8 text", "no case entries", "family: ")
+
+
 def _assert_names_a_key(message: str, source: str, used: set[str]) -> None:
     assert "\n" not in message and "Traceback" not in message, message
-    if source and message.startswith(source):
-        return
-    lead = re.split(r"[: ]", message, maxsplit=1)[0]
-    top = re.sub(r"\[\d+\]", "", lead).split(".")[0].strip("'")
-    assert lead and (top in TOP_LEVEL or top in used or lead in ("--quick", "--set")), message
+    if source and message.startswith(source + ": "):  # else an option applied after reading it
+        message = message[len(source) + 2:]
+        if message.startswith(FILE_LEVEL):
+            return
+    segment = r"(?:'[^']*'|\"[^\"]*\"|[\w\-\[\]]+)"  # a plain or a quoted key, with [i] indices
+    match = re.match(rf"{segment}(?:\.{segment})*", message)
+    lead = match.group(0) if match else ""
+    top = re.sub(r"\[\d+\]", "", re.match(segment, lead).group(0) if lead else "").strip("'\"")
+    named = top in TOP_LEVEL or top in used or lead in ("--quick", "--set")
+    assert (lead and named) or any(message.startswith(f"{u}: ") for u in used), message
 
 
 def _check(source: str, call, used: set[str]) -> bool:
@@ -172,15 +183,17 @@ def test_fuzz_case_files(tmp_path):
     for i in range(N_FILES):
         case = PRESETS[rng.choice(names)]
         cls = type(case)
-        text = tomli_w.dumps(_mutated_mapping(rng, cls, case)) if rng.random() < 0.8 else None
+        used: set[str] = set()
+        text = tomli_w.dumps(_mutated_mapping(rng, cls, case, used)) if rng.random() < 0.8 else None
         path = tmp_path / f"case{i}.toml"
         if text is None or rng.random() < 0.1:
             from cases.config import dumps_case
 
-            path.write_bytes(_broken_file(rng, text or dumps_case(case)))
+            raw = _broken_file(rng, text or dumps_case(case))
+            path.write_bytes(raw)
+            used = set(re.findall(r"[\w\-]+", raw.decode("utf-8", "replace")))  # keys it may hold
         else:
             path.write_text(text, encoding="utf-8")
-        used = {p for k in KEYS[cls] for p in k.split(".")}
         refused += _check(str(path), lambda: resolve_case(str(path), rng.random() < 0.3), used)
     assert refused > N_FILES // 2  # the generator mostly makes bad files
 
@@ -201,6 +214,7 @@ def test_fuzz_set_values():
                    rng.choice(["[[[", "{", "1 2", "'open", "]", "1\nx = 2", "=", "[" * 5000 + "]" * 5000, "-inf",
                                "nan", "+inf", "1e999", "0x10", "1_000", "true", "True", "2026-11-25"]))
             sets.append(f"{key}={rhs}" if rng.random() < 0.95 else key)
+            used.add(sets[-1])  # a --set without "=" is named as given
         refused += _check("", lambda: resolve_case(name, rng.random() < 0.3, sets), used)
     assert refused > N_SETS // 2
 

@@ -253,6 +253,15 @@ def test_set_values_that_used_to_crash_or_pass_silently(overrides, start):
         resolve_case("wind-speeds" if "loads" in overrides[0] else "slewing-undulation", False, overrides)
 
 
+def test_a_case_file_that_quick_makes_invalid_names_the_key(tmp_path):
+    # a TMR 1.5 m wide fits the 2 m ring's file but not the 1 m ring that --quick makes of it; the
+    # error used to be a bare ValueError from the dataclass, without the table
+    path = write(tmp_path, "family = 'slewing'\n[study]\nkind = 'static'\n[geometry]\ntmr_width_m = 1.5\n")
+    assert resolve_case(path).geometry.tmr_width_m == 1.5
+    with pytest.raises(CaseError, match=r"^--quick: geometry\.tmr_width_m \(1\.5\) must be below pitch_diameter_m \(1\.0\)"):
+        resolve_case(path, True)
+
+
 @pytest.mark.parametrize("csv", ["/nonexistent/loads.csv", "."])
 def test_a_missing_load_file_is_refused_naming_the_key(csv):
     # before: the static study ran all 32 load cases, then "cannot read ...: No such file" (or
