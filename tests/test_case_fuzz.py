@@ -191,7 +191,7 @@ def test_fuzz_case_files(tmp_path):
 
             raw = _broken_file(rng, text or dumps_case(case))
             path.write_bytes(raw)
-            used = set(re.findall(r"[\w\-]+", raw.decode("utf-8", "replace")))  # keys it may hold
+            used |= set(re.findall(r"[\w\-]+", raw.decode("utf-8", "replace")))  # keys it may hold
         else:
             path.write_text(text, encoding="utf-8")
         refused += _check(str(path), lambda: resolve_case(str(path), rng.random() < 0.3), used)
