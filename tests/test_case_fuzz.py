@@ -31,8 +31,8 @@ from cases.slewing.case import SlewingCase
 from cases.wind.case import WindCase
 
 SEED = 20261125
-N_FILES = 1500
-N_SETS = 1500
+N_FILES = 3000
+N_SETS = 3000
 N_CLI = 200
 
 
