@@ -1,8 +1,10 @@
 """The ``flexbearing`` command line.
 
 Inputs on the command line are in engineering units (mm, N, N·m, deg, GPa) and converted once
-to SI. ``--json`` prints machine-readable SI results instead of tables. User errors print one
-line on stderr and exit with status 2; there is no traceback for them.
+to SI. ``--json`` prints machine-readable SI results instead of tables (strict JSON: a value
+that is not finite is written as null, with a warning on stderr). Exit status: 0 done, 2 a failure
+the input caused (one line on stderr naming the cause and the option or key), 1 an internal error
+(one line and a hint; ``--debug`` shows the traceback), 130 interrupted.
 """
 
 from __future__ import annotations
@@ -11,8 +13,10 @@ import argparse
 import json
 import logging
 import math
+import os
 import re
 import sys
+import traceback
 from importlib.metadata import PackageNotFoundError, version
 
 import numpy as np
@@ -21,10 +25,13 @@ from mbd_core.contact import ball_on_groove, line_contact, sphere_on_sphere, sub
 from mbd_core.contact.limits import line_contact_warnings, point_contact_warnings
 from mbd_core.contact.line import iso16281_stiffness, palmgren_stiffness
 from mbd_core.materials import ElasticMaterial, effective_modulus_Pa
+from mbd_core.multibody import SimulationError
+from mbd_core.multibody.statics import StaticEquilibriumError
 from mbd_core.quasistatic import LoadDistributionError, RingLoad, solve_load_distribution
 
 from . import signals
 from .catalog import BUILTIN_BEARINGS, builtin_bearing
+from .outdir import check_output_target
 from .parts import RING_PARTS, ring_part
 from .report import format_table, load_distribution_table, write_load_distribution
 
@@ -35,19 +42,48 @@ class UserError(Exception):
     """Bad input from the command line."""
 
 
+#: failures that the input causes: their message names the cause (exit status 2)
+_USER_FAILURES = (UserError, ValueError, LoadDistributionError, SimulationError, StaticEquilibriumError)
+
+
 def _material(args, which: str = "") -> ElasticMaterial:
     E = getattr(args, f"E{which}_GPa")
     nu = getattr(args, f"nu{which}")
+    _require_positive(**{f"E{which}_GPa": E})
     try:
         return ElasticMaterial(f"material{which}", E * 1e9, nu)
     except ValueError as e:
         raise UserError(str(e).replace("E_Pa", f"--E{which}-GPa").replace("nu ", f"--nu{which} ")) from None
 
 
+def _option(dest: str) -> str:
+    """The command-line spelling of an argparse destination (``E_GPa`` → ``--E-GPa``)."""
+    return "--" + dest.replace("_", "-")
+
+
+#: (unit suffix, low, high): where the contact formulas stay finite in double precision, far
+#: beyond any bearing — lengths 1 nm … 1000 km, loads 1e-30 … 1e30 N, moduli 1 kPa … 1e6 GPa
+_RANGES = (("_mm", 1e-6, 1e9), ("_N", 1e-30, 1e30), ("_GPa", 1e-6, 1e6))
+
+
 def _require_positive(**values: float) -> None:
     for name, v in values.items():
         if not (math.isfinite(v) and v > 0.0):
-            raise UserError(f"--{name.replace('_', '-')} must be a positive number, got {v}")
+            raise UserError(f"{_option(name)} must be a positive number, got {v}")
+        for suffix, low, high in _RANGES:
+            if name.endswith(suffix) and not low <= v <= high:
+                raise UserError(f"{_option(name)} must lie in [{low:g}, {high:g}], got {v:g}")
+
+
+#: options where an infinite value means something (a flat raceway)
+_INFINITE_ALLOWED = {"raceway_diameter_mm"}
+
+
+def _require_finite(args: argparse.Namespace) -> None:
+    """Every number given on the command line is finite (nan and inf are valid floats to argparse)."""
+    for dest, v in vars(args).items():
+        if isinstance(v, float) and not math.isfinite(v) and not (dest in _INFINITE_ALLOWED and v == math.inf):
+            raise UserError(f"{_option(dest)} must be a finite number, got {v}")
 
 
 def _point_report(contact, Q_N: float, nu: float) -> dict:
@@ -140,6 +176,8 @@ def cmd_hertz_line(args) -> dict:
     _require_positive(roller_diameter_mm=args.roller_diameter_mm, length_mm=args.length_mm, load_N=args.load_N)
     if not args.raceway_diameter_mm > 0:
         raise UserError(f"--raceway-diameter-mm must be > 0 (inf for a flat raceway), got {args.raceway_diameter_mm}")
+    if args.raceway_diameter_mm != math.inf:
+        _require_positive(raceway_diameter_mm=args.raceway_diameter_mm)
     mat = _material(args)
     try:
         c = line_contact(args.roller_diameter_mm * 1e-3, args.raceway_diameter_mm * 1e-3, args.length_mm * 1e-3,
@@ -179,7 +217,17 @@ def cmd_hertz_line(args) -> dict:
     return d
 
 
+def _check_out(args) -> None:
+    """Refuse an unusable ``--out`` before any work (an empty name, a folder the project did not write)."""
+    if args.out is None:
+        return
+    if not args.out.strip():
+        raise UserError("--out must name a folder, got an empty string")
+    check_output_target(args.out)
+
+
 def cmd_loaddist(args) -> dict:
+    _check_out(args)
     case = builtin_bearing(args.bearing)
     given = {k: getattr(args, k) for k in ("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm")}
     if all(v is None for v in given.values()):
@@ -201,13 +249,14 @@ def cmd_loaddist(args) -> dict:
 def cmd_modes(args) -> dict:
     from .fem_report import modes_table, part_modes, write_modes
 
+    _check_out(args)
     part = ring_part(args.part)
     if args.size_mm is not None:
         _require_positive(size_mm=args.size_mm)
     if args.modes < 7:
         raise UserError(f"--modes must be at least 7 (six rigid-body modes + one elastic), got {args.modes}")
     model, modes, summary = part_modes(part, args.modes, None if args.size_mm is None else args.size_mm * 1e-3,
-                                       args.element, use_cache=not args.no_cache)
+                                       args.element, use_cache=not args.no_cache, keys=("--size-mm", "--modes"))
     if args.out:
         write_modes(model, modes, summary, args.out)
     if not args.json:
@@ -229,8 +278,9 @@ def cmd_run(args) -> dict:
     if args.list or args.case is None:
         print(format_table([(n, d) for n, d in CASES.items()], ("case", "what it runs")))
         return {}
+    _check_out(args)
     case = resolve_case(args.case, args.quick, args.set)
-    out_dir = args.out or f"results/{case.name}"
+    out_dir = args.out if args.out is not None else f"results/{case.name}"
     print(f"{case.name}: {case.description}" if case.description else case.name)
     out = run_case(case, out_dir, progress=_progress, resume=args.resume)
     for line in out.report:
@@ -254,6 +304,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="flexbearing", description="Dynamics and load distribution of large rolling bearings.")
     parser.add_argument("--version", action="version", version=f"flexbearing {ver}")
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
+    parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
     sub = parser.add_subparsers(dest="command", required=True)
 
     h = sub.add_parser("hertz", help="Hertz contact: dimensions, pressure, approach, subsurface shear")
@@ -320,7 +371,7 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-_NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+_NEGATIVE_NUMBER = re.compile(r"^-((\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|inf|infinity|nan)$", re.IGNORECASE)
 
 
 def _attach_negative_values(argv: list[str]) -> list[str]:
@@ -338,19 +389,99 @@ def _attach_negative_values(argv: list[str]) -> list[str]:
     return out
 
 
+def _json_safe(value, where: str, bad: list[str]):
+    """``value`` with arrays as lists and non-finite floats as None (their paths go to ``bad``)."""
+    if isinstance(value, dict):
+        return {str(k): _json_safe(v, f"{where}.{k}" if where else str(k), bad) for k, v in value.items()}
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [_json_safe(v, f"{where}[{i}]", bad) for i, v in enumerate(value)]
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        bad.append(where)
+        return None
+    return value if value is None or isinstance(value, (str, int, float)) else str(value)
+
+
+def _print_json(result: dict) -> None:
+    bad: list[str] = []
+    text = json.dumps(_json_safe(result, "", bad), indent=1, allow_nan=False)
+    if bad:
+        print(f"flexbearing: warning: not finite, written as null: {', '.join(bad[:5])}"
+              f"{f' and {len(bad) - 5} more' if len(bad) > 5 else ''}", file=sys.stderr)
+    print(text)
+
+
+def _one_line(exc: BaseException) -> str:
+    lines = [line.strip() for line in str(exc).splitlines() if line.strip()]
+    return "; ".join(lines) or type(exc).__name__
+
+
+def _os_error_text(exc: OSError, args: argparse.Namespace) -> str:
+    """``cannot write PATH: reason``, naming the option or setting the path came from."""
+    path = exc.filename if exc.filename is not None else ""
+    verb = "cannot read" if isinstance(exc, (FileNotFoundError, IsADirectoryError)) else "cannot write"
+    text = f"{verb} {path}: {exc.strerror or exc}" if path else f"{verb}: {exc.strerror or exc}"
+    out = getattr(args, "out", None)
+    cache = os.environ.get("FLEXBEARING_CACHE")
+    if out and str(path).startswith(str(out).rstrip("/")):
+        text += " (--out)"
+    elif cache and str(path).startswith(cache.rstrip("/")):
+        text += " (the cache folder, $FLEXBEARING_CACHE)"
+    return text
+
+
+def _stdout_gone() -> None:
+    """After a broken pipe (``flexbearing … | head``): send what is left to devnull, quietly."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):  # stdout without a file descriptor (captured)
+        pass
+
+
+def _run(args: argparse.Namespace) -> int:
+    """Run the chosen command; the exit status by what ended it (module docstring)."""
+    try:
+        _require_finite(args)
+        result = args.func(args)
+        if args.json:
+            _print_json(result)
+        sys.stdout.flush()
+        return 0
+    except signals.Terminated:
+        raise                         # ends by its own signal (cases.signals), after the cleanups ran
+    except KeyboardInterrupt:
+        print("flexbearing: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        _stdout_gone()
+        return 1
+    except _USER_FAILURES as e:
+        if args.debug:
+            traceback.print_exc()
+        stopped = "the simulation stopped: " if isinstance(e, SimulationError) else ""
+        print(f"flexbearing: error: {stopped}{_one_line(e)}", file=sys.stderr)
+        return 2
+    except OSError as e:
+        if args.debug:
+            traceback.print_exc()
+        print(f"flexbearing: error: {_one_line(_os_error_text(e, args))}", file=sys.stderr)
+        return 2
+    except Exception as e:  # noqa: BLE001 — an internal error: one line and the way to more
+        if args.debug:
+            traceback.print_exc()
+        print(f"flexbearing: internal error: {type(e).__name__}: {_one_line(e)} "
+              f"(run again with --debug for the traceback, and please report it)", file=sys.stderr)
+        return 1
+
+
 def main(argv: list[str] | None = None) -> int:
     signals.install()
     parser = build_parser()
     args = parser.parse_args(_attach_negative_values(sys.argv[1:] if argv is None else list(argv)))
     logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING, format="%(message)s")
-    try:
-        result = args.func(args)
-    except (UserError, ValueError, LoadDistributionError) as e:
-        print(f"flexbearing: error: {e}", file=sys.stderr)
-        return 2
-    if args.json:
-        print(json.dumps(result, indent=1, default=lambda o: o.tolist() if isinstance(o, np.ndarray) else str(o)))
-    return 0
+    return _run(args)
 
 
 if __name__ == "__main__":

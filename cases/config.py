@@ -4,6 +4,9 @@ The machinery knows no schema: it follows the dataclass fields and their type hi
 hints are ``float`` (an integer is accepted), ``int``, ``bool``, ``str``, ``Literal[...]``,
 ``X | None``, nested dataclasses, ``tuple[X, ...]`` and fixed ``tuple[X, Y]``. TOML has no null,
 so a field whose value is None is left out when writing and takes its default when reading.
+Numbers must be finite (TOML's ``nan`` and ``inf`` are refused, naming the key). A case class
+with a ``FAMILY`` class attribute is written with a top-level ``family = "..."`` key, which
+reading checks.
 Validation of values stays in the dataclasses' own ``__post_init__``; its ValueError/TypeError is
 re-raised as :class:`CaseError` carrying the dotted path of the table.
 """
@@ -11,7 +14,10 @@ re-raised as :class:`CaseError` carrying the dotted path of the table.
 from __future__ import annotations
 
 import dataclasses
+import functools
+import math
 import re
+import sys
 import tomllib
 import types
 from collections.abc import Mapping, Sequence
@@ -20,10 +26,13 @@ from typing import Any, Literal, Union, get_args, get_origin, get_type_hints
 
 import tomli_w
 
-__all__ = ["CaseError", "dumps_case", "from_mapping", "loads_case", "read_case", "to_mapping",
-           "with_overrides", "write_case"]
+__all__ = ["CaseError", "FAMILY_KEY", "dumps_case", "from_mapping", "loads_case", "parse_toml", "qualified_message",
+           "read_case", "read_toml", "to_mapping", "with_overrides", "write_case"]
 
 _TYPE_NAMES = {int: "an integer", bool: "true or false", str: "a string"}
+_LARGEST_FLOAT = sys.float_info.max
+#: the top-level key naming a case file's family (see ``FAMILY`` on the case classes)
+FAMILY_KEY = "family"
 
 
 class CaseError(ValueError):
@@ -31,12 +40,21 @@ class CaseError(ValueError):
 
 
 def _join(where: str, name: str) -> str:
+    if not re.fullmatch(r"[\w-]+", name):
+        name = repr(name)  # a quoted TOML key may hold dots, spaces or line breaks
     return f"{where}.{name}" if where else name
 
 
 def _show(value: Any) -> str:
-    """A value as it is spelled in TOML where that differs from Python (booleans)."""
-    return str(value).lower() if isinstance(value, bool) else repr(value)
+    """A value as it is spelled in TOML where that differs from Python (booleans), kept short."""
+    text = str(value).lower() if isinstance(value, bool) else repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+@functools.lru_cache(maxsize=256)
+def _hints(cls: type) -> dict[str, Any]:
+    """The resolved type hints of a dataclass (kept: resolving them is slow)."""
+    return get_type_hints(cls)
 
 
 def _init_fields(cls: type) -> dict[str, dataclasses.Field]:
@@ -74,6 +92,10 @@ def _coerce(hint: Any, value: Any, where: str) -> Any:
         return tuple(_coerce(h, v, f"{where}[{i}]") for i, (h, v) in enumerate(zip(args, value)))
     if hint is float:
         if isinstance(value, (int, float)) and not isinstance(value, bool):
+            if isinstance(value, int) and abs(value) > _LARGEST_FLOAT:
+                raise CaseError(f"{where}: expected a finite number, got {value:.3e}")
+            if not math.isfinite(value):
+                raise CaseError(f"{where}: expected a finite number, got {_show(value)}")
             return float(value)
         raise CaseError(f"{where}: expected a number, got {_show(value)}")
     if hint in _TYPE_NAMES:
@@ -91,6 +113,24 @@ def _post_init_message(where: str, message: str, names: Sequence[str]) -> str:
         return message
     first = re.match(r"(\w+)[ :]", message)
     return f"{where}.{message}" if first and first.group(1) in names else f"{where}: {message}"
+
+
+def _tables_with_field(cls: type, name: str, where: str = "") -> list[str]:
+    """Dotted paths of the tables in the dataclass tree of ``cls`` that have a field ``name``."""
+    out = [where] if name in _init_fields(cls) and where else []
+    for field_name, hint in _hints(cls).items():
+        hint = _strip_optional(hint)
+        if isinstance(hint, type) and dataclasses.is_dataclass(hint):
+            out += _tables_with_field(hint, name, _join(where, field_name))
+    return out
+
+
+def qualified_message(cls: type, message: str) -> str:
+    """A dataclass's own validation message with its table's path in front of the field it
+    starts with (``tmr_width_m … `` → ``geometry.tmr_width_m …``), where only one table has it."""
+    first = re.match(r"(\w+)[ :]", message)
+    tables = _tables_with_field(cls, first.group(1)) if first else []
+    return f"{tables[0]}.{message}" if len(tables) == 1 else message
 
 
 def from_mapping(cls: type, data: Mapping, where: str = "") -> Any:
@@ -117,7 +157,9 @@ def from_mapping(cls: type, data: Mapping, where: str = "") -> Any:
     """
     if not isinstance(data, Mapping):
         raise CaseError(f"{where or '<case>'}: expected a table, got {_show(data)}")
-    hints = get_type_hints(cls)
+    if not where and hasattr(cls, "FAMILY"):
+        data = _without_family(cls, data)
+    hints = _hints(cls)
     fields = _init_fields(cls)
     unknown = sorted(set(data) - set(fields))
     if unknown:
@@ -134,6 +176,15 @@ def from_mapping(cls: type, data: Mapping, where: str = "") -> Any:
         raise
     except (ValueError, TypeError) as exc:
         raise CaseError(_post_init_message(where, str(exc), list(fields))) from exc
+
+
+def _without_family(cls: type, data: Mapping) -> dict:
+    """``data`` less its ``family`` key, which must name the family of ``cls`` when given."""
+    data = dict(data)
+    family = data.pop(FAMILY_KEY, cls.FAMILY)
+    if family != cls.FAMILY:
+        raise CaseError(f"{FAMILY_KEY}: this reads a {cls.FAMILY!r} case, the file says {_show(family)}")
+    return data
 
 
 def _plain(value: Any) -> Any:
@@ -153,23 +204,48 @@ def to_mapping(obj: Any) -> dict:
     }
 
 
-def loads_case(cls: type, text: str, source: str = "<string>") -> Any:
-    """Build ``cls`` from TOML text; ``source`` names the text in a syntax error."""
+def parse_toml(text: str, source: str = "<string>") -> dict:
+    """The table of TOML text; CaseError naming ``source`` for bad syntax, excessive nesting or no keys."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise CaseError(f"{source}: invalid TOML: {exc}") from exc
-    return from_mapping(cls, data)
+    except RecursionError:
+        raise CaseError(f"{source}: invalid TOML: nested too deeply") from None
+    if not data:
+        raise CaseError(f"{source}: no case entries (the file is empty or holds only comments)")
+    return data
+
+
+def read_toml(path: str | Path) -> dict:
+    """The table of a TOML file; CaseError naming the file when it cannot be read or parsed."""
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise CaseError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise CaseError(f"{path}: not UTF-8 text (byte {exc.start}: {exc.reason})") from None
+    return parse_toml(text, str(path))
+
+
+def loads_case(cls: type, text: str, source: str = "<string>") -> Any:
+    """Build ``cls`` from TOML text; ``source`` names the text in a syntax error."""
+    return from_mapping(cls, parse_toml(text, source))
 
 
 def read_case(cls: type, path: str | Path) -> Any:
     """Build ``cls`` from a TOML file; a syntax error names the file and the line."""
-    return loads_case(cls, Path(path).read_text(encoding="utf-8"), source=str(path))
+    return from_mapping(cls, read_toml(path))
 
 
 def dumps_case(obj: Any) -> str:
-    """TOML text of a case: top-level scalars first, then tables; reads back equal."""
-    return tomli_w.dumps(to_mapping(obj))
+    """TOML text of a case: ``family`` (when the class has one), top-level scalars, then tables;
+    reads back equal."""
+    family = {FAMILY_KEY: type(obj).FAMILY} if hasattr(type(obj), "FAMILY") else {}
+    return tomli_w.dumps({**family, **to_mapping(obj)})
 
 
 def write_case(obj: Any, path: str | Path) -> None:
@@ -177,24 +253,29 @@ def write_case(obj: Any, path: str | Path) -> None:
     Path(path).write_text(dumps_case(obj), encoding="utf-8")
 
 
-def _parse_value(text: str) -> Any:
+def _parse_value(text: str, where: str) -> Any:
     """A TOML value, or the raw text when it is not one (``dynamic_explicit``)."""
     try:
-        return tomllib.loads("v = " + text)["v"]
+        data = tomllib.loads("v = " + text)
     except tomllib.TOMLDecodeError:
         return text
+    except RecursionError:
+        raise CaseError(f"{where}: value nested too deeply") from None
+    if len(data) != 1:  # "1\nx = 2" would set a second key
+        raise CaseError(f"{where}: expected one value, got {_show(text)}")
+    return data["v"]
 
 
 def _check_path(cls: type, parts: Sequence[str]) -> None:
     """Raise CaseError unless ``parts`` names a field in the dataclass tree of ``cls``."""
     for i, name in enumerate(parts):
-        where = ".".join(parts[: i + 1])
+        where = ".".join(_join("", p) for p in parts[: i + 1])
         if not (isinstance(cls, type) and dataclasses.is_dataclass(cls)):
-            raise CaseError(f"{'.'.join(parts[:i])}: not a table, cannot set {where}")
+            raise CaseError(f"{'.'.join(_join('', p) for p in parts[:i])}: not a table, cannot set {where}")
         fields = _init_fields(cls)
         if name not in fields:
             raise CaseError(f"{where}: unknown key (known: {', '.join(sorted(fields))})")
-        cls = _strip_optional(get_type_hints(cls)[name])
+        cls = _strip_optional(_hints(cls)[name])
 
 
 def with_overrides(obj: Any, assignments: Sequence[str]) -> Any:
@@ -216,12 +297,18 @@ def with_overrides(obj: Any, assignments: Sequence[str]) -> Any:
     data = to_mapping(obj)
     for item in assignments:
         key, sep, rhs = item.partition("=")
+        plain = item.strip() and item.isprintable() and len(item) <= 60
         if not sep:
-            raise CaseError(f"{item}: expected key=value")
+            raise CaseError(f"{item if plain else '--set ' + _show(item)}: expected key=value")
+        if not key.strip():
+            raise CaseError(f"--set {_show(item)}: no key before '='")
         parts = [p.strip() for p in key.strip().split(".")]
         _check_path(type(obj), parts)
         node = data
-        for name in parts[:-1]:
+        for i, name in enumerate(parts[:-1]):
             node = node.setdefault(name, {})  # a None-valued table is absent from the mapping
-        node[parts[-1]] = _parse_value(rhs.strip())
+            if not isinstance(node, dict):  # an earlier assignment put a value in place of the table
+                where = ".".join(_join("", p) for p in parts[: i + 1])
+                raise CaseError(f"{where}: expected a table, got {_show(node)}")
+        node[parts[-1]] = _parse_value(rhs.strip(), ".".join(parts))
     return from_mapping(type(obj), data)

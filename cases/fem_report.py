@@ -14,6 +14,7 @@ from fem_rings.output import displacement_magnitude, write_vtu
 from fem_rings.render import render_png
 from fem_rings.solve import Modes, classify_ring_mode
 
+from .mesh_budget import check_model_size
 from .parts import RingPart
 from .outdir import atomic_folder
 from .report import format_table
@@ -22,10 +23,16 @@ __all__ = ["part_modes", "modes_table", "write_modes"]
 
 
 def part_modes(part: RingPart, n_modes: int, size_m: float | None = None, element: str | None = None,
-               use_cache: bool = True) -> tuple[FEModel, Modes, dict]:
-    """Mesh, assemble and solve the lowest free–free modes of a part; returns (model, modes, summary)."""
+               use_cache: bool = True, keys: tuple[str, str] = ("size_m", "n_modes")) -> tuple[FEModel, Modes, dict]:
+    """Mesh, assemble and solve the lowest free–free modes of a part; returns (model, modes, summary).
+
+    The model's size is estimated first (:func:`cases.mesh_budget.check_model_size`): a ValueError
+    naming ``keys`` (element size, mode count) refuses a mesh that cannot give ``n_modes`` modes
+    or would not fit in memory."""
     profile, pockets = part.make()
     spec = MeshSpec(size_m or part.default_size_m, element or part.default_element)
+    size_text = f"{spec.size_m * 1e3:g}" if keys[0].endswith("-mm") else None
+    check_model_size(profile, spec.size_m, n_modes, *keys, size_text=size_text, n_rigid=0)
     model = build_model(profile, spec, part.material, pockets, use_cache=use_cache)
     modes = modal_analysis(model, n_modes)
     ex = np.zeros(model.n_dofs)

@@ -86,6 +86,29 @@ def test_refusal_comes_before_any_work(tmp_path, monkeypatch):
         check_output_target(out / "x.txt")
 
 
+@pytest.mark.parametrize("command", [["loaddist", "slewing-ring"], ["modes", "slewing-bottom-race-1m"],
+                                     ["run", "slewing-static", "--quick"]])
+def test_every_command_refuses_a_foreign_or_empty_out_before_its_work(tmp_path, monkeypatch, capsys, command):
+    """The solve, the modal analysis and the case resolution are never reached (they would raise)."""
+    from cases import fem_report
+    from cases import run as run_mod
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("work started before --out was checked")
+
+    monkeypatch.setattr(cli, "solve_load_distribution", no_work)
+    monkeypatch.setattr(fem_report, "part_modes", no_work)
+    monkeypatch.setattr(run_mod, "resolve_case", no_work)
+    out = tmp_path / "results"
+    out.mkdir()
+    (out / "x.txt").write_text("x")
+    for target, why in ((str(out), "output folder"), ("", "--out must name a folder")):
+        assert cli.main([*command, "--out", target]) == 2
+        err = capsys.readouterr().err.strip()
+        assert err.count("\n") == 0 and why in err
+    assert (out / "x.txt").read_text() == "x"
+
+
 def test_folders_are_created_with_the_umask(tmp_path):
     old = os.umask(0o027)
     try:

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from typing import Literal
+from typing import ClassVar, Literal
 
 from fem_rings.sections import SlewingSection
 from mbd_core.contact.friction import Coulomb
@@ -83,18 +83,29 @@ class Geometry:
         _positive("geometry", ball_diameter_m=self.ball_diameter_m, spacer_diameter_m=self.spacer_diameter_m)
         if not 0.0 < self.contact_angle_deg < 90.0:
             raise ValueError(f"contact_angle_deg must lie in (0, 90), got {self.contact_angle_deg}")
-        if not self.conformity > 0.5:
+        if not (math.isfinite(self.conformity) and self.conformity > 0.5):
             raise ValueError(f"conformity must be > 0.5 (the ball must be smaller than its groove), "
                              f"got {self.conformity}")
         if self.spacer_diameter_m is not None and not self.spacer_diameter_m < self.ball_diameter_m:
             raise ValueError(f"spacer_diameter_m ({self.spacer_diameter_m}) must be below ball_diameter_m "
                              f"({self.ball_diameter_m}): spacer balls touch the bottom race only")
         self.section()  # the section checks its own sizes (groove depth, widths)
+        self._races()  # and the sections made from it theirs
         pitch, n, spacer, _ = VARIANTS[self.variant]
         pair = self.ball_diameter_m + (spacer if self.spacer_diameter_m is None else self.spacer_diameter_m)
         if n * pair > math.pi * pitch:
             raise ValueError(f"spacer_diameter_m: {n} load and {n} spacer balls do not fit on the "
                              f"{pitch} m pitch circle")
+
+    def _races(self) -> None:
+        """Build every section of the variant: each checks its own shape (a groove the ball can
+        touch, a TMR of non-zero thickness on the top race)."""
+        from fem_rings.sections import slewing_bottom_race, slewing_tmr, slewing_top_race, slewing_top_structure
+
+        from ..mesh_budget import cached_profile
+
+        for make in (slewing_bottom_race, slewing_top_race, slewing_tmr, slewing_top_structure):
+            cached_profile(make, self.pitch_diameter_m, self.section())
 
     def section(self) -> SlewingSection:
         return SlewingSection(self.ball_diameter_m, self.conformity, self.contact_angle_deg, self.groove_depth_m,
@@ -134,6 +145,8 @@ class Undulation:
     def __post_init__(self) -> None:
         if not (math.isfinite(self.scale) and self.scale >= 0.0):
             raise ValueError(f"scale must be ≥ 0, got {self.scale}")
+        if not all(len(p) == 2 and all(math.isfinite(v) for v in p) for p in self.profile_deg_mm):
+            raise ValueError(f"profile_deg_mm must list finite (θ deg, h mm) pairs, got {list(self.profile_deg_mm)}")
         deg = [p[0] for p in self.profile_deg_mm]
         if len(deg) < 4 or deg[0] != 0.0 or any(b <= a for a, b in zip(deg, deg[1:])) or deg[-1] >= 360.0:
             raise ValueError("profile_deg_mm must list ≥ 4 points (θ deg, h mm) with θ rising from 0 to "
@@ -249,6 +262,8 @@ class Analysis:
 
 
 Kind = Literal["single", "static", "rotation", "undulation", "thermal", "combined", "life", "full-scale"]
+#: studies that make the top structure modal whatever ``top.kind`` says (:mod:`.studies`)
+_STUDIES_WITH_MODAL_TOP = ("static", "undulation", "combined", "life", "full-scale")
 
 
 @dataclass(frozen=True)
@@ -289,6 +304,8 @@ class Study:
 class SlewingCase:
     """A run of the slewing ring (module docstring)."""
 
+    FAMILY: ClassVar[str] = "slewing"  # the ``family`` key of its case files
+
     name: str = "slewing"
     description: str = ""
     geometry: Geometry = field(default_factory=Geometry)
@@ -304,6 +321,28 @@ class SlewingCase:
     def __post_init__(self) -> None:
         if not self.name or not all(c.isalnum() or c in "-_." for c in self.name):
             raise ValueError(f"name must be a non-empty word of letters, digits, '-', '_' or '.', got {self.name!r}")
+        self._check_model_sizes()
+
+    def _check_model_sizes(self) -> None:
+        """Each modal race can give its modes, fits in memory and has raceway load shapes its
+        samples resolve (before anything is meshed)."""
+        from fem_rings.sections import slewing_bottom_race, slewing_top_race, slewing_top_structure
+
+        from ..mesh_budget import cached_profile, check_model_size
+        from .scene import DEFAULT_ELEMENT_SIZE_M, N_THETA
+
+        g = self.geometry
+        top_modal = self.top.kind == "modal" or self.study.kind in _STUDIES_WITH_MODAL_TOP
+        make_top = slewing_top_structure if self.top.include_tmr else slewing_top_race
+        for key, fidelity, modal, make in (("top", self.top, top_modal, make_top),
+                                           ("bottom", self.bottom, self.bottom.kind == "modal", slewing_bottom_race)):
+            if modal and fidelity.groove_harmonics >= N_THETA // 2:
+                raise ValueError(f"{key}.groove_harmonics must be below {N_THETA // 2}: the {N_THETA} raceway "
+                                 f"samples round the ring resolve no higher harmonic; got {fidelity.groove_harmonics}")
+            if modal:
+                size = fidelity.element_size_m or DEFAULT_ELEMENT_SIZE_M[g.variant]
+                check_model_size(cached_profile(make, g.pitch_diameter_m, g.section()), size, fidelity.n_modes,
+                                 f"{key}.element_size_m", f"{key}.n_modes")
 
     @property
     def dead_load_t(self) -> float:

@@ -16,7 +16,7 @@ under the loads applied at its centre; the outer ring with the nose is fixed.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from typing import Literal
+from typing import ClassVar, Literal
 
 from mbd_core.contact.friction import Coulomb
 
@@ -212,6 +212,9 @@ class Study:
 
 @dataclass(frozen=True)
 class WindCase:
+    """A run of the wind main bearing (module docstring)."""
+
+    FAMILY: ClassVar[str] = "wind"  # the ``family`` key of its case files
     name: str = "wind"
     description: str = ""
     rollers: Rollers = field(default_factory=Rollers)
@@ -220,6 +223,30 @@ class WindCase:
     loads: Loads = field(default_factory=Loads)
     analysis: Analysis = field(default_factory=Analysis)
     study: Study = field(default_factory=Study)
+
+    def __post_init__(self) -> None:
+        self._check_model_sizes()
+
+    def _check_model_sizes(self) -> None:
+        """Each modal ring and cage can give its modes and fits in memory (before anything is meshed)."""
+        from fem_rings.cages import three_row_cages
+        from fem_rings.sections import three_row_inner_ring, three_row_outer_ring
+
+        from ..mesh_budget import cached_profile, check_model_size
+
+        b = self.bodies
+        if b.rings == "modal":
+            for profile in (cached_profile(three_row_inner_ring), cached_profile(three_row_outer_ring)):
+                check_model_size(profile, b.ring_element_size_m, b.n_modes, "bodies.ring_element_size_m",
+                                 "bodies.n_modes")
+        if b.cages == "modal":
+            for profile, _ in cached_profile(three_row_cages).values():
+                check_model_size(profile, b.cage_element_size_m, b.n_modes, "bodies.cage_element_size_m",
+                                 "bodies.n_modes")
+
+    def input_files(self) -> dict[str, str]:
+        """The files the case reads, by key (checked when a run is resolved)."""
+        return {"loads.csv_path": self.loads.csv_path} if self.loads.source == "csv" else {}
 
     def with_(self, **tables) -> "WindCase":
         """A copy with some tables changed: ``case.with_(analysis={"speed_rpm": 20})``."""

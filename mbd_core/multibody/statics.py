@@ -27,9 +27,13 @@ from ..kernels.forces import STATUS_OK, compute_forces
 from .explicit import DivergenceError, _failure_text
 from .model import Model, State, make_work
 
-__all__ = ["StaticResult", "static_equilibrium"]
+__all__ = ["StaticEquilibriumError", "StaticResult", "static_equilibrium"]
 
 log = logging.getLogger(__name__)
+
+
+class StaticEquilibriumError(RuntimeError):
+    """No static equilibrium was found; the message gives the residual and where it is largest."""
 
 
 @dataclass(frozen=True)
@@ -72,7 +76,8 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     carries the circumferential forces (a deformed or undulated raceway pushes balls along it).
 
     Raises :class:`~mbd_core.multibody.explicit.DivergenceError` if forces become non-finite and
-    ``RuntimeError`` if no equilibrium is found (the residual stays above 1e-4 of the load scale).
+    :class:`StaticEquilibriumError` (a ``RuntimeError``) if no equilibrium is found (the residual
+    stays above 1e-4 of the load scale).
     """
     # trial points of the solver may penetrate deeply: no divergence bound here
     a = model.arrays._replace(pair_delta_max=np.full(model.n_pairs, np.inf))
@@ -170,12 +175,12 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     m_res = float(np.abs(r[comp_idx >= 3]).max(initial=0.0)) * force_scale * length_scale
     q_res = float(np.abs(r_modal).max(initial=0.0)) * 1e-4
     if q_res > 1e-8:
-        raise RuntimeError(f"static equilibrium not found: the modal equations are off by {q_res:.3g} m of raceway "
+        raise StaticEquilibriumError(f"static equilibrium not found: the modal equations are off by {q_res:.3g} m of raceway "
                            f"displacement after {count[0]} evaluations")
     if max(f_res, m_res / length_scale) > 1e-4 * force_scale:
         worst = int(np.argmax(np.abs(r)))
         axes = ("radial", "", "axial") if body_idx[worst] in held else "xyz"
-        raise RuntimeError(
+        raise StaticEquilibriumError(
             f"static equilibrium not found: residual force {f_res:.3g} N, moment {m_res:.3g} N·m "
             f"(load scale {force_scale:.3g} N), largest on body {model.body_names[body_idx[worst]]!r} "
             f"(component {axes[comp_idx[worst] % 3]}{'' if comp_idx[worst] < 3 else ' rotation'}) after "
