@@ -22,10 +22,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 import skfem
-from scipy.sparse.linalg import eigsh
 from threadpoolctl import threadpool_limits
 
 from .linalg import factorize_spd, shift_invert_operator
+from .modal_basis import deflated_eigsh, m_orthonormal, mass_centre_m, rigid_body_fields, unheld_rigid_combinations
 from .model import FEModel, vector_dofs
 from .probe import vector_probe_matrix
 
@@ -47,6 +47,9 @@ __all__ = [
 ]
 
 log = logging.getLogger(__name__)
+
+#: an elastic eigenvalue below this fraction of max(K_ii/M_ii) is zero to round-off: a mechanism
+MECHANISM_RTOL = 1e-14
 
 
 @contextmanager
@@ -144,21 +147,6 @@ def static_solve(model: FEModel, force_N: np.ndarray, supports, backend: str = "
     return StaticResult(u.reshape(-1, 3), reaction, factor.backend)
 
 
-def rigid_body_fields(nodes_m: np.ndarray) -> np.ndarray:
-    """(3N, 6) translations x, y, z and small rotations about x, y, z (about the origin)."""
-    x = np.asarray(nodes_m)
-    n = len(x)
-    R = np.zeros((n, 3, 6))
-    for i in range(3):
-        R[:, i, i] = 1.0
-    # rotation about axis k: u = e_k × x
-    for k in range(3):
-        e = np.zeros(3)
-        e[k] = 1.0
-        R[:, :, 3 + k] = np.cross(e, x)
-    return R.reshape(3 * n, 6)
-
-
 @dataclass(frozen=True)
 class Modes:
     """Natural modes of a (free or supported) model.
@@ -170,9 +158,9 @@ class Modes:
     shapes : (3N, k) float64
         Mass-normalised mode shapes (φᵀ M φ = 1), zero at held DOFs.
     rigid : (k,) bool
-        Zero-energy modes (rigid-body motion or a mechanism the supports leave): ω² below
-        1e-10 of the model's stiffness-to-mass scale max(K_ii/M_ii), which lies some 12 decades
-        above rounding and 4 or more below the first elastic mode of a ring.
+        Rigid-body modes: the first ``n_rigid`` modes, an M-orthonormal basis of the rigid
+        motions the supports leave free (6 for a free body, 0 when held); the elastic modes
+        are computed M-orthogonal to them (:mod:`fem_rings.modal_basis`).
     backend : str
         Factorisation used.
     """
@@ -220,22 +208,40 @@ def modal_analysis(
     M = model.M[free][:, free].tocsc()
     sigma = -(2.0 * math.pi * (1.0 if shift_Hz is None else shift_Hz)) ** 2
     with solver_threads():
+        rigid_m = free_rigid_modes(model, fixed, free, M)
+        n_rigid = min(rigid_m.shape[1], int(n_modes))
+        rigid_m = rigid_m[:, :n_rigid]
+        lam_rigid = np.clip(np.einsum("ik,ik->k", rigid_m, K @ rigid_m), 0.0, None)
         op, factor = shift_invert_operator(K, M, sigma, backend=backend)
-        lam, vec = eigsh(K, k=int(n_modes), M=M, sigma=sigma, OPinv=op, which="LM")
-    order = np.argsort(lam)
-    lam, vec = lam[order], vec[:, order]
-    vec /= np.sqrt(np.einsum("ik,ik->k", vec, M @ vec))
+        if int(n_modes) > n_rigid:
+            lam, vec = deflated_eigsh(K, M, int(n_modes) - n_rigid, sigma, op, rigid_m)
+        else:
+            lam, vec = np.zeros(0), np.zeros((len(free), 0))
+    lam = np.concatenate((lam_rigid, lam))
     shapes = np.zeros((model.n_dofs, len(lam)))
-    shapes[free] = vec
+    shapes[free] = np.column_stack((rigid_m, vec))
     freq = np.sqrt(np.clip(lam, 0.0, None)) / (2.0 * math.pi)
+    rigid = np.arange(len(lam)) < n_rigid
+    if len(fixed) and n_rigid:
+        log.warning("model %s: the supports leave %d rigid-body motion(s) free", model.ring.profile.name, n_rigid)
     scale = float(np.max(K.diagonal() / M.diagonal()))
-    rigid = lam < 1e-10 * scale
-    if len(fixed) and rigid.any():
-        log.warning("model %s: %d zero-energy mode(s) despite supports: rigid motion left free or a mechanism",
-                    model.ring.profile.name, int(rigid.sum()))
-    log.info("modes of %s: %d zero-energy, first elastic %.4g Hz", model.ring.profile.name, int(rigid.sum()),
-             freq[~rigid][0] if (~rigid).any() else float("nan"))
+    if len(vec.T) and lam[n_rigid] < MECHANISM_RTOL * scale:
+        log.warning("model %s: elastic mode at %.3g Hz, a zero-energy mechanism (a loose part?)",
+                    model.ring.profile.name, freq[n_rigid])
+    log.info("modes of %s: %d rigid-body, first elastic %.4g Hz", model.ring.profile.name, n_rigid,
+             freq[n_rigid] if len(freq) > n_rigid else float("nan"))
     return Modes(freq, shapes, rigid, factor.backend)
+
+
+def free_rigid_modes(model: FEModel, fixed: np.ndarray, free: np.ndarray, M_free) -> np.ndarray:
+    """(n_free, r) M-orthonormal rigid motions that the held DOFs leave free, at the free DOFs.
+
+    The six rigid fields about the centre of mass are combined into those that vanish at every
+    held DOF (r = 6 for a free body, fewer under supports, 0 when clamped).
+    """
+    R = rigid_body_fields(model.nodes_m, mass_centre_m(model.M, model.nodes_m))
+    N = unheld_rigid_combinations(R[fixed])
+    return m_orthonormal(R[free] @ N, M_free)
 
 
 def classify_ring_mode(nodes_m: np.ndarray, shape: np.ndarray, max_wave: int = 8) -> tuple[str, int]:
