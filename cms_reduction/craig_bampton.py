@@ -36,8 +36,8 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import LinearOperator
 
 from fem_rings.linalg import factorize_spd, shift_invert_operator
-from fem_rings.modal_basis import (canonical_modes, deflated_eigsh, m_orthonormal, mass_centre_m,
-                                   rigid_body_fields, unheld_rigid_combinations)
+from fem_rings.modal_basis import (body_length_m, canonical_modes, deflated_eigsh, m_orthonormal,
+                                   mass_centre_m, rigid_body_fields, unheld_rigid_combinations)
 from fem_rings.model import FEModel
 from fem_rings.nodesets import RacewayCurve
 from fem_rings.solve import line_load_operator, solver_threads
@@ -356,7 +356,8 @@ def reduce_model(
         if augmentation else np.zeros((nq, 0))
     Rq = rigid_fields_q(model, interfaces, retained)
     held_rigid = np.vstack((Rq[held], C_avg[np.flatnonzero(avg_grounded)] @ Rq[interior]))
-    n_free_rigid = unheld_rigid_combinations(held_rigid).shape[1]
+    length_m = body_length_m(model.nodes_m, mass_centre_m(model.M, model.nodes_m))
+    n_free_rigid = unheld_rigid_combinations(held_rigid, length_m).shape[1]
     if not floating and n_free_rigid:
         raise ValueError(f"the grounded interfaces leave {n_free_rigid} rigid-body motion(s) of the body free; "
                          "ground more of them (or reduce it as floating)")

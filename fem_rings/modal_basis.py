@@ -31,6 +31,7 @@ __all__ = [
     "rigid_body_fields",
     "mass_centre_m",
     "unheld_rigid_combinations",
+    "body_length_m",
     "m_orthonormal",
     "start_vector",
     "canonical_modes",
@@ -89,14 +90,17 @@ def mass_centre_m(M, nodes_m: np.ndarray) -> np.ndarray:
     return c
 
 
-def unheld_rigid_combinations(R_held: np.ndarray) -> np.ndarray:
-    """(6, r) combinations of the rigid fields that vanish on the held DOFs (orthonormal columns).
+def unheld_rigid_combinations(R_held: np.ndarray, length_m: float) -> np.ndarray:
+    """(6, r) combinations of the rigid fields that vanish on the held DOFs.
 
     Parameters
     ----------
     R_held : (k, 6) float64
-        Values of the rigid fields at the held DOFs (or any linear constraint rows applied to
-        them). Columns should be of comparable scale (rotations about a central point).
+        Values of the rigid fields (translations, then rotations about a central point) at the
+        held DOFs, or any linear constraint rows applied to them.
+    length_m : float
+        Size of the body (e.g. the RMS distance of its nodes from the centre): a rotation
+        moves its nodes by about this much, so the columns are compared on one scale.
 
     Returns
     -------
@@ -105,14 +109,17 @@ def unheld_rigid_combinations(R_held: np.ndarray) -> np.ndarray:
         hold every rigid motion.
     """
     R_held = np.asarray(R_held, dtype=float)
+    scale = np.array([1.0, 1.0, 1.0, length_m, length_m, length_m])
     if R_held.shape[0] == 0:
-        return np.eye(6)
-    scale = np.linalg.norm(R_held, axis=0)
-    scale[scale == 0.0] = 1.0
+        return np.diag(1.0 / scale)
     _, s, vt = np.linalg.svd(R_held / scale, full_matrices=True)
     rank = int(np.sum(s > RANK_RTOL * s[0])) if s[0] > 0 else 0
-    N = vt[rank:].T / scale[:, None]
-    return N / np.linalg.norm(N, axis=0) if N.shape[1] else N
+    return vt[rank:].T / scale[:, None]
+
+
+def body_length_m(nodes_m: np.ndarray, center_m: np.ndarray) -> float:
+    """RMS distance of the nodes from ``center_m``, m (the scale of a rotation's displacements)."""
+    return float(np.sqrt(np.mean(np.sum((np.asarray(nodes_m) - center_m) ** 2, axis=1))))
 
 
 def m_orthonormal(R: np.ndarray, M) -> np.ndarray:

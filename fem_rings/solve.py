@@ -25,7 +25,8 @@ import skfem
 from threadpoolctl import threadpool_limits
 
 from .linalg import factorize_spd, shift_invert_operator
-from .modal_basis import deflated_eigsh, m_orthonormal, mass_centre_m, rigid_body_fields, unheld_rigid_combinations
+from .modal_basis import (body_length_m, deflated_eigsh, m_orthonormal, mass_centre_m, rigid_body_fields,
+                          unheld_rigid_combinations)
 from .model import FEModel, vector_dofs
 from .probe import vector_probe_matrix
 
@@ -239,8 +240,9 @@ def free_rigid_modes(model: FEModel, fixed: np.ndarray, free: np.ndarray, M_free
     The six rigid fields about the centre of mass are combined into those that vanish at every
     held DOF (r = 6 for a free body, fewer under supports, 0 when clamped).
     """
-    R = rigid_body_fields(model.nodes_m, mass_centre_m(model.M, model.nodes_m))
-    N = unheld_rigid_combinations(R[fixed])
+    c = mass_centre_m(model.M, model.nodes_m)
+    R = rigid_body_fields(model.nodes_m, c)
+    N = unheld_rigid_combinations(R[fixed], body_length_m(model.nodes_m, c))
     return m_orthonormal(R[free] @ N, M_free)
 
 
@@ -265,6 +267,14 @@ def classify_ring_mode(nodes_m: np.ndarray, shape: np.ndarray, max_wave: int = 8
 def surface_load(model: FEModel, facets: np.ndarray, traction_Pa, intorder: int | None = None) -> np.ndarray:
     """Consistent nodal forces (3N,) N of a traction on boundary facets.
 
+    f_a = ∫ N_a t dA over the facets, integrated on each facet as a face of its element: the
+    facet's quadrature points are placed on that face of the reference element directly (the
+    face is a plane of the reference cube or tetrahedron, so the map is affine and exact), and
+    dA = |(DF e₁) × (DF e₂)| dX with DF the element's isoparametric Jacobian and e₁, e₂ the face's
+    edge vectors in reference coordinates. No inverse mapping is needed: scikit-fem's
+    ``FacetBasis`` locates the points by a Newton iteration on x = F(X) that fails to converge
+    on strongly curved quadratic facets (a round section of a few elements).
+
     Parameters
     ----------
     facets : (k,) int
@@ -272,25 +282,59 @@ def surface_load(model: FEModel, facets: np.ndarray, traction_Pa, intorder: int 
     traction_Pa : (3,) array or callable
         Constant traction vector, Pa, or ``f(x) -> (3, ...)`` of the physical coordinates
         ``x`` (3, n_facets, n_qp).
+    intorder : int, optional
+        Quadrature order on the facets (default the model's stiffness order).
     """
-    facets = np.asarray(facets)
+    facets = np.asarray(facets, dtype=np.int64)
     if len(facets) == 0:
         raise ValueError("surface_load: the facet set is empty")
-    fb = skfem.FacetBasis(model.mesh, skfem.ElementVector(model.mesh.elem()), facets=facets,
-                          intorder=intorder or model.intorder[0])
-
+    if not callable(traction_Pa):
+        t_const = np.asarray(traction_Pa, dtype=float)
+        if t_const.shape != (3,):
+            raise ValueError(f"traction_Pa must be a 3-vector, got shape {t_const.shape}")
+    mesh = model.mesh
+    elem = mesh.elem()
+    dofs, phi, x, dA = _facet_quadrature(mesh, elem, facets, intorder or model.intorder[0])
     if callable(traction_Pa):
-        def form(v, w):
-            t = traction_Pa(w.x)
-            return t[0] * v[0] + t[1] * v[1] + t[2] * v[2]
+        t = np.asarray(traction_Pa(x), dtype=float)
     else:
-        t = np.asarray(traction_Pa, dtype=float)
-        if t.shape != (3,):
-            raise ValueError(f"traction_Pa must be a 3-vector, got shape {t.shape}")
+        t = np.broadcast_to(t_const[:, None, None], x.shape)
+    # (n_local, n_facets, 3): ∫ N_a t_c dA on each facet
+    local = np.einsum("afq,cfq,fq->afc", phi, t, dA)
+    rows = 3 * dofs[:, :, None] + np.arange(3)
+    return np.bincount(rows.ravel(), weights=local.ravel(), minlength=model.n_dofs)
 
-        def form(v, w):
-            return t[0] * v[0] + t[1] * v[1] + t[2] * v[2]
-    return skfem.LinearForm(form).assemble(fb)
+
+def _facet_quadrature(mesh, elem, facets: np.ndarray, intorder: int):
+    """Shape functions, points and area weights of a quadrature on boundary facets.
+
+    Returns ``dofs`` (n_local, k) node indices of each facet's element, ``phi`` (n_local, k, n_qp)
+    shape-function values, ``x`` (3, k, n_qp) m points and ``dA`` (k, n_qp) m² weights.
+    """
+    tind = mesh.f2t[0, facets]
+    local_face = np.argmax(mesh.t2f[:, tind] == facets[None, :], axis=0)
+    faces = np.asarray(elem.refdom.facets)[local_face]         # (k, corners) local vertices
+    corners = elem.refdom.p[:, faces]                            # (3, k, corners) reference coordinates
+    X, W = skfem.quadrature.get_quadrature(mesh.brefdom, int(intorder))
+    p0 = corners[:, :, 0]
+    # quadrilateral faces are listed cyclically: the edges from corner 0 go to corners 1 and 3
+    e1 = corners[:, :, 1] - p0
+    e2 = corners[:, :, 3 if faces.shape[1] == 4 else 2] - p0
+    Y = p0[:, :, None] + e1[:, :, None] * X[0] + e2[:, :, None] * X[1]
+    dofs = mesh.dofs.element_dofs[:, tind]
+    nodes = mesh.doflocs
+    phi = np.empty((dofs.shape[0],) + Y.shape[1:])
+    x = np.zeros(Y.shape)
+    DF = np.zeros((3, 3) + Y.shape[1:])
+    for a in range(dofs.shape[0]):
+        phi[a], dphi = elem.lbasis(Y, a)
+        xa = nodes[:, dofs[a]][:, :, None]                       # (3, k, 1)
+        x += xa * phi[a]
+        DF += xa[:, None] * dphi[None]
+    t1 = np.einsum("ijfq,jf->ifq", DF, e1)
+    t2 = np.einsum("ijfq,jf->ifq", DF, e2)
+    dA = np.linalg.norm(np.cross(t1, t2, axis=0), axis=0) * W
+    return dofs, phi, x, dA
 
 
 def point_load(model: FEModel, points_m: np.ndarray, forces_N: np.ndarray) -> np.ndarray:
