@@ -16,7 +16,8 @@ constraint modes are not needed. A body without interfaces is reduced with free�
 static load shapes use inertia relief (the load made self-equilibrated against the rigid-body
 inertia forces, solved with K − σM, σ < 0, then cleared of rigid content).
 
-The basis V = [Φ_I, Ψ, U] is M-orthonormalised (near-dependent vectors dropped) and the reduced
+The basis V = [Φ_I, Ψ, U] is M-orthonormalised block by block in that order, twice (what a later
+block adds to the earlier ones below 1e-8 of its Gram scale is dropped as dependent), and the reduced
 eigenproblem (VᵀKV) x = ω² (VᵀMV) x gives the modal form: mass-normalised modes with their
 frequencies. For a floating body the basis is first cleared of the six rigid motions (M-orthogonal
 projection), since the reference frame carries them (DESIGN §4); its free–free modes are computed
@@ -250,39 +251,44 @@ class _ConstrainedSolver:
         return u - self.KinvCt @ np.linalg.solve(self.S, r)
 
 
-def _m_orthonormal_span(Mq, V, rel_tol: float = DEPENDENCE_RTOL):
-    """(n, m) M-orthonormal basis of the span of V, nearly dependent directions dropped.
+def _orthonormal_extension(Mq, Q, B, rel_tol: float = DEPENDENCE_RTOL):
+    """(n, m) M-orthonormal basis of span(B) beyond span(Q), nearly dependent directions dropped.
 
-    Columns are scaled to unit M-norm, then the Gram matrix G = VᵀMV is diagonalised and the
-    directions with eigenvalue ≤ ``rel_tol`` · max dropped; a second pass on the result removes
-    the loss of orthogonality of the first, which grows like ε / λ_min ("twice is enough":
-    Parlett, The Symmetric Eigenvalue Problem, SIAM 1998, §6.9). Returns the basis and the
-    number of directions dropped.
+    The columns of B are scaled to unit M-norm and cleared of Q (Q M-orthonormal); then the Gram
+    matrix G = BᵀMB is diagonalised and the directions with eigenvalue ≤ ``rel_tol`` (of the unit
+    norm the columns had: a direction that lay in span(Q) or in the span of the others is left
+    with nothing) are dropped. Everything is done twice: the second pass removes the loss of
+    orthogonality of the first, which grows like ε / λ_min ("twice is enough": Parlett, The
+    Symmetric Eigenvalue Problem, SIAM 1998, §6.9). Returns the basis and the number dropped.
     """
-    V = V / np.sqrt(np.einsum("ik,ik->k", V, Mq @ V))
+    B = B / np.sqrt(np.einsum("ik,ik->k", B, Mq @ B))
     dropped = 0
     for _ in range(2):
-        G = V.T @ (Mq @ V)
-        lam, Q = np.linalg.eigh(0.5 * (G + G.T))
-        keep = lam > rel_tol * lam.max()
+        if Q.shape[1]:
+            B = B - Q @ ((Mq @ Q).T @ B)
+        G = B.T @ (Mq @ B)
+        lam, X = np.linalg.eigh(0.5 * (G + G.T))
+        keep = lam > rel_tol
         dropped += int((~keep).sum())
-        V = V @ (Q[:, keep] / np.sqrt(lam[keep]))
-    return V, dropped
+        B = B @ (X[:, keep] / np.sqrt(lam[keep]))
+    return B, dropped
 
 
-def _modal_form(Kq, Mq, V, rigid_q=None):
-    """Mass-normalised modes and ω² of K on the span of V (rigid motions removed when given).
+def _modal_form(Kq, Mq, blocks, rigid_q=None):
+    """Mass-normalised modes and ω² of K on the span of the basis blocks (n, k_i).
 
-    ``rigid_q`` (n, r) M-orthonormal: the span of V is first cleared of these rigid motions
-    (the unit-M-norm columns are projected before the Gram matrix is formed, so a column that
-    was rigid becomes a near-zero direction and is dropped as dependent).
+    The blocks are M-orthonormalised in order (:func:`_orthonormal_extension`), so the first
+    (the normal modes) is kept whole and later ones (constraint modes, load shapes) only add what
+    is new. ``rigid_q`` (n, r) M-orthonormal: rigid motions the span is cleared of (a floating
+    body's reference frame carries them).
     """
-    V = V / np.sqrt(np.einsum("ik,ik->k", V, Mq @ V))
-    if rigid_q is not None and rigid_q.shape[1]:
-        V = V - rigid_q @ ((Mq @ rigid_q).T @ V)
-        norms = np.sqrt(np.einsum("ik,ik->k", V, Mq @ V))
-        V = V[:, norms > np.sqrt(DEPENDENCE_RTOL)]
-    W, dropped = _m_orthonormal_span(Mq, V)
+    Q = np.zeros((Kq.shape[0], 0)) if rigid_q is None else rigid_q
+    n_rigid, dropped = Q.shape[1], 0
+    for B in blocks:
+        if B.shape[1]:
+            E, d = _orthonormal_extension(Mq, Q, B)
+            Q, dropped = np.hstack((Q, E)), dropped + d
+    W = Q[:, n_rigid:]
     Kr = W.T @ (Kq @ W)
     w2, X = sla.eigh(0.5 * (Kr + Kr.T))
     w2, shapes = canonical_modes(w2, W @ X)
@@ -390,15 +396,16 @@ def reduce_model(
                 interior_blocks.append(solver.KinvCt @ np.linalg.solve(solver.S, np.eye(C.shape[0])[:, free_avg]))
             if loads_q.shape[1]:
                 interior_blocks.append(solver.solve(loads_q[interior]))
-        widths = [blk.shape[1] for blk in interior_blocks]
-        starts = np.concatenate(([0], np.cumsum(widths)))
-        V = np.zeros((nq, int(starts[-1])))
+        blocks = []
         for k, blk in enumerate(interior_blocks):
-            V[interior, starts[k]:starts[k + 1]] = blk
-        for k, eye in boundary_blocks:
-            V[boundary, starts[k]:starts[k + 1]] = eye
+            V = np.zeros((nq, blk.shape[1]))
+            V[interior] = blk
+            for j, eye in boundary_blocks:
+                if j == k:
+                    V[boundary] = eye
+            blocks.append(V)
         # a floating body's reference frame carries its rigid motion: the modes are cleared of it
-        Vq, w2, dropped = _modal_form(Kq, Mq, V, rigid_q)
+        Vq, w2, dropped = _modal_form(Kq, Mq, blocks, rigid_q)
     shapes = np.asarray(T @ Vq)
     freqs = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * math.pi)
     zeta = np.broadcast_to(np.asarray(damping_ratio, dtype=float), freqs.shape).copy()
