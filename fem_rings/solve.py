@@ -8,7 +8,9 @@ or force per unit length along a curve (:func:`line_load`).
 Modal analysis solves K φ = ω² M φ for the lowest modes with ``eigsh`` in shift-invert mode; the
 operator (K − σM)⁻¹ is one sparse Cholesky factorisation (CHOLMOD when installed,
 :mod:`fem_rings.linalg`). A free model uses σ < 0 so that K − σM is positive definite despite the
-six rigid-body modes, which are then identified by their content of rigid motion and reported.
+rigid-body modes. These are the rigid motions the supports leave free (six for a free body), taken
+directly from the rigid fields; the elastic modes are computed M-orthogonal to them, from a fixed
+start vector and with degenerate pairs in a canonical basis (:mod:`fem_rings.modal_basis`).
 """
 
 from __future__ import annotations
