@@ -49,8 +49,9 @@ __all__ = ["Interface", "Augmentation", "reduce_model", "rbe2_transform", "avera
 
 log = logging.getLogger(__name__)
 
-#: basis directions whose Gram eigenvalue is below this fraction of the largest are dropped as
-#: dependent (singular value ratio 1e-4: such a direction adds nothing the others do not carry)
+#: a basis direction whose Gram eigenvalue, after clearing it of the earlier blocks, is below this
+#: fraction of the unit M-norm its vectors had is dropped as dependent (a new part of 1e-4 in
+#: norm or less: nothing the others do not carry, and kept it would cost orthogonality ~ε/1e-8)
 DEPENDENCE_RTOL = 1e-8
 
 

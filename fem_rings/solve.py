@@ -315,6 +315,8 @@ def _facet_quadrature(mesh, elem, facets: np.ndarray, intorder: int):
     """
     tind = mesh.f2t[0, facets]
     local_face = np.argmax(mesh.t2f[:, tind] == facets[None, :], axis=0)
+    if not np.array_equal(mesh.t2f[local_face, tind], facets):
+        raise ValueError("surface_load: some facets are not faces of their elements (not mesh facets?)")
     faces = np.asarray(elem.refdom.facets)[local_face]         # (k, corners) local vertices
     corners = elem.refdom.p[:, faces]                            # (3, k, corners) reference coordinates
     X, W = skfem.quadrature.get_quadrature(mesh.brefdom, int(intorder))
