@@ -44,7 +44,7 @@ log = logging.getLogger(__name__)
 START_SEED = 18_2026
 
 #: modes whose frequencies differ by less than this fraction form one (degenerate) cluster;
-#: a revolved ring's n-wave pairs agree to about 1e-12, a tetrahedral cage's split pairs differ
+#: a revolved ring's n-wave pairs agree to about 1e-11, a tetrahedral cage's split pairs differ
 #: by 1e-5 and more, and ARPACK resolves those individually (eigenvector error ~ tol / gap)
 CLUSTER_RTOL = 1e-8
 

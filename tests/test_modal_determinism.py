@@ -1,6 +1,5 @@
 """Reproducible modes: fixed Lanczos start vector and a canonical basis for degenerate pairs."""
 
-import hashlib
 import json
 import os
 import subprocess
