@@ -16,10 +16,13 @@ constraint modes are not needed. A body without interfaces is reduced with free�
 static load shapes use inertia relief (the load made self-equilibrated against the rigid-body
 inertia forces, solved with K − σM, σ < 0, then cleared of rigid content).
 
-The basis V = [Φ_I, Ψ, U] is M-orthonormalised (near-dependent vectors dropped) and the reduced
+The basis V = [Φ_I, Ψ, U] is M-orthonormalised block by block in that order, twice (what a later
+block adds to the earlier ones below 1e-8 of its Gram scale is dropped as dependent), and the reduced
 eigenproblem (VᵀKV) x = ω² (VᵀMV) x gives the modal form: mass-normalised modes with their
-frequencies. For a floating body the zero-frequency (rigid-body) modes are removed, since the
-reference frame carries the rigid motion (DESIGN §4).
+frequencies. For a floating body the basis is first cleared of the six rigid motions (M-orthogonal
+projection), since the reference frame carries them (DESIGN §4); its free–free modes are computed
+deflated of them (:mod:`fem_rings.modal_basis`), so a soft body keeps all its requested elastic
+modes. Start vectors and degenerate pairs are fixed, so a rebuild gives the same body bit for bit.
 """
 
 from __future__ import annotations
@@ -31,18 +34,25 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-from scipy.sparse.linalg import LinearOperator, eigsh
+from scipy.sparse.linalg import LinearOperator
 
 from fem_rings.linalg import factorize_spd, shift_invert_operator
+from fem_rings.modal_basis import (body_length_m, canonical_modes, deflated_eigsh, m_orthonormal,
+                                   mass_centre_m, rigid_body_fields, unheld_rigid_combinations)
 from fem_rings.model import FEModel
 from fem_rings.nodesets import RacewayCurve
-from fem_rings.solve import line_load_operator, rigid_body_fields, solver_threads
+from fem_rings.solve import line_load_operator, solver_threads
 
 from .body import ReducedBody
 
 __all__ = ["Interface", "Augmentation", "reduce_model", "rbe2_transform", "averaging_constraints"]
 
 log = logging.getLogger(__name__)
+
+#: a basis direction whose Gram eigenvalue, after clearing it of the earlier blocks, is below this
+#: fraction of the unit M-norm its vectors had is dropped as dependent (a new part of 1e-4 in
+#: norm or less: nothing the others do not carry, and kept it would cost orthogonality ~ε/1e-8)
+DEPENDENCE_RTOL = 1e-8
 
 
 @dataclass(frozen=True)
@@ -242,17 +252,65 @@ class _ConstrainedSolver:
         return u - self.KinvCt @ np.linalg.solve(self.S, r)
 
 
-def _orthonormal_modal_form(Kq, Mq, V, rel_tol: float = 1e-10):
-    """M-orthonormalise V (dropping near-dependent columns) and diagonalise K on its span."""
-    V = V / np.sqrt(np.einsum("ik,ik->k", V, Mq @ V))   # unit M-norm columns: modes and statics alike
-    Mr = V.T @ (Mq @ V)
-    Mr = 0.5 * (Mr + Mr.T)
-    lam, Q = np.linalg.eigh(Mr)
-    keep = lam > rel_tol * lam.max()
-    W = Q[:, keep] / np.sqrt(lam[keep])
-    Kr = W.T @ (V.T @ (Kq @ V)) @ W
+def _orthonormal_extension(Mq, Q, B, rel_tol: float = DEPENDENCE_RTOL):
+    """(n, m) M-orthonormal basis of span(B) beyond span(Q), nearly dependent directions dropped.
+
+    The columns of B are scaled to unit M-norm and cleared of Q (Q M-orthonormal); then the Gram
+    matrix G = BᵀMB is diagonalised and the directions with eigenvalue ≤ ``rel_tol`` (of the unit
+    norm the columns had: a direction that lay in span(Q) or in the span of the others is left
+    with nothing) are dropped. Everything is done twice: the second pass removes the loss of
+    orthogonality of the first, which grows like ε / λ_min ("twice is enough": Parlett, The
+    Symmetric Eigenvalue Problem, SIAM 1998, §6.9). Returns the basis and the number dropped.
+    """
+    B = B / np.sqrt(np.einsum("ik,ik->k", B, Mq @ B))
+    dropped = 0
+    for _ in range(2):
+        if Q.shape[1]:
+            B = B - Q @ ((Mq @ Q).T @ B)
+        G = B.T @ (Mq @ B)
+        lam, X = np.linalg.eigh(0.5 * (G + G.T))
+        keep = lam > rel_tol
+        dropped += int((~keep).sum())
+        B = B @ (X[:, keep] / np.sqrt(lam[keep]))
+    return B, dropped
+
+
+def _modal_form(Kq, Mq, blocks, rigid_q=None):
+    """Mass-normalised modes and ω² of K on the span of the basis blocks (n, k_i).
+
+    The blocks are M-orthonormalised in order (:func:`_orthonormal_extension`), so the first
+    (the normal modes) is kept whole and later ones (constraint modes, load shapes) only add what
+    is new. ``rigid_q`` (n, r) M-orthonormal: rigid motions the span is cleared of (a floating
+    body's reference frame carries them).
+    """
+    Q = np.zeros((Kq.shape[0], 0)) if rigid_q is None else rigid_q
+    n_rigid, dropped = Q.shape[1], 0
+    for B in blocks:
+        if B.shape[1]:
+            E, d = _orthonormal_extension(Mq, Q, B)
+            Q, dropped = np.hstack((Q, E)), dropped + d
+    W = Q[:, n_rigid:]
+    Kr = W.T @ (Kq @ W)
     w2, X = sla.eigh(0.5 * (Kr + Kr.T))
-    return V @ (W @ X), w2, int((~keep).sum())
+    w2, shapes = canonical_modes(w2, W @ X)
+    return shapes, w2, dropped
+
+
+def rigid_fields_q(model: FEModel, interfaces, retained: np.ndarray) -> np.ndarray:
+    """(n_q, 6) rigid motions in the reduced coordinates q of :func:`rbe2_transform` (T R_q = R).
+
+    Rigid fields about the centre of mass: retained nodes take their nodal values, the master
+    of a rigid interface at p takes t = v + θ × (p − c), θ the field's rotation.
+    """
+    c = mass_centre_m(model.M, model.nodes_m)
+    R = rigid_body_fields(model.nodes_m, c).reshape(-1, 3, 6)
+    rows = [R[retained].reshape(-1, 6)]
+    for itf in (i for i in interfaces if i.kind == "rigid"):
+        master = np.zeros((6, 6))
+        master[:3] = rigid_body_fields(itf.master_point(model.nodes_m)[None, :], c)
+        master[3:, 3:] = np.eye(3)
+        rows.append(master)
+    return np.vstack(rows)
 
 
 def reduce_model(
@@ -303,28 +361,33 @@ def reduce_model(
     MII = Mq[interior][:, interior].tocsc()
     loads_q = np.column_stack([T.T @ a.load_vectors(model, model.ring.spec.full_circle) for a in augmentation]) \
         if augmentation else np.zeros((nq, 0))
+    Rq = rigid_fields_q(model, interfaces, retained)
+    held_rigid = np.vstack((Rq[held], C_avg[np.flatnonzero(avg_grounded)] @ Rq[interior]))
+    length_m = body_length_m(model.nodes_m, mass_centre_m(model.M, model.nodes_m))
+    n_free_rigid = unheld_rigid_combinations(held_rigid, length_m).shape[1]
+    if not floating and n_free_rigid:
+        raise ValueError(f"the grounded interfaces leave {n_free_rigid} rigid-body motion(s) of the body free; "
+                         "ground more of them (or reduce it as floating)")
     interior_blocks, boundary_blocks = [], []     # q-rows: interior DOFs, free master DOFs
     with solver_threads():
+        rigid_q = m_orthonormal(Rq, Mq) if floating else None
         if len(master_cols) == 0 and C_avg.shape[0] == 0:
-            # free body: free–free modes and inertia-relief load shapes from one factor of K − σM
+            # free body (q = u): free–free elastic modes, deflated of the rigid motions, and
+            # inertia-relief load shapes from one factor of K − σM
             sigma = -(2.0 * math.pi) ** 2
             op, factor = shift_invert_operator(KII, MII, sigma, backend=backend)
-            _, phi = eigsh(KII, k=int(n_modes) + 6, M=MII, sigma=sigma, OPinv=op, which="LM")
-            interior_blocks.append(phi)
+            interior_blocks.append(deflated_eigsh(KII, MII, int(n_modes), sigma, op, rigid_q)[1])
             if loads_q.shape[1]:
-                R = rigid_body_fields(model.nodes_m)            # no interfaces: q = u
-                MR = MII @ R
-                f = loads_q - MR @ np.linalg.solve(R.T @ MR, R.T @ loads_q)
-                U = factor.solve(f)
-                interior_blocks.append(U - R @ np.linalg.solve(R.T @ MR, MR.T @ U))
+                MR = MII @ rigid_q
+                U = factor.solve(loads_q - MR @ (rigid_q.T @ loads_q))
+                interior_blocks.append(U - rigid_q @ (MR.T @ U))
         else:
             # interior rows: retained-node DOFs (rigid-interface masters excluded), which are also
             # the first columns of q, so the averaging constraints apply to them directly
             C = C_avg[:, :len(interior)]
             solver = _ConstrainedSolver(KII, C, backend)
             op = LinearOperator(KII.shape, matvec=solver.solve, dtype=float)
-            _, phi = eigsh(KII, k=int(n_modes), M=MII, sigma=0.0, OPinv=op, which="LM")
-            interior_blocks.append(phi)
+            interior_blocks.append(deflated_eigsh(KII, MII, int(n_modes), 0.0, op)[1])
             if len(boundary):
                 interior_blocks.append(-solver.solve(Kq[interior][:, boundary].toarray()))
                 boundary_blocks.append((len(interior_blocks) - 1, np.eye(len(boundary))))
@@ -334,21 +397,16 @@ def reduce_model(
                 interior_blocks.append(solver.KinvCt @ np.linalg.solve(solver.S, np.eye(C.shape[0])[:, free_avg]))
             if loads_q.shape[1]:
                 interior_blocks.append(solver.solve(loads_q[interior]))
-    widths = [blk.shape[1] for blk in interior_blocks]
-    starts = np.concatenate(([0], np.cumsum(widths)))
-    V = np.zeros((nq, int(starts[-1])))
-    for k, blk in enumerate(interior_blocks):
-        V[interior, starts[k]:starts[k + 1]] = blk
-    for k, eye in boundary_blocks:
-        V[boundary, starts[k]:starts[k + 1]] = eye
-    Vq, w2, dropped = _orthonormal_modal_form(Kq, Mq, V)
-    scale = float(np.max(Kq.diagonal() / np.maximum(Mq.diagonal(), 1e-300)))
-    rigid = w2 < 1e-10 * scale
-    if floating:
-        Vq, w2 = Vq[:, ~rigid], w2[~rigid]
-    elif rigid.any():
-        raise ValueError(f"{int(rigid.sum())} zero-frequency mode(s) in a grounded body: the grounded "
-                         "interfaces do not hold it")
+        blocks = []
+        for k, blk in enumerate(interior_blocks):
+            V = np.zeros((nq, blk.shape[1]))
+            V[interior] = blk
+            for j, eye in boundary_blocks:
+                if j == k:
+                    V[boundary] = eye
+            blocks.append(V)
+        # a floating body's reference frame carries its rigid motion: the modes are cleared of it
+        Vq, w2, dropped = _modal_form(Kq, Mq, blocks, rigid_q)
     shapes = np.asarray(T @ Vq)
     freqs = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * math.pi)
     zeta = np.broadcast_to(np.asarray(damping_ratio, dtype=float), freqs.shape).copy()

@@ -29,6 +29,12 @@ __all__ = ["InterfaceSpec", "RacewaySpec", "ReductionSpec", "reduced_body"]
 
 log = logging.getLogger(__name__)
 
+#: Version of the reduction algorithm, part of the cache key: a change that alters the bodies built
+#: from the same inputs bumps it, so stale cached bodies are not reused. 2: rigid-body modes by
+#: deflation (no frequency threshold), fixed start vector and canonical degenerate pairs, block
+#: orthonormalisation of the basis.
+REDUCTION_VERSION = 2
+
 
 @dataclass(frozen=True)
 class InterfaceSpec:
@@ -96,7 +102,7 @@ class ReductionSpec:
 def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMaterial, spec: ReductionSpec,
                  pockets=None, *, name: str | None = None, use_cache: bool = True) -> ReducedBody:
     """Build (or load from the cache) the reduced body of a ring."""
-    key = input_hash("reduced-body", profile, mesh_spec, material, spec, pockets, name)
+    key = input_hash("reduced-body", REDUCTION_VERSION, profile, mesh_spec, material, spec, pockets, name)
 
     def build() -> ReducedBody:
         model = build_model(profile, mesh_spec, material, pockets, use_cache=use_cache)

@@ -8,7 +8,9 @@ or force per unit length along a curve (:func:`line_load`).
 Modal analysis solves K φ = ω² M φ for the lowest modes with ``eigsh`` in shift-invert mode; the
 operator (K − σM)⁻¹ is one sparse Cholesky factorisation (CHOLMOD when installed,
 :mod:`fem_rings.linalg`). A free model uses σ < 0 so that K − σM is positive definite despite the
-six rigid-body modes, which are then identified by their content of rigid motion and reported.
+rigid-body modes. These are the rigid motions the supports leave free (six for a free body), taken
+directly from the rigid fields; the elastic modes are computed M-orthogonal to them, from a fixed
+start vector and with degenerate pairs in a canonical basis (:mod:`fem_rings.modal_basis`).
 """
 
 from __future__ import annotations
@@ -22,10 +24,11 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 import skfem
-from scipy.sparse.linalg import eigsh
 from threadpoolctl import threadpool_limits
 
 from .linalg import factorize_spd, shift_invert_operator
+from .modal_basis import (body_length_m, deflated_eigsh, m_orthonormal, mass_centre_m, rigid_body_fields,
+                          unheld_rigid_combinations)
 from .model import FEModel, vector_dofs
 from .probe import vector_probe_matrix
 
@@ -47,6 +50,9 @@ __all__ = [
 ]
 
 log = logging.getLogger(__name__)
+
+#: an elastic eigenvalue below this fraction of max(K_ii/M_ii) is zero to round-off: a mechanism
+MECHANISM_RTOL = 1e-14
 
 
 @contextmanager
@@ -144,21 +150,6 @@ def static_solve(model: FEModel, force_N: np.ndarray, supports, backend: str = "
     return StaticResult(u.reshape(-1, 3), reaction, factor.backend)
 
 
-def rigid_body_fields(nodes_m: np.ndarray) -> np.ndarray:
-    """(3N, 6) translations x, y, z and small rotations about x, y, z (about the origin)."""
-    x = np.asarray(nodes_m)
-    n = len(x)
-    R = np.zeros((n, 3, 6))
-    for i in range(3):
-        R[:, i, i] = 1.0
-    # rotation about axis k: u = e_k × x
-    for k in range(3):
-        e = np.zeros(3)
-        e[k] = 1.0
-        R[:, :, 3 + k] = np.cross(e, x)
-    return R.reshape(3 * n, 6)
-
-
 @dataclass(frozen=True)
 class Modes:
     """Natural modes of a (free or supported) model.
@@ -170,9 +161,9 @@ class Modes:
     shapes : (3N, k) float64
         Mass-normalised mode shapes (φᵀ M φ = 1), zero at held DOFs.
     rigid : (k,) bool
-        Zero-energy modes (rigid-body motion or a mechanism the supports leave): ω² below
-        1e-10 of the model's stiffness-to-mass scale max(K_ii/M_ii), which lies some 12 decades
-        above rounding and 4 or more below the first elastic mode of a ring.
+        Rigid-body modes: the first ``n_rigid`` modes, an M-orthonormal basis of the rigid
+        motions the supports leave free (6 for a free body, 0 when held); the elastic modes
+        are computed M-orthogonal to them (:mod:`fem_rings.modal_basis`).
     backend : str
         Factorisation used.
     """
@@ -220,22 +211,41 @@ def modal_analysis(
     M = model.M[free][:, free].tocsc()
     sigma = -(2.0 * math.pi * (1.0 if shift_Hz is None else shift_Hz)) ** 2
     with solver_threads():
+        rigid_m = free_rigid_modes(model, fixed, free, M)
+        n_rigid = min(rigid_m.shape[1], int(n_modes))
+        rigid_m = rigid_m[:, :n_rigid]
+        lam_rigid = np.clip(np.einsum("ik,ik->k", rigid_m, K @ rigid_m), 0.0, None)
         op, factor = shift_invert_operator(K, M, sigma, backend=backend)
-        lam, vec = eigsh(K, k=int(n_modes), M=M, sigma=sigma, OPinv=op, which="LM")
-    order = np.argsort(lam)
-    lam, vec = lam[order], vec[:, order]
-    vec /= np.sqrt(np.einsum("ik,ik->k", vec, M @ vec))
+        if int(n_modes) > n_rigid:
+            lam, vec = deflated_eigsh(K, M, int(n_modes) - n_rigid, sigma, op, rigid_m)
+        else:
+            lam, vec = np.zeros(0), np.zeros((len(free), 0))
+    lam = np.concatenate((lam_rigid, lam))
     shapes = np.zeros((model.n_dofs, len(lam)))
-    shapes[free] = vec
+    shapes[free] = np.column_stack((rigid_m, vec))
     freq = np.sqrt(np.clip(lam, 0.0, None)) / (2.0 * math.pi)
+    rigid = np.arange(len(lam)) < n_rigid
+    if len(fixed) and n_rigid:
+        log.warning("model %s: the supports leave %d rigid-body motion(s) free", model.ring.profile.name, n_rigid)
     scale = float(np.max(K.diagonal() / M.diagonal()))
-    rigid = lam < 1e-10 * scale
-    if len(fixed) and rigid.any():
-        log.warning("model %s: %d zero-energy mode(s) despite supports: rigid motion left free or a mechanism",
-                    model.ring.profile.name, int(rigid.sum()))
-    log.info("modes of %s: %d zero-energy, first elastic %.4g Hz", model.ring.profile.name, int(rigid.sum()),
-             freq[~rigid][0] if (~rigid).any() else float("nan"))
+    if len(vec.T) and lam[n_rigid] < MECHANISM_RTOL * scale:
+        log.warning("model %s: elastic mode at %.3g Hz, a zero-energy mechanism (a loose part?)",
+                    model.ring.profile.name, freq[n_rigid])
+    log.info("modes of %s: %d rigid-body, first elastic %.4g Hz", model.ring.profile.name, n_rigid,
+             freq[n_rigid] if len(freq) > n_rigid else float("nan"))
     return Modes(freq, shapes, rigid, factor.backend)
+
+
+def free_rigid_modes(model: FEModel, fixed: np.ndarray, free: np.ndarray, M_free) -> np.ndarray:
+    """(n_free, r) M-orthonormal rigid motions that the held DOFs leave free, at the free DOFs.
+
+    The six rigid fields about the centre of mass are combined into those that vanish at every
+    held DOF (r = 6 for a free body, fewer under supports, 0 when clamped).
+    """
+    c = mass_centre_m(model.M, model.nodes_m)
+    R = rigid_body_fields(model.nodes_m, c)
+    N = unheld_rigid_combinations(R[fixed], body_length_m(model.nodes_m, c))
+    return m_orthonormal(R[free] @ N, M_free)
 
 
 def classify_ring_mode(nodes_m: np.ndarray, shape: np.ndarray, max_wave: int = 8) -> tuple[str, int]:
@@ -259,6 +269,14 @@ def classify_ring_mode(nodes_m: np.ndarray, shape: np.ndarray, max_wave: int = 8
 def surface_load(model: FEModel, facets: np.ndarray, traction_Pa, intorder: int | None = None) -> np.ndarray:
     """Consistent nodal forces (3N,) N of a traction on boundary facets.
 
+    f_a = ∫ N_a t dA over the facets, integrated on each facet as a face of its element: the
+    facet's quadrature points are placed on that face of the reference element directly (the
+    face is a plane of the reference cube or tetrahedron, so the map is affine and exact), and
+    dA = |(DF e₁) × (DF e₂)| dX with DF the element's isoparametric Jacobian and e₁, e₂ the face's
+    edge vectors in reference coordinates. No inverse mapping is needed: scikit-fem's
+    ``FacetBasis`` locates the points by a Newton iteration on x = F(X) that fails to converge
+    on strongly curved quadratic facets (a round section of a few elements).
+
     Parameters
     ----------
     facets : (k,) int
@@ -266,25 +284,61 @@ def surface_load(model: FEModel, facets: np.ndarray, traction_Pa, intorder: int 
     traction_Pa : (3,) array or callable
         Constant traction vector, Pa, or ``f(x) -> (3, ...)`` of the physical coordinates
         ``x`` (3, n_facets, n_qp).
+    intorder : int, optional
+        Quadrature order on the facets (default the model's stiffness order).
     """
-    facets = np.asarray(facets)
+    facets = np.asarray(facets, dtype=np.int64)
     if len(facets) == 0:
         raise ValueError("surface_load: the facet set is empty")
-    fb = skfem.FacetBasis(model.mesh, skfem.ElementVector(model.mesh.elem()), facets=facets,
-                          intorder=intorder or model.intorder[0])
-
+    if not callable(traction_Pa):
+        t_const = np.asarray(traction_Pa, dtype=float)
+        if t_const.shape != (3,):
+            raise ValueError(f"traction_Pa must be a 3-vector, got shape {t_const.shape}")
+    mesh = model.mesh
+    elem = mesh.elem()
+    dofs, phi, x, dA = _facet_quadrature(mesh, elem, facets, intorder or model.intorder[0])
     if callable(traction_Pa):
-        def form(v, w):
-            t = traction_Pa(w.x)
-            return t[0] * v[0] + t[1] * v[1] + t[2] * v[2]
+        t = np.asarray(traction_Pa(x), dtype=float)
     else:
-        t = np.asarray(traction_Pa, dtype=float)
-        if t.shape != (3,):
-            raise ValueError(f"traction_Pa must be a 3-vector, got shape {t.shape}")
+        t = np.broadcast_to(t_const[:, None, None], x.shape)
+    # (n_local, n_facets, 3): ∫ N_a t_c dA on each facet
+    local = np.einsum("afq,cfq,fq->afc", phi, t, dA)
+    rows = 3 * dofs[:, :, None] + np.arange(3)
+    return np.bincount(rows.ravel(), weights=local.ravel(), minlength=model.n_dofs)
 
-        def form(v, w):
-            return t[0] * v[0] + t[1] * v[1] + t[2] * v[2]
-    return skfem.LinearForm(form).assemble(fb)
+
+def _facet_quadrature(mesh, elem, facets: np.ndarray, intorder: int):
+    """Shape functions, points and area weights of a quadrature on boundary facets.
+
+    Returns ``dofs`` (n_local, k) node indices of each facet's element, ``phi`` (n_local, k, n_qp)
+    shape-function values, ``x`` (3, k, n_qp) m points and ``dA`` (k, n_qp) m² weights.
+    """
+    tind = mesh.f2t[0, facets]
+    local_face = np.argmax(mesh.t2f[:, tind] == facets[None, :], axis=0)
+    if not np.array_equal(mesh.t2f[local_face, tind], facets):
+        raise ValueError("surface_load: some facets are not faces of their elements (not mesh facets?)")
+    faces = np.asarray(elem.refdom.facets)[local_face]         # (k, corners) local vertices
+    corners = elem.refdom.p[:, faces]                            # (3, k, corners) reference coordinates
+    X, W = skfem.quadrature.get_quadrature(mesh.brefdom, int(intorder))
+    p0 = corners[:, :, 0]
+    # quadrilateral faces are listed cyclically: the edges from corner 0 go to corners 1 and 3
+    e1 = corners[:, :, 1] - p0
+    e2 = corners[:, :, 3 if faces.shape[1] == 4 else 2] - p0
+    Y = p0[:, :, None] + e1[:, :, None] * X[0] + e2[:, :, None] * X[1]
+    dofs = mesh.dofs.element_dofs[:, tind]
+    nodes = mesh.doflocs
+    phi = np.empty((dofs.shape[0],) + Y.shape[1:])
+    x = np.zeros(Y.shape)
+    DF = np.zeros((3, 3) + Y.shape[1:])
+    for a in range(dofs.shape[0]):
+        phi[a], dphi = elem.lbasis(Y, a)
+        xa = nodes[:, dofs[a]][:, :, None]                       # (3, k, 1)
+        x += xa * phi[a]
+        DF += xa[:, None] * dphi[None]
+    t1 = np.einsum("ijfq,jf->ifq", DF, e1)
+    t2 = np.einsum("ijfq,jf->ifq", DF, e2)
+    dA = np.linalg.norm(np.cross(t1, t2, axis=0), axis=0) * W
+    return dofs, phi, x, dA
 
 
 def point_load(model: FEModel, points_m: np.ndarray, forces_N: np.ndarray) -> np.ndarray:

@@ -111,7 +111,7 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     base.eta_dot[:] = 0.0
     d_ref = _modal_displacement_scale(model)
     omega2 = np.maximum(a.modal_omega2, 1e-300)
-    force_scale = max(float(np.abs(a.body_force[free[:, :3].any(axis=1), :3]).max(initial=0.0)), 1.0)
+    force_scale = _force_scale_N(model, free)
     lengths = [r for r in a.pair_radius if r > 0]
     length_scale = max(lengths) if lengths else 1.0
     trial = base.copy()
@@ -190,6 +190,22 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     result.eta_dot[:] = state.eta_dot
     log.info("static equilibrium: residual %.3g N, %.3g N·m after %d evaluations", f_res, m_res, count[0])
     return StaticResult(result, f_res, m_res, force_scale, count[0])
+
+
+def _force_scale_N(model: Model, free: np.ndarray) -> float:
+    """The largest external force on a body with a free translation, N (at least 1 N): its applied
+    force (rigid bodies: with their weight) or, for a modal body, its weight m|g|, which its
+    ``body_force`` leaves out (added in :func:`_frame_loads`). Without the latter a floating modal
+    ring carrying the dead load was measured against a ball's weight, 2e4× too small, and the
+    equilibrium search stalled or not depending on the modal basis."""
+    a = model.arrays
+    movable = free[:, :3].any(axis=1)
+    scale = float(np.abs(a.body_force[movable, :3]).max(initial=0.0))
+    g = float(np.linalg.norm(a.gravity))
+    for j, i in enumerate(a.modal_body):
+        if movable[i]:
+            scale = max(scale, float(a.modal_mass[j]) * g)
+    return max(scale, 1.0)
 
 
 def _modal_displacement_scale(model: Model) -> np.ndarray:
