@@ -40,7 +40,7 @@ def one_line_error(capsys, argv, status=2) -> str:
 
 
 def _raising(exc):
-    def run_case(case, out_dir, progress=None):
+    def run_case(case, out_dir, progress=None, resume=False):
         raise exc
     return run_case
 

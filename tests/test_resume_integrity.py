@@ -65,20 +65,21 @@ def test_a_damaged_checkpoint_is_named_in_the_error(tmp_path, damage):
         simulate(model, state.copy(), 800 * h, folder=tmp_path / "rec", record_every=20, resume=True)
 
 
+def _stop_at(n):
+    def progress(items, label):
+        for k, x in enumerate(items):
+            if k == n:
+                raise KeyboardInterrupt
+            yield x
+    return progress
+
+
 def test_integrate_resumes_bit_for_bit_and_refuses_another_model(tmp_path):
     model, state, _ = slewing_model(SLEWING_ROW, RingLoad(Fz_N=-2000.0 * G))
     whole = integrate_mod.integrate(model, state.copy(), 0.004, 20, chunks=8)
 
-    def stop_after(n):
-        def progress(items, label):
-            for k, x in enumerate(items):
-                if k == n:
-                    raise KeyboardInterrupt
-                yield x
-        return progress
-
     with pytest.raises(KeyboardInterrupt), integrate_mod.checkpoints(tmp_path / "ck"):
-        integrate_mod.integrate(model, state.copy(), 0.004, 20, progress=stop_after(3), chunks=8)
+        integrate_mod.integrate(model, state.copy(), 0.004, 20, progress=_stop_at(3), chunks=8)
     assert len(list((tmp_path / "ck" / "run_00").glob("piece_*.npz"))) == 3
     with integrate_mod.checkpoints(tmp_path / "ck", resume=True):
         resumed = integrate_mod.integrate(model, state.copy(), 0.004, 20, chunks=8)
@@ -110,15 +111,6 @@ def _recording(monkeypatch):
 
     monkeypatch.setattr(slewing_dynamic, "integrate", spy)
     return runs
-
-
-def _stop_at(n):
-    def progress(items, label):
-        for k, x in enumerate(items):
-            if k == n:
-                raise KeyboardInterrupt
-            yield x
-    return progress
 
 
 def test_a_case_run_interrupted_and_resumed_equals_an_uninterrupted_one(tmp_path, monkeypatch):
