@@ -98,11 +98,14 @@ def test_groove_edge_warning_geometry():
 
 
 def test_hertz_report_warns_above_the_limit(capsys):
-    """`hertz ball … --load-N 1e300` printed absurd numbers silently: the report dict carries the
-    pressure warning (p0 ∝ Q^(1/3) far above 4.2 GPa) and the groove-edge warning."""
+    """`hertz ball … --load-N 1e300` printed absurd numbers silently: now such a load is refused
+    naming the option, and a load inside the accepted range but far beyond the model (1e9 N) gives
+    a report with the pressure warning (p0 ∝ Q^(1/3) far above 4.2 GPa) and the groove-edge warning."""
     args = ["hertz", "ball", "--ball-diameter-mm", "95.25", "--conformity", "0.525", "--pitch-diameter-mm", "6690",
             "--contact-angle-deg", "60", "--load-N"]
-    assert main(args + ["1e300"]) == 0
+    assert main(args + ["1e300"]) == 2
+    assert "--load-N" in capsys.readouterr().err
+    assert main(args + ["1e9"]) == 0
     out = capsys.readouterr().out
     assert "ISO 76" in out and "groove edge" in out
     assert main(args + ["1e4"]) == 0  # p0 ≈ 1.6 GPa (thesis Table 8 order): no warning
