@@ -21,7 +21,7 @@ from cms_reduction.persist import body_paths, load_body, save_body
 from cms_reduction.pipeline import RacewaySpec, ReductionSpec, reduced_body
 from fem_rings import MeshSpec
 from fem_rings.sections import SlewingSection, slewing_top_race
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 
 def main() -> None:

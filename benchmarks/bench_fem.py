@@ -30,7 +30,7 @@ def run_one(element: str, size_m: float) -> dict:
     from fem_rings.model import build_model
     from fem_rings.sections import slewing_bottom_race
     from fem_rings.solve import modal_analysis
-    from mbd_core.materials import ElasticMaterial
+    from foundation.materials import ElasticMaterial
 
     steel = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
     t0 = time.perf_counter()

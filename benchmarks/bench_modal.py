@@ -85,7 +85,7 @@ from mbd_core.contact.friction import Coulomb
 from mbd_core.kernels.explicit import run_explicit, total_kinetic_energy
 from mbd_core.kernels.forces import STATUS_OK, compute_forces
 from mbd_core.kernels.modal import modal_mass_matrix
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 from mbd_core.multibody import (ContactLaw, Driven, Fixed, ModelBuilder, State, evaluate_forces,
                                 quat_from_axis_angle, stable_timestep)
 from mbd_core.multibody.bearings import RowBodies, add_ball_row, ball_mass_kg, set_rolling_velocities

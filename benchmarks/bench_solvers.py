@@ -82,7 +82,7 @@ QUICK = (Ring("hex27", "hex27", 0.15, None, 10, 6, 8, 0.18),)
 def _model(ring: Ring):
     from fem_rings import MeshSpec, build_model
     from fem_rings.sections import slewing_bottom_race
-    from mbd_core.materials import ElasticMaterial
+    from foundation.materials import ElasticMaterial
 
     steel = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
     return build_model(slewing_bottom_race(2.0), MeshSpec(ring.size_m, ring.element, n_theta=ring.n_theta), steel)

@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from mbd_core.materials import BEARING_STEEL
+from foundation.materials import BEARING_STEEL
 from mbd_core.quasistatic import BallRow, Bearing, RingLoad, RollerRow
 
 __all__ = ["BuiltinBearing", "BUILTIN_BEARINGS", "builtin_bearing", "slewing_ring", "three_row_roller"]

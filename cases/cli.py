@@ -24,7 +24,7 @@ import numpy as np
 from mbd_core.contact import ball_on_groove, line_contact, sphere_on_sphere, subsurface_shear
 from mbd_core.contact.limits import line_contact_warnings, point_contact_warnings
 from mbd_core.contact.line import iso16281_stiffness, palmgren_stiffness
-from mbd_core.materials import ElasticMaterial, effective_modulus_Pa
+from foundation.materials import ElasticMaterial, effective_modulus_Pa
 from mbd_core.multibody import SimulationError
 from mbd_core.multibody.statics import StaticEquilibriumError
 from mbd_core.quasistatic import LoadDistributionError, RingLoad, solve_load_distribution

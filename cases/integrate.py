@@ -24,7 +24,7 @@ import numpy as np
 from fem_rings.cache import atomic_path
 from mbd_core.multibody.explicit import simulate
 from mbd_core.multibody.model import State, fingerprint_differences, model_fingerprint
-from mbd_core.npzfile import NPZ_ERRORS, read_npz
+from foundation.npzfile import NPZ_ERRORS, read_npz
 
 from .config import CaseError
 

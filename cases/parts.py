@@ -20,7 +20,7 @@ from fem_rings.sections import (
     three_row_inner_ring,
     three_row_outer_ring,
 )
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 __all__ = ["RingPart", "RING_PARTS", "ring_part"]
 

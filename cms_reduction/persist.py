@@ -28,7 +28,7 @@ from typing import Callable
 import numpy as np
 
 from fem_rings.cache import atomic_path, cache_dir, clean_stale_parts
-from mbd_core.npzfile import NPZ_ERRORS, read_npz
+from foundation.npzfile import NPZ_ERRORS, read_npz
 
 from .body import ReducedBody
 

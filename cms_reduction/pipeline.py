@@ -16,7 +16,7 @@ from fem_rings.mesh import MeshSpec
 from fem_rings.model import build_model
 from fem_rings.nodesets import patch_nodes, raceway_curve
 from fem_rings.profile import Profile
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 from .body import ReducedBody
 from .craig_bampton import Augmentation, CentrifugalAugmentation, Interface, reduce_model

@@ -26,7 +26,7 @@ from cms_reduction import render_stress_pngs, worst_time, write_stress_series  #
 from cms_reduction.pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, reduced_body  # noqa: E402
 from fem_rings import MeshSpec  # noqa: E402
 from fem_rings.sections import SlewingSection, slewing_bottom_race  # noqa: E402
-from mbd_core.materials import ElasticMaterial  # noqa: E402
+from foundation.materials import ElasticMaterial  # noqa: E402
 from mbd_core.multibody import Driven, Fixed, ModelBuilder, simulate  # noqa: E402
 from mbd_core.multibody.bearings import add_ball_row  # noqa: E402
 from mbd_core.multibody.statics import static_equilibrium  # noqa: E402

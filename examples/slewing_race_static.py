@@ -24,7 +24,7 @@ from fem_rings.render import render_png
 from fem_rings.sections import SlewingSection, slewing_bottom_race
 from fem_rings.solve import point_load
 from mbd_core.contact import ball_on_groove
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 OUT = Path(os.environ.get("FLEXBEARING_EXAMPLE_OUT", "results/examples/slewing-race-static"))
 N_BALLS, LOAD_T, ALPHA_DEG = 16, 68.9, 60.0

@@ -13,7 +13,7 @@ Example::
 
     from fem_rings import MeshSpec, build_model, modal_analysis
     from fem_rings.sections import slewing_bottom_race
-    from mbd_core.materials import ElasticMaterial
+    from foundation.materials import ElasticMaterial
 
     model = build_model(slewing_bottom_race(1.0), MeshSpec(0.03, "hex27"),
                         ElasticMaterial("steel", 200e9, 0.3, 7850.0))

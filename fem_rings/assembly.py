@@ -25,7 +25,7 @@ import numpy as np
 import scipy.sparse as sp
 import skfem
 
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 __all__ = ["DEFAULT_INTORDER", "scalar_basis", "lame_Pa", "stiffness_matrix", "mass_matrix"]
 

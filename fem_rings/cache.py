@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mbd_core.npzfile import NPZ_ERRORS, read_npz
+from foundation.npzfile import NPZ_ERRORS, read_npz
 
 __all__ = ["atomic_path", "cache_dir", "clean_stale_parts", "content_hash", "input_hash", "load_arrays",
            "process_alive", "save_arrays"]

@@ -34,7 +34,7 @@ import numpy as np
 import skfem
 from skfem.io.meshio import from_meshio
 
-from mbd_core.validation import check_positive
+from foundation.validation import check_positive
 
 from .profile import Arc, Line, Profile
 

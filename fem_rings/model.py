@@ -17,7 +17,7 @@ import numpy as np
 import scipy.sparse as sp
 import skfem
 
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 from . import cache
 from .assembly import DEFAULT_INTORDER, mass_matrix, scalar_basis, stiffness_matrix

@@ -55,7 +55,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mbd_core.validation import check_positive
+from foundation.validation import check_positive
 
 from .profile import Arc, Line, Profile, polygon, rectangle
 
@@ -73,7 +73,7 @@ _FACES = {"bottom": (1, (0.0, 1.0)), "top": (1, (0.0, -1.0)),
 
 
 def _positive(value: float, what: str) -> float:
-    """The shared positive-number check (:func:`mbd_core.validation.check_positive`), returning the value."""
+    """The shared positive-number check (:func:`foundation.validation.check_positive`), returning the value."""
     check_positive(**{what: value})
     return float(value)
 

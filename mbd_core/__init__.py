@@ -4,10 +4,10 @@ Subpackages: ``contact`` (Hertz point and line contact, subsurface stress, frict
 ``bearing`` (kinematics, ISO 281 rating and life, case-depth factor), ``quasistatic`` (load
 distribution with rigid rings), ``multibody`` (rigid multibody dynamics of bearings: model,
 static equilibrium, explicit and generalized-α integration, record) and ``kernels`` (its compiled
-numba kernels, the only place numba is imported). Materials are in :mod:`mbd_core.materials`.
+numba kernels, the only place numba is imported). Materials are in :mod:`foundation.materials`.
 """
 
-from .materials import BEARING_STEEL, ElasticMaterial
+from foundation.materials import BEARING_STEEL, ElasticMaterial
 from .quasistatic import Bearing, RingLoad, solve_load_distribution
 
 __all__ = ["ElasticMaterial", "BEARING_STEEL", "Bearing", "RingLoad", "solve_load_distribution"]

@@ -19,7 +19,7 @@ from fem_rings import cache
 from fem_rings.mesh import MeshSpec
 from fem_rings.model import build_model
 from fem_rings.profile import rectangle
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 from test_persist import _assert_same_arrays, _body
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)

@@ -11,7 +11,7 @@ from fem_rings import MeshSpec, Support, build_model, modal_analysis, static_sol
 from fem_rings.nodesets import patch_nodes, raceway_curve
 from fem_rings.profile import rectangle
 from fem_rings.solve import line_load, point_load, rigid_body_fields
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 

@@ -12,7 +12,7 @@ from fem_rings.mesh import MeshSpec, mesh_ring
 from fem_rings.model import build_model
 from fem_rings.probe import probe_matrix
 from fem_rings.profile import Arc, Line, Profile, rectangle
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 

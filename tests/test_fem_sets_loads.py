@@ -14,7 +14,7 @@ from fem_rings.assembly import scalar_basis
 from fem_rings.profile import Arc, Profile, rectangle
 from fem_rings.sections import SlewingSection, slewing_bottom_race
 from fem_rings.solve import line_load, point_load, surface_load
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 

@@ -13,7 +13,7 @@ from fem_rings.nodesets import cylindrical, nodes_where
 from fem_rings.profile import Arc, Profile, rectangle
 from fem_rings.solve import Support, static_solve, support_reaction_N, surface_load
 from fem_rings.stress import cylindrical_stress_Pa, nodal_stress_Pa, von_mises_Pa
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 

@@ -46,7 +46,7 @@ from fem_rings.solve import point_load
 from mbd_core.contact.friction import Coulomb
 from mbd_core.contact.line import iso16281_stiffness, slice_stiffness
 from mbd_core.kernels import forces as FK
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 from mbd_core.multibody import ContactLaw, Driven, Fixed, ModelBuilder
 from mbd_core.multibody.explicit import evaluate_forces, simulate
 from mbd_core.multibody.model import make_work

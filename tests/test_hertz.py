@@ -26,7 +26,7 @@ from mbd_core.contact.hertz import (
     sphere_on_sphere,
 )
 from mbd_core.contact.subsurface import subsurface_shear
-from mbd_core.materials import BEARING_STEEL, ElasticMaterial
+from foundation.materials import BEARING_STEEL, ElasticMaterial
 
 G = 9.81  # m/s², as used in the thesis to convert tonnes to newtons
 

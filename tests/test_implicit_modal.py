@@ -22,7 +22,7 @@ from fem_rings.sections import SlewingSection, slewing_bottom_race
 from mbd_core.contact import ball_on_groove
 from mbd_core.kernels import forces as FK
 from mbd_core.kernels.implicit import modal_accelerations, step_accelerations
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 from mbd_core.multibody import DivergenceError, ModelBuilder, simulate, stable_timestep
 from mbd_core.multibody.builder import ContactLaw, Driven, Fixed, Free
 from mbd_core.multibody.implicit import simulate_implicit

@@ -11,7 +11,7 @@ from cms_reduction.invariants import (
 )
 from fem_rings import MeshSpec, build_model, modal_analysis
 from fem_rings.profile import rectangle
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 PROFILE = rectangle("ring", 0.95, 1.05, -0.05, 0.05)

@@ -9,7 +9,7 @@ from cms_reduction.invariants import compute_invariants
 from fem_rings import MeshSpec, build_model, modal_analysis
 from fem_rings.profile import rectangle
 from mbd_core.kernels.modal import modal_mass_matrix, modal_velocity_terms
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 from tests.reference import modal as ref
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)

@@ -32,7 +32,7 @@ import scipy.sparse.linalg as spla
 from fem_rings import MeshSpec, build_model, linalg
 from fem_rings.linalg import available_backends, backward_error, factorize_spd
 from fem_rings.sections import slewing_bottom_race
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 EPS = np.finfo(float).eps
 SIGMA = -(2.0 * math.pi * 10.0) ** 2

@@ -25,7 +25,7 @@ from mbd_core.contact.line import (
     series_line_stiffness,
     slice_stiffness,
 )
-from mbd_core.materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
+from foundation.materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
 
 SILICON_NITRIDE = ElasticMaterial("Si3N4", 310e9, 0.27, 3200.0)
 

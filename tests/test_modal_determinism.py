@@ -13,7 +13,7 @@ import pytest
 from fem_rings import MeshSpec, build_model, modal_analysis
 from fem_rings.modal_basis import canonical_modes
 from fem_rings.profile import rectangle
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 ROOT = Path(__file__).resolve().parents[1]
@@ -28,7 +28,7 @@ SCRIPT = textwrap.dedent("""
     from fem_rings import MeshSpec, build_model, modal_analysis
     from fem_rings.nodesets import raceway_curve
     from fem_rings.profile import rectangle
-    from mbd_core.materials import ElasticMaterial
+    from foundation.materials import ElasticMaterial
 
     steel = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
     model = build_model(rectangle("ring", 0.95, 1.05, -0.05, 0.05), MeshSpec(0.05, "hex27", n_theta=48),

@@ -23,7 +23,7 @@ from fem_rings.profile import rectangle
 from fem_rings.sections import SlewingSection, slewing_bottom_race
 from fem_rings.solve import point_load
 from mbd_core.contact import ball_on_groove
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 from mbd_core.multibody import ModelBuilder
 from mbd_core.multibody.bearings import add_ball_row
 from mbd_core.multibody.builder import ContactLaw, Driven, Fixed, Free

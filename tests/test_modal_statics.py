@@ -8,7 +8,7 @@ import pytest
 from cms_reduction.pipeline import ReductionSpec, reduced_body
 from fem_rings import MeshSpec
 from fem_rings.profile import rectangle
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 from mbd_core.multibody import ModelBuilder
 from mbd_core.multibody.builder import Fixed, Free
 from mbd_core.multibody.statics import static_equilibrium

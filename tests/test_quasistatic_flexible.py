@@ -27,7 +27,7 @@ from fem_rings.nodesets import patch_nodes, raceway_curve
 from fem_rings.probe import vector_probe_matrix
 from fem_rings.sections import SlewingSection, slewing_bottom_race
 from fem_rings.solve import point_load
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 from mbd_core.quasistatic import (
     Bearing,
     FlexibleRing,

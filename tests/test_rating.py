@@ -24,7 +24,7 @@ from mbd_core.bearing.rating import (
 )
 from mbd_core.contact.hertz import ball_on_groove
 from mbd_core.contact.subsurface import max_shear_profile_Pa, subsurface_shear
-from mbd_core.materials import BEARING_STEEL
+from foundation.materials import BEARING_STEEL
 
 G = 9.80665
 

@@ -8,7 +8,7 @@ from cms_reduction.pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, re
 from cms_reduction.sampling import samples_from_arrays
 from fem_rings import MeshSpec
 from fem_rings.sections import SlewingSection, slewing_bottom_race
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 

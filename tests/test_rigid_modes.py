@@ -16,7 +16,7 @@ from fem_rings import MeshSpec, Support, build_model, modal_analysis
 from fem_rings.modal_basis import rigid_body_fields
 from fem_rings.profile import rectangle
 from fem_rings.solve import classify_ring_mode
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 R_M, B_M = 1.0, 0.01          # thin ring: R/b = 100, 10 × 10 mm square section

@@ -9,7 +9,7 @@ from fem_rings.mesh import MeshSpec
 from fem_rings.model import build_model
 from fem_rings.profile import rectangle
 from fem_rings.solve import classify_ring_mode, modal_analysis
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 R = 1.0

@@ -9,7 +9,7 @@ from fem_rings import MeshSpec, build_model
 from fem_rings.nodesets import raceway_curve
 from fem_rings.profile import rectangle
 from fem_rings.solve import point_load, rigid_body_fields
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 

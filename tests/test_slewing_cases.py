@@ -19,7 +19,7 @@ from cases.slewing import PRESETS, SlewingCase, quick
 from cases.slewing import scene
 from cases.slewing.quasistatic import analytic_ball_load_N, equilibrium, nominal_ball_load_N, travel
 from mbd_core.contact import ball_on_groove
-from mbd_core.materials import BEARING_STEEL
+from foundation.materials import BEARING_STEEL
 
 
 def _run(name, tmp_path, *extra):

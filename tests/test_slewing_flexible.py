@@ -19,7 +19,7 @@ from scipy.interpolate import CubicSpline
 from cms_reduction.pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, reduced_body
 from fem_rings import MeshSpec
 from fem_rings.sections import SlewingSection, slewing_top_race
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 from mbd_core.multibody import ModelBuilder
 from mbd_core.multibody.bearings import add_ball_row
 from mbd_core.multibody.builder import Driven, Fixed

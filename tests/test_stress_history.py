@@ -36,7 +36,7 @@ from fem_rings import MeshSpec, build_model
 from fem_rings.output import voigt_to_vtk_tensor
 from fem_rings.profile import rectangle
 from fem_rings.stress import nodal_stress_Pa, von_mises_Pa
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 RING = rectangle("ring", 0.95, 1.05, -0.05, 0.05)

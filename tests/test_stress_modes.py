@@ -7,7 +7,7 @@ from cms_reduction.stress_modes import add_stress_modes, modal_stress_Pa, render
 from fem_rings import MeshSpec, build_model
 from fem_rings.profile import rectangle
 from fem_rings.stress import nodal_stress_Pa
-from mbd_core.materials import ElasticMaterial
+from foundation.materials import ElasticMaterial
 
 
 def test_stress_modes_superpose_and_render(tmp_path):

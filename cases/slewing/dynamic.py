@@ -25,7 +25,7 @@ import numpy as np
 
 from mbd_core.contact import ball_on_groove
 from mbd_core.contact.hertz import sphere_on_sphere
-from mbd_core.materials import BEARING_STEEL
+from foundation.materials import BEARING_STEEL
 from mbd_core.multibody import ModelBuilder
 from mbd_core.multibody.bearings import _rotate_back, add_ball_row, ball_mass_kg, set_rolling_velocities
 from mbd_core.multibody.builder import ContactLaw, Driven, Fixed

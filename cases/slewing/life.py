@@ -47,8 +47,8 @@ from mbd_core.bearing.case_depth import (
 from mbd_core.bearing.rating import basic_rating_life_Mrev, rating_life_hours, thrust_ball_rating_N
 from mbd_core.contact.hertz import ball_on_groove
 from mbd_core.contact.subsurface import max_shear_profile_Pa, subsurface_shear
-from mbd_core.materials import BEARING_STEEL
-from mbd_core.validation import check_positive
+from foundation.materials import BEARING_STEEL
+from foundation.validation import check_positive
 
 __all__ = ["WorstBallLife", "worst_ball_life", "plot_subsurface_shear"]
 

@@ -30,7 +30,7 @@ from cms_reduction.pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, re
 from fem_rings import MeshSpec
 from fem_rings.sections import slewing_bottom_race, slewing_top_race, slewing_top_structure
 from mbd_core.bearing.kinematics import cage_speed_rad_s
-from mbd_core.materials import BEARING_STEEL, ElasticMaterial
+from foundation.materials import BEARING_STEEL, ElasticMaterial
 from mbd_core.quasistatic import BallRow
 from mbd_core.quasistatic.flexible import FlexibleRing, GrooveOffset
 

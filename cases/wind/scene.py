@@ -32,7 +32,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from cases.catalog import three_row_roller
-from mbd_core.materials import BEARING_STEEL, ElasticMaterial
+from foundation.materials import BEARING_STEEL, ElasticMaterial
 from mbd_core.multibody import ModelBuilder
 from mbd_core.multibody.bearings import LINE_EXPONENT, _rotate, _rotate_back, add_roller_row, roller_mass_kg
 from mbd_core.multibody.builder import Driven, Fixed, Free, quat_from_axis_angle

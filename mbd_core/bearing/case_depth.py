@@ -16,7 +16,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..contact.subsurface import max_shear_profile_Pa, subsurface_shear
-from ..validation import check_positive
+from foundation.validation import check_positive
 
 __all__ = [
     "shear_yield_from_uts_Pa",

@@ -48,7 +48,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..validation import check_positive
+from foundation.validation import check_positive
 
 __all__ = [
     "RollingKinematics",

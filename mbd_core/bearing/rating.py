@@ -44,7 +44,7 @@ import numbers
 from types import MappingProxyType
 from typing import Literal
 
-from ..validation import check_positive
+from foundation.validation import check_positive
 
 
 __all__ = [

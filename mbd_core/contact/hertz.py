@@ -33,8 +33,8 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
-from ..materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
-from ..validation import check_positive
+from foundation.materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
+from foundation.validation import check_positive
 
 __all__ = [
     "HertzPointContact",

@@ -19,8 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
-from ..validation import check_positive
+from foundation.materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
+from foundation.validation import check_positive
 
 __all__ = [
     "LINE_EXPONENT",

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..contact.hertz import ball_on_groove
-from ..materials import effective_modulus_Pa
+from foundation.materials import effective_modulus_Pa
 from ..kernels.ball_groove import groove_point
 from ..quasistatic.rows import BallRow, RollerRow
 from .builder import ContactLaw, ModelBuilder, quat_z_to

@@ -23,7 +23,7 @@ from ..kernels.roller_slices import (
     RACEWAY_PLANE_DOWN,
     RACEWAY_PLANE_UP,
 )
-from ..validation import check_positive
+from foundation.validation import check_positive
 from .model import Model, ModelArrays, State
 
 __all__ = ["ModelBuilder", "ContactLaw", "Free", "Fixed", "Driven", "quat_from_axis_angle", "quat_z_to"]

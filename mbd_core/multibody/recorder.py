@@ -33,7 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..npzfile import NPZ_ERRORS, read_npz
+from foundation.npzfile import NPZ_ERRORS, read_npz
 from .model import RECORDED_CONTACT_FIELDS, Model, fingerprint_differences, model_fingerprint
 
 __all__ = ["RunRecord", "RecordError", "read_run", "FORMAT_VERSION"]

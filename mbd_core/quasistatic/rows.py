@@ -37,8 +37,8 @@ from typing import Literal
 
 from ..contact.hertz import ball_on_groove, series_stiffness
 from ..contact.line import LINE_EXPONENT, iso16281_stiffness, palmgren_stiffness, series_line_stiffness
-from ..materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
-from ..validation import check_positive
+from foundation.materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
+from foundation.validation import check_positive
 
 __all__ = ["BallRow", "RollerRow", "Bearing"]
 
