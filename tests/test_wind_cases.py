@@ -105,3 +105,16 @@ def test_rigid_and_flexible_quick_runs(tmp_path):
     for name, v in s["flexible"]["stress"].items():
         assert 0.1 < v["peak_von_mises_MPa"] < 650.0, name
         assert (out / v["png"]).stat().st_size > 10_000
+
+
+def test_averages_need_samples_after_the_settling_time():
+    """A run whose samples all fall before ``analysis.settle_s`` gave NaN speeds and a bare numpy
+    error; now it names the keys. Four samples at 0, 1, 2, 3 ms with settle_s = 2.5 ms: one left."""
+    from cases.wind import dynamic
+
+    case = resolve_case("wind-speeds", True, ["analysis.duration_s=0.004", "analysis.settle_s=0.0025"])
+    rec = {"t": np.array([0.0, 1e-3, 2e-3, 3e-3]), "timestep_s": 1e-5}
+    with pytest.raises(CaseError, match=r"analysis\.settle_s = 0\.0025 s leaves 1 recorded samples.*record_every"):
+        dynamic._settled(case, rec)
+    ok = dynamic._settled(case.with_(analysis={"settle_s": 0.0015}), rec)
+    assert ok.tolist() == [False, False, True, True]

@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 
+from cases.config import CaseError
 from cases.integrate import integrate
 
 from .case import INNER_RING_MASS_KG, WindCase
@@ -39,8 +40,20 @@ def run(case: WindCase, progress=None) -> tuple[WindScene, dict]:
                          adaptive=case.contact.preset == "adams")
 
 
+#: fewest recorded samples after the settling time that the averages of a run are taken over
+MIN_SETTLED_SAMPLES = 2
+
+
 def _settled(case: WindCase, rec: dict) -> np.ndarray:
-    return rec["t"] >= case.analysis.settle_s
+    """Mask of the samples after ``analysis.settle_s``; too few of them is an error naming the keys."""
+    ok = rec["t"] >= case.analysis.settle_s
+    if np.count_nonzero(ok) < MIN_SETTLED_SAMPLES:
+        a = case.analysis
+        raise CaseError(f"analysis.settle_s = {a.settle_s:g} s leaves {np.count_nonzero(ok)} recorded samples "
+                        f"before analysis.duration_s = {a.duration_s:g} s (one every analysis.record_every = "
+                        f"{a.record_every} steps of {rec['timestep_s']:.3g} s, {len(rec['t'])} in all): "
+                        f"lower settle_s or record_every, or lengthen duration_s")
+    return ok
 
 
 def _omega(case: WindCase) -> float:
