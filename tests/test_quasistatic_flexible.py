@@ -32,6 +32,7 @@ from mbd_core.quasistatic import (
     Bearing,
     FlexibleRing,
     GrooveOffset,
+    LoadDistributionError,
     RingLoad,
     RollerRow,
     build_flexible_model,
@@ -428,6 +429,28 @@ def test_without_flexible_rings_equals_rigid_solver():
     for ra, rb in zip(a.rows, b.rows):
         np.testing.assert_allclose(rb.slice_load_N, ra.slice_load_N, rtol=1e-7, atol=1e-6 * ra.load_N.max())
     assert b.modal_coordinates == () and b.deflections == ()
+
+
+@pytest.mark.parametrize("Fz_N", [-1e-8, -1e-3, -1e6])
+def test_convergence_is_relative_to_the_load_at_every_load(Fz_N):
+    """The flexible solver's tolerance had an absolute floor of 1 N: at 1e-8 N it stopped after one
+    iteration with the axial ball forces 0.09 % off the load while reporting an error of 9e-12.
+    Reference: Newton's third law, Σ Q sin α = |Fz| for the centric thrust load (1e-9 relative),
+    and the rigid solver's ball loads (1e-7)."""
+    case = slewing_ring("1m")
+    load = RingLoad(Fz_N=Fz_N)
+    res = solve_flexible_load_distribution(build_flexible_model(case.bearing), load)
+    r = res.row(ROW)
+    assert np.sum(r.load_N * np.sin(r.contact_angle_rad)) == pytest.approx(-Fz_N, rel=1e-9)
+    np.testing.assert_allclose(r.load_N, solve_load_distribution(case.bearing, load).row(ROW).load_N, rtol=1e-7)
+
+
+def test_an_absurd_load_is_not_reported_as_converged():
+    """At 1e160 N the residual norm overflowed to inf, the tolerance too: "converged" after 0
+    iterations with an equilibrium error of nan. Now no equilibrium is found, as with rigid rings."""
+    case = slewing_ring("1m")
+    with pytest.raises(LoadDistributionError, match="no converged equilibrium"):
+        solve_flexible_load_distribution(build_flexible_model(case.bearing), RingLoad(Fz_N=-1e160))
 
 
 # --- input errors name the field ------------------------------------------------------------------

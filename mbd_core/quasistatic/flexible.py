@@ -61,6 +61,8 @@ from typing import Any
 import numpy as np
 
 from .elements import BallGroup, SliceGroup, build_groups, displacement_matrix, shift_ball_centres
+from .newton import safe_norm
+from .results import LoadDistributionError
 from .rows import BallRow, Bearing
 from .solver import (
     DOF_NAMES,
@@ -552,7 +554,7 @@ def solve_flexible_load_distribution(
     load : RingLoad
         External load on the moving ring, N and N·m.
     tolerance : float
-        Convergence when |scaled residual| ≤ tolerance·max(|load|, Σ element loads, 1 N) (moments
+        Convergence when |scaled residual| ≤ tolerance·max(|load|, Σ element loads) (moments
         over the largest pitch radius, modal forces over their mode's largest raceway displacement).
     max_iterations : int
         Newton iterations per stage before giving up.
@@ -590,17 +592,21 @@ def solve_flexible_load_distribution(
         R, J = model.residual(y_scaled / S, load, jac)
         return R / S, (None if J is None else J / S[:, None] / S[None, :])
 
-    scale = max(float(np.linalg.norm(f_ext / S[:5])), 1.0)
+    # relative to the load at every load (no absolute floor), overflow-safe
+    scale = safe_norm(f_ext / S[:5])
+    if not math.isfinite(scale):
+        raise LoadDistributionError(f"load on bearing {bearing.name!r} is not finite: {f_ext.tolist()}")
     # stage 1: rigid rings (η = 0) with the offsets; stage 2: all unknowns from there
     y, _, _, it1 = damped_newton(residual, y, free_q, tolerance * scale, max_iterations, fallback)
     Qb = ball_forces(model.balls, model.ball_dofs, y / S, jacobian=False)[0]
     Qs = slice_forces(model.slices, model.slice_dofs, y / S, jacobian=False)[0]
-    scale = max(scale, float(Qb.sum() + Qs.sum()))
+    element_sum = float(Qb.sum() + Qs.sum())
+    scale = max(scale, element_sum if math.isfinite(element_sum) else 0.0)
     free = np.concatenate((free_q, np.arange(5, N)))
     y, R, norm, it2 = damped_newton(residual, y, free, tolerance * scale, max_iterations, fallback)
     if not norm <= tolerance * scale:
         raise no_equilibrium_error(bearing.name, it1 + it2, R, S, f_ext)
-    return _collect(model, load, y / S, it1 + it2, norm / scale, held)
+    return _collect(model, load, y / S, it1 + it2, norm / scale if scale > 0.0 else 0.0, held)
 
 
 def _collect(model: FlexibleBearingModel, load: RingLoad, x: np.ndarray, iterations: int, error: float,

@@ -225,7 +225,7 @@ def damped_newton(residual, y: np.ndarray, free: np.ndarray, tolerance_abs: floa
     """
     y = np.array(y, dtype=float)
     r, J = residual(y)
-    norm = np.linalg.norm(r[free])
+    norm = safe_norm(r[free])
     it = 0
     while norm > tolerance_abs and it < max_iterations:
         it += 1
@@ -238,7 +238,7 @@ def damped_newton(residual, y: np.ndarray, free: np.ndarray, tolerance_abs: floa
         while lam > 1e-8:
             y_try = y + lam * step
             r_try, J_try = residual(y_try)
-            n_try = np.linalg.norm(r_try[free])
+            n_try = safe_norm(r_try[free])
             if n_try < (1.0 - 1e-4 * lam) * norm:
                 accepted = True
                 break
