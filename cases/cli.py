@@ -30,6 +30,7 @@ from mbd_core.multibody.statics import StaticEquilibriumError
 from mbd_core.quasistatic import LoadDistributionError, RingLoad, solve_load_distribution
 
 from . import signals
+from .cache_command import add_cache_parser, cache_help_line
 from .catalog import BUILTIN_BEARINGS, builtin_bearing
 from .outdir import check_output_target
 from .parts import RING_PARTS, ring_part
@@ -301,7 +302,8 @@ def build_parser() -> argparse.ArgumentParser:
         ver = version("flexbearing")
     except PackageNotFoundError:  # running from a source tree
         ver = "unknown"
-    parser = argparse.ArgumentParser(prog="flexbearing", description="Dynamics and load distribution of large rolling bearings.")
+    parser = argparse.ArgumentParser(prog="flexbearing", description="Dynamics and load distribution of large rolling bearings.",
+                                     epilog=cache_help_line())
     parser.add_argument("--version", action="version", version=f"flexbearing {ver}")
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
     parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
@@ -368,6 +370,7 @@ def build_parser() -> argparse.ArgumentParser:
     md.add_argument("--out", default=None, help="write summary.json, modes.vtu and PNGs here")
     md.add_argument("--json", action="store_true", help="print SI results as JSON")
     md.set_defaults(func=cmd_modes)
+    add_cache_parser(sub)
     return parser
 
 
