@@ -26,7 +26,7 @@ import scipy.sparse as sp
 import skfem
 from threadpoolctl import threadpool_limits
 
-from .linalg import factorize_spd, shift_invert_operator
+from .linalg import available_backends, factorize_spd, shift_invert_operator
 from .modal_basis import (body_length_m, deflated_eigsh, m_orthonormal, mass_centre_m, rigid_body_fields,
                           unheld_rigid_combinations)
 from .model import FEModel, vector_dofs
@@ -65,6 +65,10 @@ def solver_threads():
     factorisation 11.4 s vs 6.8 s).
     """
     n = int(os.environ.get("FLEXBEARING_SOLVER_THREADS", "1"))
+    # threadpoolctl limits only the pools already loaded: load the sparse backends' BLAS first, or a
+    # factorisation that imports its backend inside the block runs on all threads the first time
+    # (and rounds differently from every later one: the reductions would depend on what ran before)
+    available_backends()
     with threadpool_limits(limits=n):
         yield
 
