@@ -197,6 +197,9 @@ def test_stop_signals_unwind_like_ctrl_c(tmp_path, name):
         "import os, signal, sys, time\n"
         "from cases import signals\n"
         "from cases.outdir import atomic_folder\n"
+        # an interactive shell's Ctrl-C: a job started in the background of a non-interactive
+        # shell inherits SIGINT ignored, and Python then keeps it ignored
+        "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         "signals.install()\n"
         "with atomic_folder(sys.argv[1]) as tmp:\n"
         "    (tmp / 'summary.json').write_text('{}')\n"
