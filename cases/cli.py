@@ -25,6 +25,7 @@ from mbd_core.contact import ball_on_groove, line_contact, sphere_on_sphere, sub
 from mbd_core.contact.limits import line_contact_warnings, point_contact_warnings
 from mbd_core.contact.line import iso16281_stiffness, palmgren_stiffness
 from foundation.materials import ElasticMaterial, effective_modulus_Pa
+from foundation.progress import track
 from mbd_core.multibody import SimulationError
 from mbd_core.multibody.statics import StaticEquilibriumError
 from mbd_core.quasistatic import LoadDistributionError, RingLoad, solve_load_distribution
@@ -34,6 +35,7 @@ from .cache_command import add_cache_parser, cache_help_line
 from .catalog import BUILTIN_BEARINGS, builtin_bearing
 from .outdir import check_output_target
 from .parts import RING_PARTS, ring_part
+from .progress_display import terminal_progress
 from .report import format_table, load_distribution_table, write_load_distribution
 
 __all__ = ["main"]
@@ -267,12 +269,6 @@ def cmd_modes(args) -> dict:
     return summary
 
 
-def _progress(iterable, desc: str):
-    from tqdm import tqdm
-
-    return tqdm(iterable, desc=desc, leave=False, file=sys.stderr, dynamic_ncols=True)
-
-
 def cmd_run(args) -> dict:
     from .run import CASES, resolve_case, run_case
 
@@ -283,7 +279,7 @@ def cmd_run(args) -> dict:
     case = resolve_case(args.case, args.quick, args.set)
     out_dir = args.out if args.out is not None else f"results/{case.name}"
     print(f"{case.name}: {case.description}" if case.description else case.name)
-    out = run_case(case, out_dir, progress=_progress, resume=args.resume)
+    out = run_case(case, out_dir, progress=track, resume=args.resume)
     for line in out.report:
         print(f"  {line}")
     files = sorted({p.suffix for p in out.folder.iterdir()})
@@ -484,7 +480,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(_attach_negative_values(sys.argv[1:] if argv is None else list(argv)))
     logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING, format="%(message)s")
-    return _run(args)
+    with terminal_progress(sys.stderr):     # long phases on stderr: stdout stays clean for --json
+        return _run(args)
 
 
 if __name__ == "__main__":
