@@ -54,5 +54,5 @@ def install() -> CompileListener:
     global _listener
     if _listener is None:
         _listener = CompileListener()
-        event.install_listener("numba:compile", _listener)
+        event.register("numba:compile", _listener)
     return _listener
