@@ -16,7 +16,9 @@ logging shows INFO; the command line installs a reporter that draws on stderr
 steps and blocks of work, never single elements in a hot loop.
 
 The time left of a phase with a total is the work left at the average rate so far,
-(n − k) · t / k after k of n pieces in t seconds (:func:`remaining_time_s`).
+(n − k) · t / k after k of n pieces in t seconds (:func:`remaining_time_s`). One-off work inside a
+piece (``phase(..., once=True)``, e.g. compiling kernels on a first run) is not counted in t: the
+pieces still to come will not repeat it.
 """
 
 from __future__ import annotations
@@ -75,15 +77,21 @@ class Phase:
         The phase this one runs inside.
     detail : str
         Free text a reporter may show after the label (set with :meth:`note`).
+    once : bool
+        One-off work (not repeated by the pieces of the phases around it).
+    one_off_s : float
+        Time of finished one-off phases inside this one, s (left out of its rate).
     """
 
     def __init__(self, label: str, total: int | None = None, parent: "Phase | None" = None,
-                 clock: Callable[[], float] = time.perf_counter) -> None:
+                 clock: Callable[[], float] = time.perf_counter, once: bool = False) -> None:
         self.label = str(label)
         self.total = None if total is None else int(total)
         self.done = 0
         self.parent = parent
         self.detail = ""
+        self.once = bool(once)
+        self.one_off_s = 0.0
         self._clock = clock
         self.started_s = clock()
         self.ended_s: float | None = None
@@ -107,8 +115,9 @@ class Phase:
         return self._clock()
 
     def remaining_s(self) -> float | None:
-        """Estimated seconds left (:func:`remaining_time_s`), None without a total or progress."""
-        return remaining_time_s(self.done, self.total, self.elapsed_s())
+        """Estimated seconds left (:func:`remaining_time_s`) from the time of the pieces done, one-off
+        work inside them left out; None without a total or progress."""
+        return remaining_time_s(self.done, self.total, self.elapsed_s() - self.one_off_s)
 
     def path(self) -> list[str]:
         """Labels from the outermost phase down to this one."""
@@ -155,7 +164,7 @@ _state = _Shared()
 
 
 @contextmanager
-def phase(label: str, total: int | None = None, *,
+def phase(label: str, total: int | None = None, *, once: bool = False,
           clock: Callable[[], float] = time.perf_counter) -> Iterator[Phase]:
     """Announce a phase of work for the ``with`` block.
 
@@ -165,6 +174,9 @@ def phase(label: str, total: int | None = None, *,
         What the block does, for people.
     total : int, optional
         Pieces of work in the block, when known; call ``advance`` once per piece.
+    once : bool
+        One-off work (compiling, a first-time setup): its time is left out of the time-left
+        estimates of the phases around it.
     clock : callable, optional
         Source of seconds (tests pass a fake one).
 
@@ -173,7 +185,7 @@ def phase(label: str, total: int | None = None, *,
     Phase
     """
     stack = _threads.stack
-    p = Phase(label, total, stack[-1] if stack else None, clock)
+    p = Phase(label, total, stack[-1] if stack else None, clock, once)
     stack.append(p)
     _state.reporter.start(p)
     try:
@@ -182,6 +194,11 @@ def phase(label: str, total: int | None = None, *,
         p.ended_s = p.clock()
         if p in stack:          # a generator left open may close out of order: remove it wherever it is
             stack.remove(p)
+        if p.once:
+            outer = p.parent
+            while outer is not None:
+                outer.one_off_s += p.elapsed_s()
+                outer = outer.parent
         _state.reporter.finish(p)
 
 

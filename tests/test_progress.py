@@ -66,6 +66,19 @@ def test_time_left_is_the_average_rate_so_far(n, k, t_s):
     assert remaining_time_s(3, None, 5.0) is None       # no total, no estimate
 
 
+def test_one_off_work_is_left_out_of_the_rate():
+    # Reference: the first of 10 pieces took 2 s of work plus 30 s of one-off compiling; the nine
+    # left will not compile again, so 9 × 2 s = 18 s are left (not 9 × 32 s).
+    clock = FakeClock()
+    with reporting(Reporter()), phase("time loop", total=10, clock=clock) as loop:
+        with phase("compiling", once=True, clock=clock):
+            clock.now_s += 30.0
+        clock.now_s += 2.0
+        loop.advance()
+        assert loop.remaining_s() == pytest.approx(18.0, rel=1e-12)
+        assert loop.elapsed_s() == pytest.approx(32.0, rel=1e-12)
+
+
 def test_terminal_bar_shows_the_same_estimate():
     # Reference: 3 of 10 in 6 s → 14 s left; 6 s elapsed.
     clock, out = FakeClock(), io.StringIO()

@@ -4,7 +4,8 @@ numba's dispatcher looks a signature up in the on-disk cache first and raises it
 ``numba:compile`` event only on a miss, around the actual compilation. A listener on that event
 opens one :func:`foundation.progress.phase` for the outermost compilation (kernels called from a
 kernel compile inside it, as nested events) with the name of the kernel being compiled, and closes it
-when that compilation ends, so the phase's time is the measured compile time. Loading compiled code
+when that compilation ends, so the phase's time is the measured compile time (one-off work: left
+out of the time-left estimate of a time loop it interrupts). Loading compiled code
 from the cache raises no event and shows nothing.
 """
 
@@ -36,7 +37,7 @@ class CompileListener(event.Listener):
         self.compiled.append(name)
         self._depth += 1
         if self._depth == 1:
-            self._phase = phase(COMPILING_LABEL)
+            self._phase = phase(COMPILING_LABEL, once=True)
             self._phase.__enter__().note(name)
 
     def on_end(self, ev) -> None:
