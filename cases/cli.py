@@ -25,7 +25,7 @@ from mbd_core.contact import ball_on_groove, line_contact, sphere_on_sphere, sub
 from mbd_core.contact.limits import line_contact_warnings, point_contact_warnings
 from mbd_core.contact.line import iso16281_stiffness, palmgren_stiffness
 from foundation.materials import ElasticMaterial, effective_modulus_Pa
-from foundation.progress import track
+from foundation.progress import phase, track
 from mbd_core.multibody import SimulationError
 from mbd_core.multibody.statics import StaticEquilibriumError
 from mbd_core.quasistatic import LoadDistributionError, RingLoad, solve_load_distribution
@@ -237,7 +237,8 @@ def cmd_loaddist(args) -> dict:
         load = case.default_load
     else:
         load = RingLoad(**{k: (0.0 if v is None else v) for k, v in given.items()})
-    res = solve_load_distribution(case.bearing, load)
+    with phase(f"load distribution of {case.name}"):
+        res = solve_load_distribution(case.bearing, load)
     if args.out:
         path = write_load_distribution(res, args.out, {"case": case.name, "description": case.description})
         logging.getLogger(__name__).info("wrote %s", path)

@@ -4,13 +4,16 @@ On a terminal every open phase is one line, nested phases under their parent: a 
 pieces done, the elapsed time and the time left when the phase has a total, otherwise its label
 and the elapsed seconds, kept ticking by a small refresh thread. A finished outermost phase leaves
 one line with its time. When stderr is not a terminal (a log file, CI) nothing is redrawn: each
-finished phase is one line, ``outer > inner: 3.2 s``. Nothing goes to stdout, so ``--json``
+finished phase is one line, ``outer > inner: 3.2 s``. A phase ended by an error leaves no line
+(the error is told in one line by the command line). Nothing goes to stdout, so ``--json``
 output stays clean.
 """
 
 from __future__ import annotations
 
+import math
 import threading
+import time
 from contextlib import contextmanager
 from typing import IO, Iterator
 
@@ -20,6 +23,10 @@ __all__ = ["TerminalReporter", "terminal_progress", "phase_line", "finished_line
 
 #: seconds between redraws of the ticking lines
 REFRESH_S = 0.5
+
+#: at most one redraw per phase within this many seconds when it advances quickly (the ticking
+#: thread draws the latest state), so many small pieces cost a clock read each, not a redraw
+MIN_REDRAW_S = 0.1
 
 _BAR = "{desc} {percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt}{postfix}"
 
@@ -57,6 +64,7 @@ class TerminalReporter(Reporter):
         self.stream = stream
         self.interactive = bool(stream.isatty()) if interactive is None else bool(interactive)
         self._bars: dict[Phase, object] = {}
+        self._drawn_s: dict[Phase, float] = {}
         self._lock = threading.RLock()
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
@@ -76,19 +84,26 @@ class TerminalReporter(Reporter):
             self._ensure_ticking()
 
     def update(self, phase: Phase) -> None:
-        if self.interactive:
-            with self._lock:
-                self._draw(phase)
+        if not self.interactive:
+            return
+        now = time.monotonic()
+        if now - self._drawn_s.get(phase, -math.inf) < MIN_REDRAW_S and phase.done != phase.total:
+            return
+        self._drawn_s[phase] = now
+        with self._lock:
+            self._draw(phase)
 
     def finish(self, phase: Phase) -> None:
         if not self.interactive:
-            print(finished_line(phase), file=self.stream, flush=True)
+            if not phase.failed:      # a failure is told by its one error line
+                print(finished_line(phase), file=self.stream, flush=True)
             return
         with self._lock:
             bar = self._bars.pop(phase, None)
+            self._drawn_s.pop(phase, None)
             if bar is not None:
                 bar.close()
-            if phase.depth == 0:
+            if phase.depth == 0 and not phase.failed:
                 from tqdm import tqdm
 
                 tqdm.write(finished_line(phase), file=self.stream)

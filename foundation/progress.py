@@ -81,6 +81,8 @@ class Phase:
         One-off work (not repeated by the pieces of the phases around it).
     one_off_s : float
         Time of finished one-off phases inside this one, s (left out of its rate).
+    failed : bool
+        The phase ended by an exception (reporters say nothing more of it: the error speaks).
     """
 
     def __init__(self, label: str, total: int | None = None, parent: "Phase | None" = None,
@@ -92,6 +94,7 @@ class Phase:
         self.detail = ""
         self.once = bool(once)
         self.one_off_s = 0.0
+        self.failed = False
         self._clock = clock
         self.started_s = clock()
         self.ended_s: float | None = None
@@ -141,7 +144,7 @@ class LoggingReporter(Reporter):
     """The default: one INFO line per finished phase, with its elapsed time."""
 
     def finish(self, phase: Phase) -> None:
-        if log.isEnabledFor(logging.INFO):
+        if log.isEnabledFor(logging.INFO) and not phase.failed:
             counted = f" ({phase.done}/{phase.total})" if phase.total is not None else ""
             log.info("%s%s: %.2f s", " > ".join(phase.path()), counted, phase.elapsed_s())
 
@@ -190,6 +193,9 @@ def phase(label: str, total: int | None = None, *, once: bool = False,
     _state.reporter.start(p)
     try:
         yield p
+    except BaseException:
+        p.failed = True
+        raise
     finally:
         p.ended_s = p.clock()
         if p in stack:          # a generator left open may close out of order: remove it wherever it is
