@@ -262,7 +262,8 @@ def cmd_modes(args) -> dict:
     model, modes, summary = part_modes(part, args.modes, None if args.size_mm is None else args.size_mm * 1e-3,
                                        args.element, use_cache=not args.no_cache, keys=("--size-mm", "--modes"))
     if args.out:
-        write_modes(model, modes, summary, args.out)
+        with phase(f"writing {args.out}"):
+            write_modes(model, modes, summary, args.out)
     if not args.json:
         print(modes_table(summary))
         if args.out:
