@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 import threading
 import time
-from contextlib import contextmanager
+from contextlib import contextmanager, nullcontext
 from typing import IO, Iterator
 
 from foundation.progress import Phase, Reporter, format_seconds, reporting
@@ -145,10 +145,17 @@ class TerminalReporter(Reporter):
 
 @contextmanager
 def terminal_progress(stream: IO[str], interactive: bool | None = None) -> Iterator[TerminalReporter]:
-    """Show the phases of the ``with`` block on ``stream`` (:class:`TerminalReporter`)."""
+    """Show the phases of the ``with`` block on ``stream`` (:class:`TerminalReporter`); on a terminal,
+    console log lines are written above the drawn lines instead of through them."""
     reporter = TerminalReporter(stream, interactive)
     try:
-        with reporting(reporter):
+        with reporting(reporter), (_logging_above_bars() if reporter.interactive else nullcontext()):
             yield reporter
     finally:
         reporter.close()
+
+
+def _logging_above_bars():
+    from tqdm.contrib.logging import logging_redirect_tqdm
+
+    return logging_redirect_tqdm()
