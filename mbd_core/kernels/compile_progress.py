@@ -11,15 +11,11 @@ from the cache raises no event and shows nothing.
 
 from __future__ import annotations
 
-import logging
-
 from numba.core import event
 
 from foundation.progress import phase
 
 __all__ = ["COMPILING_LABEL", "CompileListener", "install"]
-
-log = logging.getLogger(__name__)
 
 COMPILING_LABEL = "compiling kernels (first run only, cached afterwards)"
 
