@@ -68,7 +68,7 @@ class Phase:
     Attributes
     ----------
     label : str
-        What is being done, e.g. ``"factorising K (41 322 DOF)"``.
+        What is being done, e.g. ``"factorising (41322 DOF, 6182553 nonzeros, cholmod)"``.
     total : int or None
         Number of pieces of work, when known.
     done : int
@@ -103,12 +103,12 @@ class Phase:
     def advance(self, n: int = 1) -> None:
         """Mark ``n`` more pieces done and let the reporter redraw."""
         self.done += int(n)
-        _state.reporter.update(self)
+        _shared.reporter.update(self)
 
     def note(self, detail: str) -> None:
         """Set the detail text (e.g. the kernel being compiled) and let the reporter redraw."""
         self.detail = str(detail)
-        _state.reporter.update(self)
+        _shared.reporter.update(self)
 
     def elapsed_s(self) -> float:
         """Seconds since the phase started (until it ended, once it has)."""
@@ -149,21 +149,21 @@ class LoggingReporter(Reporter):
             log.info("%s%s: %.2f s", " > ".join(phase.path()), counted, phase.elapsed_s())
 
 
-class _State(threading.local):
+class _ThreadPhases(threading.local):
     """Per thread: the open phases (innermost last). The reporter is shared by all threads."""
 
     def __init__(self) -> None:
         self.stack: list[Phase] = []
 
 
-_threads = _State()
+_threads = _ThreadPhases()
 
 
 class _Shared:
     reporter: Reporter = LoggingReporter()
 
 
-_state = _Shared()
+_shared = _Shared()
 
 
 @contextmanager
@@ -190,7 +190,7 @@ def phase(label: str, total: int | None = None, *, once: bool = False,
     stack = _threads.stack
     p = Phase(label, total, stack[-1] if stack else None, clock, once)
     stack.append(p)
-    _state.reporter.start(p)
+    _shared.reporter.start(p)
     try:
         yield p
     except BaseException:
@@ -205,7 +205,7 @@ def phase(label: str, total: int | None = None, *, once: bool = False,
             while outer is not None:
                 outer.one_off_s += p.elapsed_s()
                 outer = outer.parent
-        _state.reporter.finish(p)
+        _shared.reporter.finish(p)
 
 
 def track(iterable: Iterable, label: str) -> Iterator:
@@ -223,9 +223,9 @@ def track(iterable: Iterable, label: str) -> Iterator:
 @contextmanager
 def reporting(reporter: Reporter) -> Iterator[Reporter]:
     """Install ``reporter`` for the ``with`` block (the previous one comes back afterwards)."""
-    previous = _state.reporter
-    _state.reporter = reporter
+    previous = _shared.reporter
+    _shared.reporter = reporter
     try:
         yield reporter
     finally:
-        _state.reporter = previous
+        _shared.reporter = previous
