@@ -197,3 +197,26 @@ def test_compiling_is_shown_once_and_a_cache_load_not(tmp_path, monkeypatch):
     assert first[0][4] == "progress_probe_kernel"            # the phase names the kernel it compiles
     assert again.progress_probe_kernel.stats.cache_hits and not again.progress_probe_kernel.stats.cache_misses
     sys.modules.pop("progress_probe", None)
+
+
+def test_a_kernel_that_fails_to_compile_raises_as_before_and_leaves_no_line():
+    # Reference: numba's own behaviour without the listener — a typing error reaches the caller;
+    # the listener must neither swallow it nor break the compilation of a good kernel beside it.
+    from numba import njit
+    from numba.core.errors import TypingError
+
+    @njit
+    def doubled(x):
+        return 2 * x
+
+    @njit
+    def broken(x):
+        return x.no_such_attribute
+
+    out = io.StringIO()
+    with reporting(TerminalReporter(out, interactive=False)):
+        assert doubled(21) == 42
+        with pytest.raises(TypingError):
+            broken(1)
+    lines = out.getvalue().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"{COMPILING_LABEL}: doubled: ")

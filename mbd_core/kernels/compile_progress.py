@@ -11,36 +11,55 @@ from the cache raises no event and shows nothing.
 
 from __future__ import annotations
 
+import logging
+
 from numba.core import event
 
 from foundation.progress import phase
 
 __all__ = ["COMPILING_LABEL", "CompileListener", "install"]
 
+log = logging.getLogger(__name__)
+
 COMPILING_LABEL = "compiling kernels (first run only, cached afterwards)"
 
 
 class CompileListener(event.Listener):
-    """Turns the outermost ``numba:compile`` event into a progress phase."""
+    """Turns the outermost ``numba:compile`` event into a progress phase.
+
+    A listener that raised would abort the compilation it watches, so a failure to show the phase
+    is logged (DEBUG) and otherwise ignored.
+    """
 
     def __init__(self) -> None:
         self._depth = 0
-        self._phase = None
+        self._open = None            # (context manager, phase) of the outermost compilation
         self.compiled: list[str] = []
 
     def on_start(self, ev) -> None:
-        name = getattr(ev.data.get("dispatcher"), "__name__", "kernel") if isinstance(ev.data, dict) else "kernel"
-        self.compiled.append(name)
         self._depth += 1
         if self._depth == 1:
-            self._phase = phase(COMPILING_LABEL, once=True)
-            self._phase.__enter__().note(name)
+            try:
+                name = getattr(ev.data.get("dispatcher"), "__name__", "kernel") if isinstance(ev.data, dict) else "kernel"
+                self.compiled.append(name)
+                ctx = phase(COMPILING_LABEL, once=True)
+                shown = ctx.__enter__()
+                self._open = (ctx, shown)
+                shown.note(name)
+            except Exception:  # noqa: BLE001 — display only, never stop the compilation
+                log.debug("could not show the compilation phase", exc_info=True)
 
     def on_end(self, ev) -> None:
         self._depth -= 1
-        if self._depth == 0 and self._phase is not None:
-            ctx, self._phase = self._phase, None
-            ctx.__exit__(None, None, None)
+        if self._depth == 0 and self._open is not None:
+            (ctx, shown), self._open = self._open, None
+            try:
+                # the error itself reaches the kernel's caller; numba 0.68's Event.is_failed returns the
+                # opposite of its docstring, so the exception details are read directly
+                shown.failed = getattr(ev, "_exc_details", None) is not None
+                ctx.__exit__(None, None, None)
+            except Exception:  # noqa: BLE001 — display only, never stop the compilation
+                log.debug("could not close the compilation phase", exc_info=True)
 
 
 _listener: CompileListener | None = None
