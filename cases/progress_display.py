@@ -68,6 +68,7 @@ class TerminalReporter(Reporter):
         self._lock = threading.RLock()
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
+        self._gone = False
 
     # -- reporter protocol -------------------------------------------------------------------
     def start(self, phase: Phase) -> None:
@@ -95,8 +96,11 @@ class TerminalReporter(Reporter):
 
     def finish(self, phase: Phase) -> None:
         if not self.interactive:
-            if not phase.failed:      # a failure is told by its one error line
-                print(finished_line(phase), file=self.stream, flush=True)
+            if not phase.failed and not self._gone:      # a failure is told by its one error line
+                try:
+                    print(finished_line(phase), file=self.stream, flush=True)
+                except (OSError, ValueError):             # stderr closed (a pipe reader quit): stop showing
+                    self._gone = True
             return
         with self._lock:
             bar = self._bars.pop(phase, None)
