@@ -18,7 +18,7 @@ from fem_rings import MeshSpec, modal_analysis
 from fem_rings.model import build_model
 from fem_rings.profile import rectangle
 from foundation.materials import ElasticMaterial
-from foundation.progress import Reporter, phase, remaining_time_s, reporting
+from foundation.progress import Reporter, phase, remaining_time_s, reporting, track
 from mbd_core.kernels.compile_progress import COMPILING_LABEL
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
@@ -92,6 +92,34 @@ def test_terminal_bar_shows_the_same_estimate():
     finally:
         rep.close()
     assert out.getvalue().rstrip().endswith("constraint modes (3/10): 6.0 s")   # the outermost leaves a line
+
+
+def test_terminal_draws_nested_phases_on_their_own_lines():
+    # Reference: tqdm's multi-line layout — a bar at position 1 is drawn one line below (newline,
+    # text, cursor up "ESC[A"); only the outermost phase leaves a line when it ends.
+    clock, out = FakeClock(), io.StringIO()
+    rep = TerminalReporter(out, interactive=True)
+    try:
+        with reporting(rep), phase("reducing ring", clock=clock):
+            with phase("factorising (100 DOF)", clock=clock) as inner:
+                clock.now_s += 3.0
+                inner.note("")
+                drawn = out.getvalue()
+                assert "reducing ring" in drawn and "\nfactorising (100 DOF)  3 s\x1b[A" in drawn.replace("\r", "")
+    finally:
+        rep.close()
+    kept = [ln for ln in out.getvalue().replace("\r", "\n").split("\n") if ln.endswith(" s") and ": " in ln]
+    assert kept == ["reducing ring: 3.0 s"]
+
+
+def test_track_counts_one_piece_per_item():
+    # Reference: the items themselves — a list of 5 has a total of 5 and ends at 5/5; a generator
+    # has no length, so no total, and counts the 3 items it gave.
+    rec = Recorder()
+    with reporting(rec):
+        assert list(track([10, 20, 30, 40, 50], "load cases")) == [10, 20, 30, 40, 50]
+        assert sum(track((k for k in range(3)), "positions")) == 3
+    assert [e[1:4] for e in rec.finished()] == [(("load cases",), 5, 5), (("positions",), None, 3)]
 
 
 def test_library_default_is_one_info_line_per_phase(caplog):
