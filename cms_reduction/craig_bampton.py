@@ -51,7 +51,9 @@ __all__ = ["Interface", "Augmentation", "reduce_model", "rbe2_transform", "avera
 log = logging.getLogger(__name__)
 
 #: right-hand sides solved together: a block is one step of the progress bar of the constraint
-#: modes and load shapes (each column's solution does not depend on the blocking)
+#: modes and load shapes. Each column's solution is the same whatever the blocking up to the last
+#: digits (CHOLMOD's blocked triangular solves, ~1e-14 relative); 24 columns cost no more than
+#: one block of all (99.5k-DOF race, 192 columns: 3.70 s against 3.82 s, noise ±5 %)
 RHS_BLOCK = 24
 
 #: a basis direction whose Gram eigenvalue, after clearing it of the earlier blocks, is below this
