@@ -25,6 +25,7 @@ from mbd_core.contact import ball_on_groove, line_contact, sphere_on_sphere, sub
 from mbd_core.contact.limits import line_contact_warnings, point_contact_warnings
 from mbd_core.contact.line import iso16281_stiffness, palmgren_stiffness
 from foundation.materials import ElasticMaterial, effective_modulus_Pa
+from foundation.progress import phase, track
 from mbd_core.multibody import SimulationError
 from mbd_core.multibody.statics import StaticEquilibriumError
 from mbd_core.quasistatic import LoadDistributionError, RingLoad, solve_load_distribution
@@ -34,6 +35,7 @@ from .cache_command import add_cache_parser, cache_help_line
 from .catalog import BUILTIN_BEARINGS, builtin_bearing
 from .outdir import check_output_target
 from .parts import RING_PARTS, ring_part
+from .progress_display import terminal_progress
 from .report import format_table, load_distribution_table, write_load_distribution
 
 __all__ = ["main"]
@@ -235,7 +237,8 @@ def cmd_loaddist(args) -> dict:
         load = case.default_load
     else:
         load = RingLoad(**{k: (0.0 if v is None else v) for k, v in given.items()})
-    res = solve_load_distribution(case.bearing, load)
+    with phase(f"load distribution of {case.name}"):
+        res = solve_load_distribution(case.bearing, load)
     if args.out:
         path = write_load_distribution(res, args.out, {"case": case.name, "description": case.description})
         logging.getLogger(__name__).info("wrote %s", path)
@@ -259,18 +262,13 @@ def cmd_modes(args) -> dict:
     model, modes, summary = part_modes(part, args.modes, None if args.size_mm is None else args.size_mm * 1e-3,
                                        args.element, use_cache=not args.no_cache, keys=("--size-mm", "--modes"))
     if args.out:
-        write_modes(model, modes, summary, args.out)
+        with phase(f"writing {args.out}"):
+            write_modes(model, modes, summary, args.out)
     if not args.json:
         print(modes_table(summary))
         if args.out:
             print(f"\nresults: {args.out}/summary.json, modes.vtu (ParaView), mode_*.png")
     return summary
-
-
-def _progress(iterable, desc: str):
-    from tqdm import tqdm
-
-    return tqdm(iterable, desc=desc, leave=False, file=sys.stderr, dynamic_ncols=True)
 
 
 def cmd_run(args) -> dict:
@@ -283,7 +281,7 @@ def cmd_run(args) -> dict:
     case = resolve_case(args.case, args.quick, args.set)
     out_dir = args.out if args.out is not None else f"results/{case.name}"
     print(f"{case.name}: {case.description}" if case.description else case.name)
-    out = run_case(case, out_dir, progress=_progress, resume=args.resume)
+    out = run_case(case, out_dir, progress=track, resume=args.resume)
     for line in out.report:
         print(f"  {line}")
     files = sorted({p.suffix for p in out.folder.iterdir()})
@@ -484,7 +482,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(_attach_negative_values(sys.argv[1:] if argv is None else list(argv)))
     logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING, format="%(message)s")
-    return _run(args)
+    with terminal_progress(sys.stderr):     # long phases on stderr: stdout stays clean for --json
+        return _run(args)
 
 
 if __name__ == "__main__":

@@ -42,12 +42,19 @@ from fem_rings.modal_basis import (body_length_m, canonical_modes, deflated_eigs
 from fem_rings.model import FEModel
 from fem_rings.nodesets import RacewayCurve
 from fem_rings.solve import line_load_operator, solver_threads
+from foundation.progress import phase
 
 from .body import ReducedBody
 
 __all__ = ["Interface", "Augmentation", "reduce_model", "rbe2_transform", "averaging_constraints"]
 
 log = logging.getLogger(__name__)
+
+#: right-hand sides solved together: a block is one step of the progress bar of the constraint
+#: modes and load shapes. Each column's solution is the same whatever the blocking up to the last
+#: digits (CHOLMOD's blocked triangular solves, ~1e-14 relative); 24 columns cost no more than
+#: one block of all (99.5k-DOF race, 192 columns: 3.70 s against 3.82 s, noise ±5 %)
+RHS_BLOCK = 24
 
 #: a basis direction whose Gram eigenvalue, after clearing it of the earlier blocks, is below this
 #: fraction of the unit M-norm its vectors had is dropped as dependent (a new part of 1e-4 in
@@ -240,7 +247,8 @@ class _ConstrainedSolver:
             alpha = float(np.mean(K.diagonal())) / float(np.mean(np.asarray(C.multiply(C).sum(axis=1))))
             K = K + alpha * (C.T @ C)
         self.factor = factorize_spd(K.tocsc(), backend=backend)
-        self.KinvCt = self.factor.solve(C.T.toarray()) if C.shape[0] else np.zeros((K.shape[0], 0))
+        self.KinvCt = (solve_in_blocks(self.factor.solve, C.T.toarray(), "averaging-interface solves")
+                       if C.shape[0] else np.zeros((K.shape[0], 0)))
         self.S = self.C @ self.KinvCt
 
     def solve(self, f, g=None):
@@ -250,6 +258,26 @@ class _ConstrainedSolver:
             return u
         r = self.C @ u - (0.0 if g is None else g)
         return u - self.KinvCt @ np.linalg.solve(self.S, r)
+
+
+def solve_in_blocks(solve, B: np.ndarray, label: str) -> np.ndarray:
+    """``solve(B)`` column block by column block (:data:`RHS_BLOCK` wide), as a phase with a total.
+
+    Parameters
+    ----------
+    solve : callable
+        (n, k) right-hand sides → (n, k) solutions, column by column independent.
+    B : (n, k) float64
+    label : str
+        Phase label (:func:`foundation.progress.phase`).
+    """
+    out = np.empty((B.shape[0], B.shape[1]))
+    starts = range(0, B.shape[1], RHS_BLOCK)
+    with phase(label, total=len(starts)) as p:
+        for j in starts:
+            out[:, j:j + RHS_BLOCK] = solve(B[:, j:j + RHS_BLOCK])
+            p.advance()
+    return out
 
 
 def _orthonormal_extension(Mq, Q, B, rel_tol: float = DEPENDENCE_RTOL):
@@ -379,7 +407,7 @@ def reduce_model(
             interior_blocks.append(deflated_eigsh(KII, MII, int(n_modes), sigma, op, rigid_q)[1])
             if loads_q.shape[1]:
                 MR = MII @ rigid_q
-                U = factor.solve(loads_q - MR @ (rigid_q.T @ loads_q))
+                U = solve_in_blocks(factor.solve, loads_q - MR @ (rigid_q.T @ loads_q), "load shapes")
                 interior_blocks.append(U - rigid_q @ (MR.T @ U))
         else:
             # interior rows: retained-node DOFs (rigid-interface masters excluded), which are also
@@ -389,14 +417,15 @@ def reduce_model(
             op = LinearOperator(KII.shape, matvec=solver.solve, dtype=float)
             interior_blocks.append(deflated_eigsh(KII, MII, int(n_modes), 0.0, op)[1])
             if len(boundary):
-                interior_blocks.append(-solver.solve(Kq[interior][:, boundary].toarray()))
+                interior_blocks.append(-solve_in_blocks(solver.solve, Kq[interior][:, boundary].toarray(),
+                                                        "constraint modes"))
                 boundary_blocks.append((len(interior_blocks) - 1, np.eye(len(boundary))))
             free_avg = np.flatnonzero(~avg_grounded)
             if len(free_avg):
                 # constraint modes of the averaging masters: least strain energy with C u = e_j
                 interior_blocks.append(solver.KinvCt @ np.linalg.solve(solver.S, np.eye(C.shape[0])[:, free_avg]))
             if loads_q.shape[1]:
-                interior_blocks.append(solver.solve(loads_q[interior]))
+                interior_blocks.append(solve_in_blocks(solver.solve, loads_q[interior], "load shapes"))
         blocks = []
         for k, blk in enumerate(interior_blocks):
             V = np.zeros((nq, blk.shape[1]))
@@ -406,7 +435,8 @@ def reduce_model(
                     V[boundary] = eye
             blocks.append(V)
         # a floating body's reference frame carries its rigid motion: the modes are cleared of it
-        Vq, w2, dropped = _modal_form(Kq, Mq, blocks, rigid_q)
+        with phase(f"orthonormalising the basis ({sum(b.shape[1] for b in blocks)} vectors)"):
+            Vq, w2, dropped = _modal_form(Kq, Mq, blocks, rigid_q)
     shapes = np.asarray(T @ Vq)
     freqs = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * math.pi)
     zeta = np.broadcast_to(np.asarray(damping_ratio, dtype=float), freqs.shape).copy()

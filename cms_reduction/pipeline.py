@@ -17,6 +17,7 @@ from fem_rings.model import build_model
 from fem_rings.nodesets import patch_nodes, raceway_curve
 from fem_rings.profile import Profile
 from foundation.materials import ElasticMaterial
+from foundation.progress import phase
 
 from .body import ReducedBody
 from .craig_bampton import Augmentation, CentrifugalAugmentation, Interface, reduce_model
@@ -105,6 +106,10 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
     key = input_hash("reduced-body", REDUCTION_VERSION, profile, mesh_spec, material, spec, pockets, name)
 
     def build() -> ReducedBody:
+        with phase(f"reducing {name or profile.name}"):
+            return _build()
+
+    def _build() -> ReducedBody:
         model = build_model(profile, mesh_spec, material, pockets, use_cache=use_cache)
         interfaces = [Interface(f"{i.facet_set}@{a:g}°", patch_nodes(model.ring, i.facet_set, a, i.half_width_m),
                                 grounded=i.grounded, kind=i.kind)
@@ -115,15 +120,19 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
             aug.append(CentrifugalAugmentation())
         body = reduce_model(model, spec.n_modes, interfaces, aug, damping_ratio=spec.damping_ratio,
                             name=name or profile.name)
-        extras = dict(compute_invariants(model.M, body.nodes_m, body.shapes).to_arrays())
-        for c, r in zip(curves, spec.raceways):
-            samples = (sample_across(body, model.ring, r.segment, r.n_theta, r.n_across) if r.n_across > 0
-                       else [sample_raceway(body, c, mesh_spec.full_circle)])
-            for smp in samples:
-                extras.update(sample_to_arrays(smp))
-        if pockets is not None and spec.sample_pockets:
-            pts, th = pocket_contact_points(pockets)
-            extras.update(sample_to_arrays(sample_points(body, "pockets", pts, th)))
+        with phase("inertia invariants"):
+            extras = dict(compute_invariants(model.M, body.nodes_m, body.shapes).to_arrays())
+        with phase("sampling raceways", total=len(spec.raceways) + (pockets is not None and spec.sample_pockets)) as p:
+            for c, r in zip(curves, spec.raceways):
+                samples = (sample_across(body, model.ring, r.segment, r.n_theta, r.n_across) if r.n_across > 0
+                           else [sample_raceway(body, c, mesh_spec.full_circle)])
+                for smp in samples:
+                    extras.update(sample_to_arrays(smp))
+                p.advance()
+            if pockets is not None and spec.sample_pockets:
+                pts, th = pocket_contact_points(pockets)
+                extras.update(sample_to_arrays(sample_points(body, "pockets", pts, th)))
+                p.advance()
         body = replace(body, extras=extras, metadata={**body.metadata, "input_hash": key,
                                                        "material": material.name,
                                                        "element": mesh_spec.element,

@@ -15,6 +15,7 @@ import numpy as np
 
 from fem_rings.model import FEModel
 from fem_rings.stress import nodal_stress_Pa, von_mises_Pa
+from foundation.progress import phase
 
 from .body import ReducedBody
 
@@ -25,7 +26,11 @@ def add_stress_modes(body: ReducedBody, model: FEModel) -> ReducedBody:
     """A copy of ``body`` with ``extras["stress_modes"]`` (N, 6, m), Pa per unit η (Voigt order)."""
     if model.ring.n_nodes != len(body.nodes_m) or not np.array_equal(model.nodes_m, body.nodes_m):
         raise ValueError(f"body {body.name!r} was not reduced from this FE model (nodes differ)")
-    modes = np.stack([nodal_stress_Pa(model, body.shapes[:, j]) for j in range(body.n_modes)], axis=2)
+    modes = np.empty((len(body.nodes_m), 6, body.n_modes))
+    with phase("stress modes", total=body.n_modes) as p:
+        for j in range(body.n_modes):
+            modes[:, :, j] = nodal_stress_Pa(model, body.shapes[:, j])
+            p.advance()
     return replace(body, extras={**body.extras, "stress_modes": modes})
 
 

@@ -58,6 +58,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from foundation.progress import phase
+
 __all__ = [
     "SparseFactor",
     "available_backends",
@@ -452,7 +454,10 @@ def factorize_spd(A: Any, backend: str = "auto") -> SparseFactor:
     chosen = _resolve_backend(requested)
     A = _as_symmetric_csc(A)
     t0 = time.perf_counter()
-    factor = _factor_with(chosen, A, requested)
+    with phase(f"factorising ({A.shape[0]} DOF, {A.nnz} nonzeros, {chosen})") as shown:
+        factor = _factor_with(chosen, A, requested)
+        if factor.backend != chosen:
+            shown.note(f"done by {factor.backend}")
     log.info("sparse factorisation (%s): n = %d, %d nonzeros, %.2f s",
              factor.backend, A.shape[0], A.nnz, time.perf_counter() - t0)
     return factor

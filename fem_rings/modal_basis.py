@@ -25,6 +25,8 @@ import numpy as np
 import scipy.linalg as sla
 from scipy.sparse.linalg import LinearOperator, eigsh
 
+from foundation.progress import phase
+
 __all__ = [
     "START_SEED",
     "CLUSTER_RTOL",
@@ -207,7 +209,16 @@ def deflated_eigsh(K, M, k: int, sigma: float, opinv, rigid_m: np.ndarray | None
         v0 = project(v0)
     else:
         project, op = (lambda x: x), opinv
-    lam, vec = eigsh(K, k=int(k), M=M, sigma=sigma, OPinv=op, which="LM", v0=v0)
+    with phase(f"eigen solve: {int(k)} modes of {n} DOF") as shown:
+        solves = [0]
+
+        def counted(b):
+            solves[0] += 1
+            shown.note(f"{solves[0]} solves")
+            return op.matvec(b)
+
+        lam, vec = eigsh(K, k=int(k), M=M, sigma=sigma, OPinv=LinearOperator((n, n), matvec=counted, dtype=float),
+                         which="LM", v0=v0)
     vec = project(vec)
     vec /= np.sqrt(np.einsum("ik,ik->k", vec, M @ vec))
     return canonical_modes(lam, vec)

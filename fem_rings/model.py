@@ -18,6 +18,7 @@ import scipy.sparse as sp
 import skfem
 
 from foundation.materials import ElasticMaterial
+from foundation.progress import phase
 
 from . import cache
 from .assembly import DEFAULT_INTORDER, mass_matrix, scalar_basis, stiffness_matrix
@@ -124,10 +125,12 @@ def build_model(
             return FEModel(model.ring, material, model.K, model.M, intorder,
                            {"cache_load": time.perf_counter() - t0})
     t0 = time.perf_counter()
-    ring = mesh_ring(profile, spec, pockets)
+    with phase(f"meshing {profile.name}"):
+        ring = mesh_ring(profile, spec, pockets)
     t1 = time.perf_counter()
-    K = stiffness_matrix(scalar_basis(ring.mesh, intorder[0]), material)
-    M = mass_matrix(scalar_basis(ring.mesh, intorder[1]), material.density_kg_m3)
+    with phase(f"assembling K and M ({ring.n_dofs} DOF)"):
+        K = stiffness_matrix(scalar_basis(ring.mesh, intorder[0]), material)
+        M = mass_matrix(scalar_basis(ring.mesh, intorder[1]), material.density_kg_m3)
     t2 = time.perf_counter()
     model = FEModel(ring, material, K, M, intorder, {"mesh": t1 - t0, "assemble": t2 - t1})
     if use_cache:

@@ -14,6 +14,7 @@ histories), ``forces`` (the force stage of a whole model), ``explicit`` (the com
 (generalized mass matrix and quadratic-velocity vector of a modal body from its invariants).
 """
 
+from . import compile_progress
 from .laws import (
     FRICTION_COULOMB,
     FRICTION_DREB_CONSTANT,
@@ -29,6 +30,8 @@ from .laws import (
 )
 from .ball_groove import ball_groove_contacts
 from .rigid import free_rotation_step, quat_rotate
+
+compile_progress.install()      # a kernel about to compile (not load from the cache) shows as a phase
 
 __all__ = [
     "NORMAL_IMPACT", "NORMAL_HUNT_CROSSLEY",
