@@ -241,7 +241,8 @@ class Analysis:
     """``quasi_static``: equilibria with the balls held at their azimuths (``travel_steps`` > 0: the
     top race turns through ``travel_revolutions`` and the balls with it at their orbit speed);
     ``dynamic_explicit``: the top race driven at ``speed_rpm`` for ``duration_s`` from the static
-    equilibrium, spacer balls included when ``spacers``."""
+    equilibrium, spacer balls included when ``spacers``, at the step ``timestep_s`` (None: the
+    automatic stable step; a step above the explicit stability limit is refused, naming the limit)."""
 
     type: Literal["quasi_static", "dynamic_explicit"] = "quasi_static"
     speed_rpm: float = 6.55
