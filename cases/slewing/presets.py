@@ -1,4 +1,4 @@
-"""The named sub-cases of the slewing ring (DESIGN §7.1 studies (a)–(g)) and their quick variants.
+"""The named sub-cases of the slewing ring (studies (a)–(g)) and their quick variants.
 
 ``--quick`` keeps the question and shrinks the work: coarser ring meshes and fewer modes, fewer
 positions or a shorter simulated time. The quick case is a case like any other (its resolved

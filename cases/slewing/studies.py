@@ -1,8 +1,8 @@
-"""The studies of DESIGN §7.1 (a)–(g): each runs the scenes it needs and writes its figures.
+"""The slewing-ring studies (a)–(g) (cases/slewing/README.md): each runs the scenes it needs and writes its figures.
 
 Every study takes the resolved case, a :class:`cases.results.RunOutput` and an optional progress
 wrapper, and fills the output's summary (key figures, SI) and report lines. Thesis values quoted
-for comparison are from seed 003, chapters 3–4 (loads in tonnes-force of 9.81 kN).
+for comparison are from the slewing-ring thesis (README.md, Sources), chapters 3–4 (loads in tonnes-force of 9.81 kN).
 """
 
 from __future__ import annotations

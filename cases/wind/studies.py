@@ -1,6 +1,6 @@
-"""The studies of the wind main bearing (DESIGN §7.2); each fills a :class:`cases.results.RunOutput`.
+"""The studies of the wind main bearing; each fills a :class:`cases.results.RunOutput`.
 
-Paper values quoted for comparison are from seed 001 (Pang et al., *Lubricants* 12 (2024) 252):
+Paper values quoted for comparison are from Pang et al., *Lubricants* 12 (2024) 252:
 Table 4 (roller speeds), §4.3.1 (driving speed) and §4.3.2 (friction).
 """
 
