@@ -82,6 +82,21 @@ def test_every_named_case_and_its_quick_variant_read_back_from_their_case_toml(t
             assert resolve_case(str(path)) == c
 
 
+@pytest.mark.parametrize("analysis, runs", [({}, "equilibria"), ({"travel_steps": 72}, "travels"),
+                                             ({"type": "dynamic_explicit"}, "dynamic")])
+def test_a_quick_single_case_keeps_its_kind_of_run_and_reads_back(analysis, runs, tmp_path):
+    # before: --quick set travel_steps = 36 and duration_s = 0.4 on every single case, so a quick
+    # equilibrium became a travel, and its saved case.toml carried a dynamic-only key
+    from cases.slewing.case import SlewingCase
+
+    case = SlewingCase(name="one").with_(analysis=analysis)
+    q = slewing_quick(case)
+    assert slewing_studies.runs_of(q) == slewing_studies.runs_of(case) == (runs,)
+    path = tmp_path / "one.toml"
+    path.write_text(dumps_case(q), encoding="utf-8")
+    assert resolve_case(str(path)) == q
+
+
 def _all_keys(cls, prefix=""):
     """Dotted keys of every field and table of the case class ``cls``."""
     out = set()
