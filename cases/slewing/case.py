@@ -265,8 +265,6 @@ class Analysis:
 
 
 Kind = Literal["single", "static", "rotation", "undulation", "thermal", "combined", "life", "full-scale"]
-#: studies that make the top structure modal whatever ``top.kind`` says (:mod:`.studies`)
-_STUDIES_WITH_MODAL_TOP = ("static", "undulation", "combined", "life", "full-scale")
 
 
 @dataclass(frozen=True)
@@ -335,7 +333,9 @@ class SlewingCase:
         from .scene import DEFAULT_ELEMENT_SIZE_M, N_THETA
 
         g = self.geometry
-        top_modal = self.top.kind == "modal" or self.study.kind in _STUDIES_WITH_MODAL_TOP
+        from .studies import modal_top
+
+        top_modal = modal_top(self)  # some studies make it modal whatever top.kind says
         make_top = slewing_top_structure if self.top.include_tmr else slewing_top_race
         for key, fidelity, modal, make in (("top", self.top, top_modal, make_top),
                                            ("bottom", self.bottom, self.bottom.kind == "modal", slewing_bottom_race)):

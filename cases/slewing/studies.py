@@ -22,7 +22,7 @@ from .life import plot_subsurface_shear, worst_ball_life
 from .plots import plot_ball_loads, plot_static, plot_travel
 from .quasistatic import analytic_ball_load_N, equilibrium, nominal_ball_load_N, travel
 
-__all__ = ["RUN_KEYS", "STUDIES", "case_unused_keys", "run_study", "runs_of"]
+__all__ = ["RUN_KEYS", "STUDIES", "case_unused_keys", "modal_top", "run_study", "runs_of"]
 
 TONNE_N = 9810.0
 #: a ball counts as unloaded below this share of the nominal ball load
@@ -290,10 +290,34 @@ STUDIES = {
         **_TYPE, **_MODAL_TOP, "top.E_Pa": "set study.top_E_Pa (its last value is taken)",
         "thermal.offset_m": "set study.life_offset_m", "undulation.scale": "the study takes the undulation ×1"}),
     "full-scale": StudyEntry(study_full_scale, sweeps=("top_E_Pa",), runs=("equilibria",), unused={
-        **_TYPE, **_MODAL_TOP, "geometry.variant": "the study runs the full and the 2 m ring",
+        **_TYPE, **_MODAL_TOP,
         "top.E_Pa": "set study.top_E_Pa (its last value is the 2 m ring's; the full ring takes 200 GPa)",
         "undulation.scale": "the study takes the undulation ×1"}),
 }
+
+
+#: fidelity keys of a ring that only a modal ring reads
+_MODAL_KEYS = ("n_modes", "groove_harmonics", "E_Pa", "damping_ratio", "element_size_m")
+
+
+def modal_top(case: SlewingCase) -> bool:
+    """True when the study makes the top structure modal in some run (it sets ``top.kind``
+    itself, or the case asks for it)."""
+    return case.top.kind == "modal" or "top.kind" in STUDIES[case.study.kind].unused
+
+
+def _fidelity_unused(case: SlewingCase) -> dict[str, str]:
+    """The fidelity keys no run of the case reads: those of a rigid ring, and each ring's keys
+    that belong to the other one."""
+    out = {"top.bolts": "only the bottom race is bolted (bottom.bolts)",
+           "bottom.include_tmr": "only the top structure carries the TMR (top.include_tmr)"}
+    if not modal_top(case):
+        out.update({f"top.{k}": 'the top structure is rigid here; set top.kind = "modal"'
+                    for k in (*_MODAL_KEYS, "include_tmr")})
+    if case.bottom.kind != "modal":
+        out.update({f"bottom.{k}": 'the bottom race is rigid here; set bottom.kind = "modal"'
+                    for k in (*_MODAL_KEYS, "bolts")})
+    return out
 
 
 def runs_of(case: SlewingCase) -> tuple[str, ...]:
@@ -308,7 +332,7 @@ def runs_of(case: SlewingCase) -> tuple[str, ...]:
 
 def case_unused_keys(case: SlewingCase) -> dict[str, str]:
     """Every key of ``case`` its study does not read → what does its job."""
-    return unused_keys(case.study.kind, STUDIES, RUN_KEYS, runs_of(case))
+    return {**_fidelity_unused(case), **unused_keys(case.study.kind, STUDIES, RUN_KEYS, runs_of(case))}
 
 
 def run_study(case: SlewingCase, out, progress=None) -> None:
