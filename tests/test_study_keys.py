@@ -39,11 +39,32 @@ REPO = Path(__file__).resolve().parents[1]
     ("slewing-full-scale", "top.E_Pa=20e9", "study.top_E_Pa"),
     ("wind-driving-speed", "analysis.speed_rpm=25", "study.speeds_rpm"),
     ("wind-friction", "contact.mu_static=0.3", "study.friction_sets"),
+    # a rigid ring's modal keys: no run reads them
+    ("slewing-thermal", "top.n_modes=30", 'top.kind = "modal"'),
+    ("slewing-undulation", "bottom.E_Pa=100e9", 'bottom.kind = "modal"'),
+    ("wind-speeds", "bodies.n_modes=10", 'bodies.rings or bodies.cages = "modal"'),
+    ("wind-speeds-adams", "contact.damping_ratio=0.3", "adams preset"),
 ])
 def test_an_override_the_study_does_not_read_is_refused_naming_the_key_that_does(name, override, replacement):
     key = override.partition("=")[0]
     with pytest.raises(CaseError, match=rf"^--set {re.escape(key)}: not used by the .* study; .*{re.escape(replacement)}"):
         resolve_case(name, False, [override])
+
+
+@pytest.mark.parametrize("name, overrides", [
+    ("slewing-undulation", ["top.n_modes=30"]),  # the study makes the top structure modal
+    ("slewing-thermal", ["top.kind=modal", "top.n_modes=30"]),
+    ("wind-speeds", ["bodies.rings=modal", "bodies.n_modes=10"]),
+    ("wind-rigid-flexible", ["bodies.n_modes=10"]),  # it runs modal bodies
+    ("slewing-rotation", ["analysis.timestep_s=1e-6"]),  # honoured (next tests)
+])
+def test_keys_a_run_reads_are_accepted(name, overrides):
+    case = resolve_case(name, False, overrides)
+    for item in overrides:
+        key, _, value = item.partition("=")
+        table, field = key.split(".")
+        got = getattr(getattr(case, table), field)
+        assert str(got) == value or got == float(value), item
 
 
 @pytest.mark.parametrize("argv", [

@@ -307,13 +307,15 @@ def modal_top(case: SlewingCase) -> bool:
 
 
 def _fidelity_unused(case: SlewingCase) -> dict[str, str]:
-    """The fidelity keys no run of the case reads: those of a rigid ring, and each ring's keys
-    that belong to the other one."""
+    """The fidelity keys no run of the case reads: those of a rigid ring, each ring's keys that
+    belong to the other one, and the damping ratio the thesis preset replaces."""
     out = {"top.bolts": "only the bottom race is bolted (bottom.bolts)",
            "bottom.include_tmr": "only the top structure carries the TMR (top.include_tmr)"}
     if not modal_top(case):
         out.update({f"top.{k}": 'the top structure is rigid here; set top.kind = "modal"'
                     for k in (*_MODAL_KEYS, "include_tmr")})
+    if case.contact.preset == "thesis":
+        out["contact.damping_ratio"] = "the thesis preset takes the thesis' damping c = K/1000 s"
     if case.bottom.kind != "modal":
         out.update({f"bottom.{k}": 'the bottom race is rigid here; set bottom.kind = "modal"'
                     for k in (*_MODAL_KEYS, "bolts")})

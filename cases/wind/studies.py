@@ -183,9 +183,28 @@ STUDIES = {
 }
 
 
+_RING_KEYS = ("ring_element_size_m", "bolts", "n_theta", "n_across")
+
+
+def _fidelity_unused(case: WindCase) -> dict[str, str]:
+    """The ``bodies`` keys of rigid rings or cages and the damping ratio the Adams preset replaces."""
+    b, out = case.bodies, {}
+    if case.study.kind != "rigid-flexible":  # (it runs both)
+        if b.rings != "modal":
+            out.update({f"bodies.{k}": 'the rings are rigid here; set bodies.rings = "modal"' for k in _RING_KEYS})
+        if b.cages != "modal":
+            out["bodies.cage_element_size_m"] = 'the cages are rigid here; set bodies.cages = "modal"'
+        if not b.any_modal:
+            out.update({f"bodies.{k}": 'rings and cages are rigid here; set bodies.rings or bodies.cages = "modal"'
+                        for k in ("n_modes", "modal_damping_ratio")})
+    if case.contact.preset == "adams":
+        out["contact.damping_ratio"] = "the adams preset takes the paper's damping c = 70 N·s/mm"
+    return out
+
+
 def case_unused_keys(case: WindCase) -> dict[str, str]:
     """Every key of ``case`` its study does not read → what does its job."""
-    return unused_keys(case.study.kind, STUDIES, {}, STUDIES[case.study.kind].runs)
+    return {**_fidelity_unused(case), **unused_keys(case.study.kind, STUDIES, {}, STUDIES[case.study.kind].runs)}
 
 
 def run_study(case: WindCase, out, progress=None) -> None:
