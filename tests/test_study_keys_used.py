@@ -135,7 +135,7 @@ def _other(value, name, hint):
     """Another valid-looking value of a field (the dataclass checks it)."""
     args = typing.get_args(hint)
     if value is None:
-        return _FOR_NONE[name]
+        return _FOR_NONE.get(name)
     if isinstance(value, bool):
         return not value
     if typing.get_origin(hint) is typing.Literal:
