@@ -52,7 +52,7 @@ class _Out:
 
 def _fidelity(body):
     """What a scene takes of a ring's fidelity table: a rigid ring is its kind only."""
-    return body if body.kind == "modal" else ("rigid", getattr(body, "include_tmr", None))
+    return body if body.kind == "modal" else "rigid"
 
 
 #: the tables each leaf reads (the quasi-static solver: geometry, load, races' shapes, the contact
