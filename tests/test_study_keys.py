@@ -71,6 +71,7 @@ def test_keys_a_run_reads_are_accepted(name, overrides):
     ["slewing-undulation", "--set", "undulation.scale=2", "--set", "top.n_modes=30"],
     ["slewing-undulation", "--set", "top.E_Pa=20e9"],
     ["slewing-rotation", "--set", "analysis.travel_steps=36"],  # a dynamic run makes no travel
+    ["slewing-undulation", "--set", "study.spacer_run_s=0", "--set", "analysis.timestep_s=1e-6"],  # no dynamic run
     ["wind-static", "--set", "analysis.speed_rpm=20"],  # quasi-static: no speed
     ["wind-rigid-flexible", "--set", "bodies.rings=modal"],  # it runs both
 ])

@@ -325,6 +325,8 @@ def _fidelity_unused(case: SlewingCase) -> dict[str, str]:
 def runs_of(case: SlewingCase) -> tuple[str, ...]:
     """The kinds of run (keys of :data:`RUN_KEYS`, and ``equilibria``) the case makes."""
     entry = STUDIES[case.study.kind]
+    if case.study.kind == "undulation" and not case.study.spacer_run_s:
+        return ("equilibria",)  # no spacer run
     if entry.runs:
         return entry.runs
     if case.analysis.type != "quasi_static":
