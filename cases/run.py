@@ -182,7 +182,7 @@ def default_out_dir(case, source: str) -> Path:
         return out
     name, stored = marker_source(out)
     # folders written before the marker recorded a source: the named case of that name only
-    same = stored == source if stored is not None else (source == name and source in PRESETS)
+    same = stored == source if stored is not None else (source in PRESETS and name in (source, f"{source}-quick"))
     if not same:
         shown = stored if stored is not None else "an earlier run"
         raise OutputTargetError(f"{out} holds the results of {shown}, not of {source}; choose the results "

@@ -217,3 +217,18 @@ def test_a_copied_case_toml_does_not_replace_the_original_results(tmp_path, monk
     # the same source again replaces its own results, as before
     assert main(["run", "slewing-static", "--quick"]) == 0
     assert json.loads((original / "summary.json").read_text())["value"] == 1.0
+
+
+def test_a_results_folder_written_before_sources_were_recorded(tmp_path, monkeypatch):
+    # its marker names the case only: the named case of that name may replace it, a case file not
+    from cases.outdir import MARKER
+    from cases.run import default_out_dir
+
+    monkeypatch.chdir(tmp_path)
+    old = tmp_path / "results" / "slewing-static-quick"
+    old.mkdir(parents=True)
+    (old / MARKER).write_text('{"format": "flexbearing-results/1", "name": "slewing-static-quick"}\n')
+    case = resolve_case("slewing-static", True)
+    assert default_out_dir(case, "slewing-static") == Path("results/slewing-static-quick")
+    with pytest.raises(CaseError, match="--out"):
+        default_out_dir(case, str(tmp_path / "my.toml"))
