@@ -34,14 +34,21 @@ def _bodies(case: SlewingCase) -> scene.Bodies:
 
 
 def _fidelity(case: SlewingCase) -> str:
-    def one(f, name):
+    def one(f, name, modulus=None):
         if f.kind == "rigid":
             return f"{name} rigid"
-        return f"{name} modal ({f.n_modes} modes + groove shapes to harmonic {f.groove_harmonics}, E {f.E_Pa / 1e9:g} GPa)"
-    top = "top race + TMR" if case.top.include_tmr else "top race"
+        return (f"{name} modal ({f.n_modes} modes + groove shapes to harmonic {f.groove_harmonics}, "
+                f"E {modulus or f'{f.E_Pa / 1e9:g} GPa'})")
+    if "top.E_Pa" in STUDIES[case.study.kind].unused:  # the study sets the modulus itself
+        return f"{one(case.top, _top_name(case), 'from study.top_E_Pa')}; {one(case.bottom, 'bottom race')}"
+    top = _top_name(case)
     if case.study.kind == "static":  # runs both
         return f"{top} rigid, then {one(replace(case.top, kind='modal'), top)}; {one(case.bottom, 'bottom race')}"
     return f"{one(case.top, top)}; {one(case.bottom, 'bottom race')}"
+
+
+def _top_name(case: SlewingCase) -> str:
+    return "top race + TMR" if case.top.include_tmr else "top race"
 
 
 def _write_balls_vtu(out, name: str, case: SlewingCase, azimuth_rad, load_N) -> None:
