@@ -1,4 +1,4 @@
-"""Implicit against explicit friction on the 12 MW wind main bearing (DESIGN §7.2): speed and what it costs.
+"""Implicit against explicit friction on the 12 MW wind main bearing: speed and what it costs.
 
 The rigid scene of ``flexbearing run wind-speeds`` held at load case 18 (30 r/min), run twice from
 the same start: friction explicit (the step limited by the slope of the friction law) and implicit

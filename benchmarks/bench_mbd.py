@@ -1,15 +1,15 @@
 """Explicit multibody step: wall time per step of a ball row and a roller row between rigid rings.
 
-Two scenes (DESIGN §9), each started from its static equilibrium with rolling velocities and
+Two scenes, each started from its static equilibrium with rolling velocities and
 stepped at 1e-5 s by the compiled loop (:func:`mbd_core.kernels.explicit.run_explicit`):
 
 balls
     32 balls Ø95.2 mm (steel, 3.55 kg) on a Ø1.2 m pitch circle, 45° angular contact, conformity
     0.53/0.53, K = 1e11 N/m^1.5 per ball–groove contact (64 contacts), μ = 0.1; inner ring 800 kg
     driven at 15 rpm (free to translate and tilt), outer ring fixed; 100 kN axial + 50 kN radial
-    on the inner ring. Exudyn 1.13 needs ≈ 0.43 ms per step for this scene (RK44, DESIGN §9).
+    on the inner ring. Exudyn 1.13 needs ≈ 0.43 ms per step for this scene (RK44, on this kind of machine).
 rollers
-    the radial row of the three-row wind bearing (DESIGN §7.2): 98 rollers Ø55 × 55 mm, 20 slices
+    the radial row of the three-row wind bearing: 98 rollers Ø55 × 55 mm, 20 slices
     each, pitch Ø1.963 m, 10 µm preload, ISO/TS 16281 slice stiffness, μ = 0.1; inner ring 3971 kg
     driven at 15 rpm (free to translate and tilt), outer ring fixed; 500 kN radial.
 
@@ -58,7 +58,7 @@ from mbd_core.quasistatic import BallRow, Bearing, RingLoad, RollerRow, solve_lo
 TIMESTEP_S = 1e-5
 SPEED_RPM = 15.0
 MU = 0.1
-EXUDYN_US_PER_STEP = 430.0  # DESIGN §9: Exudyn 1.13, 32 balls, 64 contacts, RK44 at 1e-5 s
+EXUDYN_US_PER_STEP = 430.0  # Exudyn 1.13 on this kind of machine: 32 balls, 64 contacts, RK44 at 1e-5 s
 RECORD_EVERY = 20
 STATUS_TEXT = {1: "non-finite force", 2: "penetration beyond the bound", 3: "kinetic-energy runaway"}
 

@@ -1,6 +1,6 @@
 """Explicit multibody step with a flexible (modal) ring whose ball contacts move along its raceway.
 
-Two scenes (DESIGN §9, §7.1), each started from its static equilibrium with rolling velocities and
+Two scenes, each started from its static equilibrium with rolling velocities and
 stepped by the compiled loop (:func:`mbd_core.kernels.explicit.run_explicit`). Ring material of the
 FE models: steel E = 200 GPa, ν = 0.3, ρ = 7850 kg/m³. Every flexible ring is a Craig–Bampton
 reduction held at bolt patches (±30 mm of arc) with 13 fixed-interface normal modes plus 7 groove
@@ -20,10 +20,10 @@ balls
     whose bore carries the groove (depth 0.3 D), 339 kg, held at 12 bolt patches on its top face at
     15° + k·30° (ball k at k·11.25°). 32 of the 64 contacts are then on the flexible groove. All
     three are timed at the common step 1e-5 s (Exudyn 1.13 with a 20-mode Craig–Bampton ring and
-    contacts that cannot move: ≈ 8 ms per step, DESIGN §9); each one's automatic stable step and
+    contacts that cannot move: ≈ 8 ms per step on this kind of machine); each one's automatic stable step and
     the real-time factor there are reported too.
 slewing
-    The 1 m slewing ring of DESIGN §7.1: 16 load balls Ø95.25 mm (3.55 kg) on a Ø1 m pitch circle,
+    The 1 m model of the slewing ring: 16 load balls Ø95.25 mm (3.55 kg) on a Ø1 m pitch circle,
     60° contact, conformity 0.525, Hertz stiffness (exact, AISI 52100 / 4140), alternating with 16
     spacer balls Ø85.25 mm (2.55 kg) that touch only the bottom race (ball–groove contact in the
     same groove, the spacer resting at its bottom) and their two neighbouring load balls (Hertz
@@ -101,7 +101,8 @@ STATIC_BUDGET = 100  # evaluations per continuation stage of the modal static so
 SAFETY = 0.8
 STATUS_TEXT = {1: "non-finite force", 2: "penetration beyond the bound", 3: "kinetic-energy runaway",
                4: "modal mass matrix no longer positive definite"}
-EXUDYN_MODAL_US_PER_STEP = 8000.0  # DESIGN §9: Exudyn 1.13, 32 balls, 20-mode CB outer ring, RK44 at 1e-5 s
+#: Exudyn 1.13 on this kind of machine: 32 balls, 20-mode CB outer ring, RK44 at 1e-5 s
+EXUDYN_MODAL_US_PER_STEP = 8000.0
 
 # flexible rings: 13 normal modes + groove load shapes n = 0…3 (1 + 2·3 = 7) = 20 modes
 N_NORMAL_MODES, N_MAX_HARMONIC, MODAL_DAMPING = 13, 3, 0.02
@@ -119,7 +120,7 @@ OUTER_WIDTH_M, OUTER_HALF_HEIGHT_M = 0.100, 0.060
 OUTER_BOLTS_DEG = tuple(30.0 * k + 15.0 for k in range(12))
 VARIANTS = ("rigid", "modal explicit", "modal implicit")
 
-# slewing ring (DESIGN §7.1, 1 m scaled)
+# slewing ring (1 m model)
 SLEWING = SlewingSection()
 PITCH_M = 1.0
 N_LOAD_BALLS = 16

@@ -19,7 +19,7 @@ Craig–Bampton
 
 Times are CPU seconds of the process (``time.process_time``) and wall seconds; the machine may be
 shared, so compare CPU times. Ratios are CPU time over cholespy's. SuperLU needed > 900 s for the
-factor of a 150k-DOF hex27 ring with SciPy's default ordering (DESIGN §3; the library uses a
+factor of a 150k-DOF hex27 ring with SciPy's default ordering (the library uses a
 minimum-degree ordering of A + Aᵀ instead): in the full run its process is stopped after
 ``--superlu-cap-s`` wall seconds (default 300; the table then shows the CPU seconds it had used,
 its start-up included). ``--tet10`` runs all backends a second time on the same ring in 10-node
@@ -257,7 +257,7 @@ def main() -> None:
     cap = None if args.quick else args.superlu_cap_s
     if cap:
         print(f"SuperLU processes are stopped after {cap:g} s wall (> 900 s for a hex27 factor of this size with "
-              "SciPy's default ordering, DESIGN §3); a stopped step shows the CPU seconds it had used")
+              "SciPy's default ordering); a stopped step shows the CPU seconds it had used")
     figures = {}
     with tempfile.TemporaryDirectory(prefix="bench-solvers-") as cache:
         env = {**os.environ, "FLEXBEARING_CACHE": cache}

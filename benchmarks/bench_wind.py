@@ -1,4 +1,4 @@
-"""Explicit step of the 12 MW wind main bearing (DESIGN §7.2): rigid against modal rings and cages.
+"""Explicit step of the 12 MW wind main bearing: rigid against modal rings and cages.
 
 The scene of ``flexbearing run wind-speeds`` (:func:`cases.wind.scene.build_scene`): 98 radial and
 2 × 94 thrust rollers, each cut into slices on both raceways, guide ribs at both roller ends, three

@@ -1,4 +1,4 @@
-"""The studies (DESIGN §7) and the ``flexbearing`` command line."""
+"""The studies and the ``flexbearing`` command line."""
 
 from .catalog import BUILTIN_BEARINGS, builtin_bearing
 

@@ -1,13 +1,13 @@
 """Built-in bearings of the two studies, for the quasi-static load distribution (rigid rings).
 
-Slewing ring of a fast-reactor rotatable plug (DESIGN §7.1, thesis seed 003): single-row
+Slewing ring of a fast-reactor rotatable plug (the slewing-ring thesis, see README.md, Sources): single-row
 angular-contact thrust ball bearing, α0 = 60°, load balls Ø95.25 mm, groove conformity 0.525 on
 both races, steel E = 207 GPa, ν = 0.29 for the Hertz constants. The top race is the moving ring;
 the dead load presses it down (−z). Its ball contact is taken as the "inner" raceway (convex in
 the rolling direction), as in the thesis' Hertz calculation. Spacer balls carry no axial load and
 are not part of the load distribution.
 
-12 MW wind main bearing (DESIGN §7.2, paper seed 001): three-row cylindrical roller bearing,
+12 MW wind main bearing (Pang et al., *Lubricants* 12 (2024) 252): three-row cylindrical roller bearing,
 inner ring moving, outer ring (with the nose) fixed. Radial row 98 × Ø55 mm on pitch Ø1963 mm;
 front and rear thrust rows 94 × Ø60 mm on pitch Ø2182 mm. Not given in the paper and chosen here:
 effective roller lengths equal to the roller diameters; clearances in the middle of the stated
@@ -41,7 +41,8 @@ class BuiltinBearing:
     description: str
 
 
-#: Slewing-ring variants of DESIGN §7.1: pitch diameter m, load balls, load in tonnes.
+#: Slewing-ring variants of the thesis (full scale, its 1 m and 2 m models): pitch diameter m, load
+#: balls, load in tonnes.
 _SLEWING_VARIANTS = {
     "full": (6.69, 116, 500.0 + 3.25),
     "1m": (1.0, 16, 68.9),
@@ -50,7 +51,7 @@ _SLEWING_VARIANTS = {
 
 
 def slewing_ring(variant: str = "full") -> BuiltinBearing:
-    """The slewing ring of DESIGN §7.1 (``variant`` "full", "1m" or "2m") under its dead load."""
+    """The fast-reactor slewing ring (``variant`` "full", "1m" or "2m") under its dead load."""
     if variant not in _SLEWING_VARIANTS:
         raise ValueError(f"variant must be one of {sorted(_SLEWING_VARIANTS)}, got {variant!r}")
     pitch_m, n_balls, load_t = _SLEWING_VARIANTS[variant]
@@ -77,7 +78,7 @@ def slewing_ring(variant: str = "full") -> BuiltinBearing:
 
 
 def three_row_roller() -> BuiltinBearing:
-    """The three-row roller main bearing of DESIGN §7.2 under an illustrative rated-wind load."""
+    """The 12 MW three-row roller main bearing under an illustrative rated-wind load."""
     radial = RollerRow("radial", 98, 55e-3, 55e-3, 1.963, "radial", load_sign=1, gap_m=0.10e-3,
                        axial_position_m=0.0, n_slices=20)
     front = RollerRow("front thrust", 94, 60e-3, 60e-3, 2.182, "thrust", load_sign=1, gap_m=0.085e-3,

@@ -272,16 +272,17 @@ def cmd_modes(args) -> dict:
 
 
 def cmd_run(args) -> dict:
-    from .run import CASES, resolve_case, run_case
+    from .run import CASES, case_source, default_out_dir, resolve_case, run_case
 
     if args.list or args.case is None:
         print(format_table([(n, d) for n, d in CASES.items()], ("case", "what it runs")))
         return {}
     _check_out(args)
     case = resolve_case(args.case, args.quick, args.set)
-    out_dir = args.out if args.out is not None else f"results/{case.name}"
+    source = case_source(args.case)
+    out_dir = args.out if args.out is not None else default_out_dir(case, source)
     print(f"{case.name}: {case.description}" if case.description else case.name)
-    out = run_case(case, out_dir, progress=track, resume=args.resume)
+    out = run_case(case, out_dir, progress=track, resume=args.resume, source=source)
     for line in out.report:
         print(f"  {line}")
     files = sorted({p.suffix for p in out.folder.iterdir()})
@@ -352,7 +353,8 @@ def build_parser() -> argparse.ArgumentParser:
     rn.add_argument("--quick", action="store_true", help="the reduced variant (coarser meshes, fewer positions)")
     rn.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="change one case entry, e.g. --set undulation.scale=1.5 --set top.n_modes=30")
-    rn.add_argument("--out", default=None, help="results folder (default results/<case name>)")
+    rn.add_argument("--out", default=None, help="results folder (default results/<case name>, "
+                    "which is not replaced when it holds the results of another named case or case file)")
     rn.add_argument("--list", action="store_true", help="list the named cases")
     rn.add_argument("--json", action="store_true", help="print summary.json to stdout at the end")
     rn.add_argument("--resume", action="store_true",

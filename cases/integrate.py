@@ -65,10 +65,14 @@ def checkpoints(folder, resume: bool = False):
         _STORE.reset(token)
 
 
-def _settings(state: State, duration_s: float, record_every: int, chunks: int, adaptive: bool) -> dict:
+def _settings(state: State, duration_s: float, record_every: int, chunks: int, adaptive: bool,
+              timestep_s: float | None) -> dict:
     start = {k: np.asarray(getattr(state, k), float).tolist() for k in _STATE}
-    return {"duration_s": float(duration_s), "record_every": int(record_every), "chunks": int(chunks),
-            "adaptive": bool(adaptive), "start_state": start}
+    out = {"duration_s": float(duration_s), "record_every": int(record_every), "chunks": int(chunks),
+           "adaptive": bool(adaptive), "start_state": start}
+    if timestep_s is not None:  # (absent: the automatic step, as in slots stored before the key existed)
+        out["timestep_s"] = float(timestep_s)
+    return out
 
 
 def _open_slot(slot: Path, resume: bool, manifest: dict) -> bool:
@@ -125,13 +129,15 @@ def _load_piece(path: Path, state: State) -> dict | None:
 
 
 def integrate(model, state, duration_s: float, record_every: int, progress=None, chunks: int = 40,
-              adaptive: bool = False) -> dict:
+              adaptive: bool = False, timestep_s: float | None = None) -> dict:
     """Explicit integration of ``model`` for ``duration_s`` from ``state`` in ``chunks`` pieces.
 
     The first piece's automatic step is kept for all, or (``adaptive``) each piece takes the
     automatic step of its own start, for scenes whose loads grow far beyond the start's (the
     step of a contact law stiffening with its load shrinks); ``timestep_s`` of the result is then
-    the smallest. ``progress(iterable, label)`` wraps the pieces (a progress bar) when given.
+    the smallest. ``timestep_s`` given: every piece takes that step (a step above the explicit
+    stability limit raises :class:`mbd_core.multibody.StepTooLargeError`, which names the limit).
+    ``progress(iterable, label)`` wraps the pieces (a progress bar) when given.
     Inside :func:`checkpoints` the pieces are stored and, on a resume, reused (module docstring).
 
     Raises
@@ -146,9 +152,11 @@ def integrate(model, state, duration_s: float, record_every: int, progress=None,
     if store is not None:
         slot = store.next_slot()
         manifest = {"model_sha256": model_fingerprint(model),
-                    "settings": _settings(state, duration_s, record_every, chunks, adaptive)}
+                    "settings": _settings(state, duration_s, record_every, chunks, adaptive, timestep_s)}
         reuse = _open_slot(slot, store.resume, manifest)
-    parts, h, h_min = [], None, math.inf
+    if timestep_s is not None and adaptive:
+        raise ValueError("integrate: give either timestep_s or adaptive, not both")
+    parts, h, h_min = [], timestep_s, math.inf
     for i, t_end in enumerate(progress(ends, "simulated") if progress else ends):
         piece = slot / f"piece_{i:03d}.npz" if slot is not None else None
         out = _load_piece(piece, state) if reuse else None

@@ -2,7 +2,8 @@
 
 A run writes into a temporary folder beside the target and, when it completes, swaps it in:
 
-1. the finished folder gets the marker file :data:`MARKER` (JSON: format, case name);
+1. the finished folder gets the marker file :data:`MARKER` (JSON: format, case name and, for a
+   case run, ``source``: the named case or the case file it came from, :func:`marker_source`);
 2. an existing target is renamed aside (``.NAME.fb-old-<pid>-<hex>``), the new folder is renamed
    to the target, then the aside copy is deleted.
 
@@ -35,7 +36,8 @@ from fem_rings.cache import process_alive
 from .config import CaseError
 from .signals import held
 
-__all__ = ["MARKER", "OutputTargetError", "atomic_folder", "check_output_target", "is_results_folder", "recover"]
+__all__ = ["MARKER", "OutputTargetError", "atomic_folder", "check_output_target", "is_results_folder", "marker_source",
+           "recover"]
 
 log = logging.getLogger(__name__)
 
@@ -53,14 +55,25 @@ class OutputTargetError(CaseError):
     """The output folder cannot be (re)placed: the message names the path and why."""
 
 
+def _marker(path: Path) -> dict | None:
+    """The project marker of folder ``path``, or None when it has no readable one."""
+    try:
+        data = json.loads((Path(path) / MARKER).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, ValueError):
+        return None
+    return data if isinstance(data, dict) and data.get("format") == MARKER_FORMAT else None
+
+
 def is_results_folder(path: Path) -> bool:
     """True when ``path`` is a folder carrying a readable project marker."""
-    marker = Path(path) / MARKER
-    try:
-        data = json.loads(marker.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, ValueError):
-        return False
-    return isinstance(data, dict) and data.get("format") == MARKER_FORMAT
+    return _marker(path) is not None
+
+
+def marker_source(path: Path) -> tuple[str | None, str | None]:
+    """(case name, source) recorded in the marker of results folder ``path``; None for what it
+    does not record (folders written before ``source`` existed)."""
+    data = _marker(path) or {}
+    return data.get("name"), data.get("source")
 
 
 def _protected(path: Path) -> str | None:
@@ -148,8 +161,9 @@ def _make_folder(path: Path) -> Path:
     return path
 
 
-def _write_marker(folder: Path, name: str) -> None:
-    (folder / MARKER).write_text(json.dumps({"format": MARKER_FORMAT, "name": name}) + "\n", encoding="utf-8")
+def _write_marker(folder: Path, name: str, source: str | None = None) -> None:
+    data = {"format": MARKER_FORMAT, "name": name, **({"source": source} if source is not None else {})}
+    (folder / MARKER).write_text(json.dumps(data) + "\n", encoding="utf-8")
 
 
 def _swap_in(tmp: Path, out: Path) -> None:
@@ -170,7 +184,7 @@ def _swap_in(tmp: Path, out: Path) -> None:
 
 
 @contextmanager
-def atomic_folder(out_dir, name: str = ""):
+def atomic_folder(out_dir, name: str = "", source: str | None = None):
     """Yield a new temporary folder that replaces ``out_dir`` whole when the block completes.
 
     Parameters
@@ -179,6 +193,8 @@ def atomic_folder(out_dir, name: str = ""):
         The results folder; checked first (:func:`check_output_target`).
     name : str
         Written into the marker (the case or part name).
+    source : str or None
+        Written into the marker: what the results come from (a case run's named case or case file).
 
     On an error or interruption the temporary folder is deleted and ``out_dir`` stays as it was.
     """
@@ -188,7 +204,7 @@ def atomic_folder(out_dir, name: str = ""):
     tmp = _make_folder(_leftover_name(out, _TMP))
     try:
         yield tmp
-        _write_marker(tmp, name or out.name)
+        _write_marker(tmp, name or out.name, source)
         _swap_in(tmp, out)
     except BaseException:
         with held():

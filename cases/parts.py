@@ -1,8 +1,8 @@
 """Built-in ring and cage parts of the two studies, ready to mesh (``flexbearing modes``).
 
-Materials: the slewing-ring parts are steel E = 200 GPa, ν = 0.3, ρ = 7850 kg/m³ (DESIGN §7.1);
+Materials: the slewing-ring parts are steel E = 200 GPa, ν = 0.3, ρ = 7850 kg/m³;
 the three-row bearing's rings 42CrMo E = 210 GPa, ν = 0.28 and its cages E = 200 GPa, ν = 0.3
-(DESIGN §7.2), density 7850 kg/m³. Cross-sections: :mod:`fem_rings.sections` and
+(Pang et al. 2024), density 7850 kg/m³. Cross-sections: :mod:`fem_rings.sections` and
 :mod:`fem_rings.cages`, where every chosen dimension is documented.
 """
 

@@ -2,7 +2,13 @@
 
 Resolution order: the named sub-case (or the TOML file), then ``--quick``, then every ``--set
 key=value``; the resolved case is validated before any meshing starts and saved as ``case.toml``
-beside the results, so a folder always says exactly what produced it.
+beside the results, so a folder always says exactly what produced it. A key that the case's
+study does not read (it sets or sweeps that value itself) is refused when given with ``--set`` or
+changed in a case file, naming the key that does the job (:mod:`cases.overrides`).
+
+Without ``--out`` the results go to ``results/<case name>``; a folder there that holds the results
+of a run from another named case or case file (a copied ``case.toml`` keeps the original's name)
+is not replaced: :func:`default_out_dir` refuses it, naming ``--out``.
 
 The explicit runs of a case keep their pieces in ``.NAME.fb-resume/`` beside the results folder
 (:func:`cases.integrate.checkpoints`) until the results are in place; after an interruption
@@ -22,7 +28,8 @@ from pathlib import Path
 
 from .config import FAMILY_KEY, CaseError, dumps_case, from_mapping, qualified_message, read_toml, with_overrides
 from .integrate import ResumeError, checkpoints
-from .outdir import atomic_folder, check_output_target
+from .overrides import check_case, reference_case
+from .outdir import OutputTargetError, atomic_folder, check_output_target, is_results_folder, marker_source
 from .results import RunOutput
 from .slewing import presets as slewing_presets
 from .slewing import studies as slewing_studies
@@ -31,7 +38,7 @@ from .wind import presets as wind_presets
 from .wind import studies as wind_studies
 from .wind.case import WindCase
 
-__all__ = ["CASES", "resolve_case", "resume_folder", "run_case"]
+__all__ = ["CASES", "case_source", "default_out_dir", "resolve_case", "resume_folder", "run_case"]
 
 log = logging.getLogger(__name__)
 
@@ -86,11 +93,26 @@ def resolve_case(name_or_path: str, quick_run: bool = False, overrides=()):
             case = _FAMILIES[type(case)][0].quick(case)
         except ValueError as exc:  # a dataclass's own check, without the table's name
             raise CaseError(f"--quick: {qualified_message(type(case), str(exc))}") from None
+    file_case = case if name_or_path not in PRESETS else None
     case = with_overrides(case, list(overrides)) if overrides else case
+    _check_unused(case, overrides, file_case, name_or_path)
     for key, file in getattr(case, "input_files", dict)().items():
         if not Path(file).is_file():
             raise CaseError(f"{key}: no such file: {file!r}")
     return case
+
+
+def _check_unused(case, overrides, file_case, source: str) -> None:
+    """Refuse keys the case's study does not read (:mod:`cases.overrides`): set with ``--set``,
+    or changed in the case file from the study's named case."""
+    presets, studies = _FAMILIES[type(case)]
+    unused = studies.case_unused_keys(case)
+    reference = None
+    if file_case is not None:
+        reference = reference_case(type(case), presets.PRESETS, file_case.study.kind)
+        file_unused = studies.case_unused_keys(file_case)
+        check_case(file_case, file_unused, source_case=file_case, reference=reference, source=source)
+    check_case(case, unused, list(overrides))
 
 
 def _peak_rss_mb() -> float:
@@ -140,8 +162,38 @@ def _open_resume_folder(folder: Path, case_toml: str, resume: bool) -> None:
     stored.write_text(case_toml, encoding="utf-8")
 
 
-def run_case(case, out_dir, progress=None, resume: bool = False) -> RunOutput:
+def case_source(name_or_path: str) -> str:
+    """What a run's case comes from, as its results folder's marker records it: the named case,
+    or the resolved path of the case file."""
+    return name_or_path if name_or_path in PRESETS else str(Path(name_or_path).resolve())
+
+
+def default_out_dir(case, source: str) -> Path:
+    """``results/<case name>``, the folder a run writes to without ``--out``.
+
+    Raises
+    ------
+    cases.outdir.OutputTargetError
+        The folder holds the results of a run from another source (a copied ``case.toml`` keeps
+        the original's name): only ``--out`` may name a folder to replace then.
+    """
+    out = Path("results") / case.name
+    if not is_results_folder(out):
+        return out
+    name, stored = marker_source(out)
+    # folders written before the marker recorded a source: the named case of that name only
+    same = stored == source if stored is not None else (source in PRESETS and name in (source, f"{source}-quick"))
+    if not same:
+        shown = stored if stored is not None else "an earlier run"
+        raise OutputTargetError(f"{out} holds the results of {shown}, not of {source}; choose the results "
+                                f"folder with --out (giving --out {out} replaces them)")
+    return out
+
+
+def run_case(case, out_dir, progress=None, resume: bool = False, source: str | None = None) -> RunOutput:
     """Run ``case`` into ``out_dir`` (replaced only when the run completes); returns the output.
+
+    ``source``: what the case comes from (:func:`case_source`), recorded in the folder's marker.
 
     ``resume``: reuse the explicit-run pieces stored by an interrupted run of the same case into
     the same folder (:func:`resume_folder`). Raises :class:`cases.outdir.OutputTargetError` before
@@ -155,7 +207,7 @@ def run_case(case, out_dir, progress=None, resume: bool = False) -> RunOutput:
     keep.parent.mkdir(parents=True, exist_ok=True)
     _open_resume_folder(keep, text, resume)
     try:
-        with atomic_folder(out_dir, case.name) as tmp, checkpoints(keep, resume):
+        with atomic_folder(out_dir, case.name, source) as tmp, checkpoints(keep, resume):
             out = RunOutput(tmp)
             out.path("case.toml").write_text(text)
             _FAMILIES[type(case)][1].run_study(case, out, progress)

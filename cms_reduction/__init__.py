@@ -1,6 +1,6 @@
 """Craig–Bampton reduction of FE ring models into modal bodies for the floating frame of reference.
 
-Second stage of the data flow (DESIGN §1, §4): ``FEModel`` (fem_rings) → ``reduce_model`` →
+Second stage of the data flow: ``FEModel`` (fem_rings) → ``reduce_model`` →
 ``ReducedBody`` (mass-normalised modes, frequencies, damping, mesh arrays, and as extras the
 inertia invariants, raceway samples and optional stress modes). ``reduced_body`` does all of it
 from a section and caches the result by input hash. After a run, ``stress_history`` turns the

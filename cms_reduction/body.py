@@ -5,7 +5,7 @@ A ``ReducedBody`` holds, for m kept modal coordinates η:
 * ``shapes`` Φ, (3N, m): mass-normalised mode shapes on the FE nodes (Φᵀ M Φ = I), interleaved
   vector DOFs ``3 * node + component``; rigid-body content removed for a floating body;
 * ``frequencies_Hz`` and ``damping_ratio`` per mode: the modal stiffness is diag(ω²) and the
-  modal damping diag(2ζω) in the equations of motion (DESIGN §5.2);
+  modal damping diag(2ζω) in the equations of motion;
 * ``nodes_m`` (N, 3) and the mesh arrays, to evaluate fields and draw the deformed body;
 * optional extras filled by later stages: inertia invariants, raceway samples, stress modes.
 

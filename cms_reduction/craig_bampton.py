@@ -20,7 +20,7 @@ The basis V = [Φ_I, Ψ, U] is M-orthonormalised block by block in that order, t
 block adds to the earlier ones below 1e-8 of its Gram scale is dropped as dependent), and the reduced
 eigenproblem (VᵀKV) x = ω² (VᵀMV) x gives the modal form: mass-normalised modes with their
 frequencies. For a floating body the basis is first cleared of the six rigid motions (M-orthogonal
-projection), since the reference frame carries them (DESIGN §4); its free–free modes are computed
+projection), since the reference frame carries them; its free–free modes are computed
 deflated of them (:mod:`fem_rings.modal_basis`), so a soft body keeps all its requested elastic
 modes. Start vectors and degenerate pairs are fixed, so a rebuild gives the same body bit for bit.
 """

@@ -1,7 +1,7 @@
 """Inertia invariants of a modal body in a floating frame of reference (FFRF), from the FE mass matrix.
 
 A material point of the body sits at p = r + R u with u = x̄ + Φ η: x̄ its undeformed position in
-the body frame, Φ the mode shapes and η the modal coordinates (DESIGN §5.2). The kinetic energy is
+the body frame, Φ the mode shapes and η the modal coordinates. The kinetic energy is
 a quadratic form whose coefficients are volume integrals of the fields 1, x̄ and Φ; computed once
 they are the invariants I1…I9 (A. A. Shabana, *Dynamics of Multibody Systems*, 3rd ed., Cambridge
 University Press 2005, ch. 5, "inertia shape integrals"; numbered as the nine inertia invariants of

@@ -1,4 +1,4 @@
-"""Reduced bodies on disk: one ``.npz`` of arrays plus a ``.json`` sidecar of metadata (DESIGN §4).
+"""Reduced bodies on disk: one ``.npz`` of arrays plus a ``.json`` sidecar of metadata.
 
 Layout of a pair ``<stem>.npz`` / ``<stem>.json``:
 

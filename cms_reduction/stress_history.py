@@ -3,7 +3,7 @@
 A run records the modal coordinates η(t) of each flexible body, ``eta_t`` (n_t, m) √kg at the
 times ``t_s`` (n_t,) s. With the body's stress modes σ_j (:mod:`cms_reduction.stress_modes`,
 ``extras["stress_modes"]`` (N, 6, m) Pa per unit η) the nodal stress at any instant is the modal
-superposition (DESIGN §4)
+superposition
 
     σ(x_n, t) = Σ_j η_j(t) σ_j(x_n),
 

@@ -1,4 +1,4 @@
-"""The 1 m slewing ring of DESIGN §7.1 with a flexible bottom race, bolted down at 8 patches, under
+"""The 1 m model of the fast-reactor slewing ring with a flexible bottom race, bolted down at 8 patches, under
 its 68.9 t dead load and a tilting moment that ramps up to 150 kN·m between 0.02 s and 0.12 s. The
 ball loads redistribute, the race bends with them, and its stress follows from the recorded modal
 coordinates (σ = Σ η_j σ_j).

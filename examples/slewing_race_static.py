@@ -1,7 +1,7 @@
 """Bottom race of the 1 m slewing ring under its 16 ball loads, bolted down at 16 patches.
 
 Each load ball presses on the groove along its 60° contact line with Q = W/(Z sin α)
-(W = 68.9 t × g, Z = 16, DESIGN §7.1), spread over its Hertz contact ellipse with the
+(W = 68.9 t × g, Z = 16, the thesis' 1 m model), spread over its Hertz contact ellipse with the
 semi-ellipsoidal pressure p = p0·√(1 − x²/a² − y²/b²) (a, b from the exact Hertz solution of
 :mod:`mbd_core.contact.hertz`). The race's bolt face is held at 16 patches (bolt-head footprints,
 15 mm radius) half-way between the balls. The mesh resolves the ring's bending, not the contact

@@ -1,6 +1,6 @@
 """Cross-section profiles, gmsh meshes and scikit-fem solid models of bearing rings and cages.
 
-The first stage of the data flow (DESIGN §1, §3)::
+The first stage of the data flow::
 
     Profile (r, z section of lines and arcs)       fem_rings.profile, .sections, .cages
       └─ mesh_ring(profile, MeshSpec)               gmsh → meshio → scikit-fem (tet10 / hex27)

@@ -4,7 +4,7 @@ A cage is a ring section (a :class:`~fem_rings.profile.Profile`) plus a :class:`
 description; the mesher revolves the ring and cuts the pockets with boolean operations
 (tetrahedra only).
 
-Three-row roller main bearing of DESIGN §7.2 (geometry of :class:`fem_rings.sections.ThreeRowGeometry`):
+12 MW three-row roller main bearing (geometry of :class:`fem_rings.sections.ThreeRowGeometry`):
 steel cages, pocket clearance 0.5 mm per side; radial cage ring 26 mm radial × 105 mm axial, 69 kg
 with its pockets (paper 70 kg); thrust cages 110 mm radial × 28 mm axial, 89 kg (paper 90.2 kg).
 Cage rings lie between the raceways (thinner than the rollers) and clear the ring lands.

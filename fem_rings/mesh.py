@@ -9,7 +9,7 @@ circles and groove arcs are represented exactly to second order:
 ``"hex27"``
     The section is meshed with quadrilaterals (structured when it is a four-sided polygon) and swept
     about the axis in layers (gmsh built-in kernel, ``revolve`` with ``numElements``), giving
-    27-node hexahedra. Converges much faster per degree of freedom (DESIGN §3).
+    27-node hexahedra. Converges much faster per degree of freedom.
 
 gmsh writes a ``.msh`` file that meshio reads; the volume cells become a scikit-fem ``MeshTet2`` /
 ``MeshHex2``. Boundary facets are then named after the profile segment that generated them (and

@@ -109,7 +109,7 @@ def build_model(
     material : ElasticMaterial
         E_Pa, nu, density_kg_m3.
     intorder : (int, int), optional
-        Quadrature orders for (K, M); default per element family (DESIGN §3).
+        Quadrature orders for (K, M); default per element family.
     use_cache : bool
         Read and write the on-disk cache.
     """

@@ -5,7 +5,7 @@ ball centre and n the unit contact direction from the ball centre to the contact
 contact point b + ½·D·n lies on the arc. The groove meets a flat face (z = const) or a cylindrical
 face (r = const) at two edge points; its depth is measured from that face to the deepest point.
 
-Slewing ring of DESIGN §7.1 (angular-contact thrust ball bearing, α = 60°, D = 95.25 mm,
+Slewing ring of a fast-reactor rotatable plug (angular-contact thrust ball bearing, α = 60°, D = 95.25 mm,
 f = 0.525, ball centres at r = pitch/2, z = 0). The thesis gives no cross-sections; chosen here:
 
 =================  =========  ===========================================================
@@ -26,7 +26,7 @@ bottom face, (−cos α, +sin α); both sections are centred on the pitch radius
 TMR), ``bore``, ``outer``, ``top``/``bottom`` (the face pieces beside the groove); TMR:
 ``race_face``, ``load_face``, ``bore``, ``outer``.
 
-Three-row roller main bearing of DESIGN §7.2 (conventions of :mod:`cases.catalog`: +z from the
+12 MW three-row roller main bearing (conventions of :mod:`cases.catalog`: +z from the
 rotor to the rear). Raceways sit where the rollers and clearances put them: radial raceways at
 r = 0.9815 ∓ 0.0275 m (+0.10 mm on the nose tip), thrust raceways at z = ∓0.09 ∓ 0.030 m on the
 inner-ring flanges and ∓0.09 ± (0.030 + 0.085e-3) m on the nose. Raceway segments span the nominal
@@ -263,7 +263,7 @@ def grooved_ring(name: str, r_in_m: float, r_out_m: float, z_min_m: float, z_max
     return Profile(name, tuple(segs))
 
 
-# -- slewing ring (DESIGN §7.1) ----------------------------------------------------------------------
+# -- slewing ring ----------------------------------------------------------------------
 @dataclass(frozen=True)
 class SlewingSection:
     """Cross-section data of the slewing ring's races and TMR (defaults and reasons: module docstring).
@@ -365,7 +365,7 @@ def slewing_top_structure(pitch_diameter_m: float = 6.69, section: SlewingSectio
     return Profile(name, tuple(segs))
 
 
-# -- three-row roller main bearing (DESIGN §7.2) -------------------------------------------------------
+# -- three-row roller main bearing -------------------------------------------------------
 @dataclass(frozen=True)
 class ThreeRowGeometry:
     """Rollers, clearances and ring dimensions of the three-row roller bearing (module docstring).

@@ -223,7 +223,7 @@ def test_fuzz_command_line(tmp_path, monkeypatch, capsys):
     """The same ``--set`` inputs through ``flexbearing run`` (the run itself replaced): exit status 2
     and one line on stderr for a bad input, 0 for a good one, never a traceback."""
     done = SimpleNamespace(report=[], folder=tmp_path, summary={"wall_time_s": 0.0, "peak_rss_mb": 0.0})
-    monkeypatch.setattr(cases.run, "run_case", lambda case, out_dir, progress=None, resume=False: done)
+    monkeypatch.setattr(cases.run, "run_case", lambda case, out_dir, progress=None, resume=False, source=None: done)
     rng = random.Random(SEED + 2)
     names = sorted(PRESETS)
     for _ in range(N_CLI):

@@ -40,7 +40,7 @@ def one_line_error(capsys, argv, status=2) -> str:
 
 
 def _raising(exc):
-    def run_case(case, out_dir, progress=None, resume=False):
+    def run_case(case, out_dir, progress=None, resume=False, source=None):
         raise exc
     return run_case
 
@@ -264,10 +264,10 @@ def test_a_case_file_that_quick_makes_invalid_names_the_key(tmp_path):
 
 @pytest.mark.parametrize("csv", ["/nonexistent/loads.csv", "."])
 def test_a_missing_load_file_is_refused_naming_the_key(csv):
-    # before: the static study ran all 32 load cases, then "cannot read ...: No such file" (or
-    # "Is a directory") without the key
+    # before: the study ran, then "cannot read ...: No such file" (or "Is a directory") without
+    # the key (wind-speeds: the static study does not read loads.source, which is refused)
     with pytest.raises(CaseError, match=f"^loads.csv_path: no such file: {re.escape(repr(csv))}$"):
-        resolve_case("wind-static", True, ["loads.source=csv", f"loads.csv_path={csv!r}"])
+        resolve_case("wind-speeds", True, ["loads.source=csv", f"loads.csv_path={csv!r}"])
 
 
 def test_infinite_and_nan_set_values_are_refused():

@@ -26,7 +26,7 @@ def race_1m():
 
 
 def test_groove_raceway_curve_sits_on_the_contact_circle(race_1m):
-    # Reference: the groove geometry of DESIGN §7.1 — contact point at 60° on an arc of radius
+    # Reference: the slewing ring's groove geometry — contact point at 60° on an arc of radius
     # f·D = 0.525 × 95.25 mm about the curvature centre (BallGroove, an independent construction).
     groove = SlewingSection().groove("bottom", 1.0)
     curve = raceway_curve(race_1m, "groove", 37, at_rz_m=groove.contact_point_m)

@@ -25,7 +25,8 @@ def _section_mean(values, theta, theta0):
 
 
 def test_clamped_semicircular_arc_out_of_plane_point_load():
-    # Reference: DESIGN §8 (thesis, corrected): clamped semicircular arc, concentrated
+    # Reference: the slewing-ring thesis' curved-beam check, corrected (its coefficient 0.25828
+    # belongs to this load case; its 5.337 mm example does not reproduce): clamped semicircular arc, concentrated
     # out-of-plane load P at mid-span, δ = [π/8 − 1/(2π) + β(3π/8 − 1 − 1/(2π))]·PR³/(EI),
     # β = EI/(GJ) = 1 + ν for a circular section. R = 0.5 m, Ø60 mm, E = 200 GPa, ν = 0.3.
     # The load is spread uniformly over the mid-span cross-section and the deflection is the

@@ -1,7 +1,7 @@
 """Generalized-α with modal (flexible) bodies (mbd_core.multibody.implicit, mbd_core.kernels.implicit):
 the modal accelerations against a numpy twin, free and damped vibration of a ring's modes against the
 closed-form solutions, a contact transient on a flexible race against the explicit scheme, and the
-invariants of a free, tumbling and vibrating ring (DESIGN §5.2, §5.4).
+invariants of a free, tumbling and vibrating ring.
 
 References: the linear oscillator η̈ + 2ζωη̇ + ω²η = 0 and the generalized-α method on it (Chung &
 Hulbert, J. Appl. Mech. 60 (1993) 371: ρ∞ = 1 is the trapezoidal rule, whose solution from rest is

@@ -36,7 +36,7 @@ def test_normal_force_matches_twin_and_is_never_tensile(law):
 
 
 @pytest.mark.parametrize("law,params", [
-    (K.FRICTION_COULOMB, (0.24, 0.14, 1e-3, 2e-3)),        # thesis values (DESIGN §7.1)
+    (K.FRICTION_COULOMB, (0.24, 0.14, 1e-3, 2e-3)),        # thesis values
     (K.FRICTION_DREB_LINEAR, (0.5, 0.0, 0.0, 0.0)),
     (K.FRICTION_DREB_CONSTANT, (0.06, 1e-4, 0.0, 0.0)),
     (K.FRICTION_DREB_FALLING, (0.08, 0.01, 0.0, 0.0)),
@@ -94,7 +94,7 @@ def test_ball_groove_matches_twin_with_undulation_and_offset():
 
 
 def test_ball_pressed_along_the_contact_line_gives_that_penetration_and_angle():
-    # Geometry check (DESIGN §7.1 groove): a ball whose centre sits at f·D − D/2 + ε from the
+    # Geometry check (the slewing ring's groove): a ball whose centre sits at f·D − D/2 + ε from the
     # curvature centre along the 60° contact direction penetrates by ε at a 60° contact angle.
     D, f, alpha = 95.25e-3, 0.525, math.radians(60.0)
     r_c, z_c, rho = 0.5, 0.0, f * D - D / 2

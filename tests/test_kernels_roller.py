@@ -9,7 +9,7 @@ from mbd_core.kernels import roller_slices as RS
 from tests.reference.roller_slices import roller_slices as twin
 
 RNG = np.random.default_rng(11)
-D, L, N_S = 55e-3, 55e-3, 20          # radial row of the 12 MW bearing (DESIGN §7.2)
+D, L, N_S = 55e-3, 55e-3, 20          # radial row of the 12 MW bearing
 
 
 def _kernel(center, axis, drop, raceway, value):

@@ -1,5 +1,5 @@
 """Modal (flexible) rings in the multibody core: conservation and spin of a free modal ring, the static
-limit against the full FE model, and a ball rolled around a flexible race (DESIGN §5.2, §5.4).
+limit against the full FE model, and a ball rolled around a flexible race.
 
 References: the conservation laws of a free body; the rotating annular disk (S. Timoshenko &
 J. N. Goodier, *Theory of Elasticity*, 3rd ed., 1970, §32, plane stress); the full FE model of the
@@ -146,7 +146,7 @@ SUPPORTS_DEG = (45.0, 135.0, 225.0, 315.0)
 
 @pytest.fixture(scope="module")
 def race():
-    """Bottom race of the 1 m slewing ring (DESIGN §7.1), bolted down at 4 patches: 20 modes + 33
+    """Bottom race of the 1 m slewing ring, bolted down at 4 patches: 20 modes + 33
     groove load shapes (n ≤ 16), 2 % modal damping; the full FE model and its centroid circle."""
     profile, mesh = slewing_bottom_race(1.0), MeshSpec(0.04, "hex27", refine={"groove": 0.5})
     groove = SlewingSection().groove("bottom", 1.0)

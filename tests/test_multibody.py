@@ -28,7 +28,7 @@ from mbd_core.multibody.statics import static_equilibrium
 from mbd_core.quasistatic import BallRow, Bearing, RingLoad, RollerRow, solve_load_distribution
 
 G = 9.81
-# The 1 m slewing ring of DESIGN §7.1: 16 balls Ø95.25 mm at 60°, f = 0.525, dead load 68.9 t.
+# The 1 m model of the slewing ring: 16 balls Ø95.25 mm at 60°, f = 0.525, dead load 68.9 t.
 SLEWING_ROW = BallRow("balls", 16, 95.25e-3, 1.0, math.radians(60), 0.525, 0.525, "inner", axial_sign=-1)
 
 

@@ -135,7 +135,7 @@ def fe_raceway_deflection(model, res, row) -> np.ndarray:
 # --- 1. static limit against the full FE model ---------------------------------------------------
 
 def test_flexible_race_on_three_pads_against_full_fe_model(race):
-    """16 balls of the 1 m slewing ring (68.9 t, DESIGN §7.1) on a bottom race resting on three pads.
+    """16 balls of the 1 m slewing ring (68.9 t, the thesis' 1 m model) on a bottom race resting on three pads.
 
     (a) The axial components of the ball loads carry the applied load within 0.1 % (acceptance;
     seen 4e-14), and the whole resultant balances it.

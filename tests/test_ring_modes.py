@@ -60,7 +60,7 @@ def test_free_ring_rigid_modes_and_slender_ring_matches_blevins():
 
 
 def test_thick_ring_frequencies_converge_and_sit_below_thin_ring_theory():
-    # Section 0.2 m radial × 0.1 m axial on R = 1 m. DESIGN §3 reports converged solid FE 1.8 %
+    # Section 0.2 m radial × 0.1 m axial on R = 1 m. Converged solid FE sits 1.8 %
     # (n = 2) and 4.6 % (n = 3) below thin-ring theory in-plane (shear and rotary inertia).
     # Acceptance: within 5 %. Seen: in-plane −1.82 % / −4.65 %, out-of-plane −1.54 % / −2.55 %.
     freqs, _ = ring_frequencies(0.2, 0.1, 0.05)

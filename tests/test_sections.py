@@ -7,10 +7,10 @@ References used below:
 * Circular segment of radius R and central angle θ: area R²(θ − sin θ)/2, centroid
   4R·sin³(θ/2) / (3(θ − sin θ)) from the circle centre; chord height R(1 − cos(θ/2)).
 * Pappus–Guldinus: volume of revolution = 2π · area · centroid radius.
-* Slewing-ring thesis (seed 003, static validation): top race weight 31 817 N = 3.25 t at Ø6.69 m,
+* Slewing-ring thesis (README.md, Sources; static validation): top race weight 31 817 N = 3.25 t at Ø6.69 m,
   4767.66 N = 0.486 t for the Ø1 m model.
-* Wind main-bearing paper (seed 001, DESIGN §7.2): inner ring 2271 + 1700 kg, outer ring 3055 kg,
-  thrust cage 90.2 kg, radial cage 70 kg.
+* Wind main-bearing paper (Pang et al., Lubricants 12 (2024) 252, Table 2): inner ring
+  2271 + 1700 kg, outer ring 3055 kg, thrust cage 90.2 kg, radial cage 70 kg.
 """
 
 from __future__ import annotations
@@ -37,7 +37,7 @@ from fem_rings.sections import (
 )
 
 STEEL_KG_M3 = 7850.0
-D, F, ALPHA = 95.25e-3, 0.525, 60.0  # DESIGN §7.1
+D, F, ALPHA = 95.25e-3, 0.525, 60.0  # the slewing ring's balls, conformity, contact angle
 
 
 # -- helpers --------------------------------------------------------------------------------------------

@@ -1,4 +1,4 @@
-"""The slewing-ring studies of DESIGN §7.1 in their --quick variants, through `flexbearing run`.
+"""The slewing-ring studies (a)–(g) in their --quick variants, through `flexbearing run`.
 
 References: the analytic thrust load of a ball ring (Harris & Kotzalas 2007, §7.2), the rolling
 kinematics (cage speed ω_i(1 − γ)/2, Harris & Kotzalas ch. 8), the Hertz contact module, and the

@@ -1,4 +1,4 @@
-"""The 2 m slewing ring of DESIGN §7.1 with an undulated bottom race and a flexible top race: the
+"""The 2 m model of the slewing ring with an undulated bottom race and a flexible top race: the
 quasi-static solution with modal coordinates (mbd_core.quasistatic.flexible) and the dynamic model
 (mbd_core.multibody, explicit, from an unloaded start) after it has settled are two independent
 solutions of the same equilibrium; the rigid-race solution differs visibly.
@@ -31,7 +31,7 @@ from mbd_core.quasistatic.flexible import (FlexibleRing, GrooveOffset, build_fle
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 PITCH_M, LOAD_N = 2.0, 140e3 * 9.81
 ROW = BallRow("balls", 33, 95.25e-3, PITCH_M, math.radians(60.0), 0.525, 0.525, "inner", axial_sign=-1)
-# DESIGN §7.1 undulation: periodic cubic spline through (θ°, h mm), peak-to-valley 1 mm
+# the slewing case's undulation: periodic cubic spline through (θ°, h mm), peak-to-valley 1 mm
 UNDULATION = [(0, 0), (30, 0.5), (65, 0), (103, -0.5), (142, 0), (180, 0.5), (215, 0.2), (240, 0), (251, -0.4),
               (262, 0), (300, 0.3), (330, 0.5), (360, 0)]
 N_TABLE = 720

@@ -2,11 +2,12 @@
 
 References:
 
-* Slewing-ring thesis (seed 003), Table 8: Hertz contact of the Ø95.25 mm ball on the inner
+* Slewing-ring thesis (README.md, Sources), Table 8: Hertz contact of the Ø95.25 mm ball on the inner
   raceway of the Ø6.69 m bearing (f = 0.525, α = 60°, E = 207 GPa, ν = 0.29), loads in tonnes
   converted with g = 9.81 m/s². Tolerances as in tests/test_hertz.py (the foundation tests of
   the same Hertz and subsurface functions): p0 0.5 %, semi-axes 1 %, τ_max and depth 1.5 %.
-* DESIGN §0: ISO 281 rating C_a = 1 997 045 N for Z = 116, b_m = 1 (f_c = 36.635, thesis §4.4.2);
+* ISO 281:2007 thrust-ball rating with these inputs: C_a = 1 997 045 N for Z = 116, b_m = 1
+  (f_c = 36.635, thesis §4.4.2);
   the thesis' printed 1 950 868 N is the Z = 112 value.
 * NREL DG03 via thesis §2.5 / §4.4.2: A_cd = τ_f / τ_max(1.1·h), τ_f = 0.6·0.5·660 MPa = 198 MPa.
 """
@@ -49,7 +50,7 @@ def test_thesis_table_8_inner_raceway(W_t, p0_MPa, a_mm, b_mm, tau_MPa, z_mm):
 
 
 def test_iso281_rating_and_life_scaling():
-    # DESIGN §0: 1 997 045 N for Z = 116 (rounded to 1 N -> 1e-6); Z = 112 gives the thesis' 1 950 868 N.
+    # ISO 281: 1 997 045 N for Z = 116 (rounded to 1 N -> 1e-6); Z = 112 gives the thesis' 1 950 868 N.
     Q = 21.4e3 * G
     life = worst_ball_life(Q, **FULL)
     assert life.C_a_N == pytest.approx(1_997_045.0, rel=1e-6)

@@ -1,4 +1,4 @@
-"""The wind main-bearing studies of DESIGN §7.2 in their --quick variants, through `flexbearing run`.
+"""The wind main-bearing studies in their --quick variants, through `flexbearing run`.
 
 References: rolling kinematics without slip (Harris & Kotzalas, *Essential Concepts*, ch. 8:
 roller spin (d_m/2D)(1 − γ²) ω_i relative to the cage, cage ω_i(1 − γ)/2; the paper's Table 4

@@ -1,4 +1,4 @@
-"""The fast-reactor slewing ring of DESIGN §7.1: case definition, scenes, studies (a)–(g).
+"""The fast-reactor slewing ring (cases/slewing/README.md): case definition, scenes, studies (a)–(g).
 
 Data flow: :mod:`.case` (TOML-backed dataclasses) → :mod:`.scene` (ball row, groove offsets,
 reduced bodies) → :mod:`.quasistatic` / :mod:`.dynamic` (solvers) → :mod:`.studies` (figures and

@@ -1,4 +1,4 @@
-"""The slewing-ring case: what a run of the fast-reactor slewing ring (DESIGN §7.1) is made of.
+"""The slewing-ring case: what a run of the fast-reactor slewing ring is made of.
 
 A case is a frozen dataclass tree, validated on creation and read from / written to TOML with
 :mod:`cases.config` (errors name the dotted key). SI units, with the unit in every key name;
@@ -7,8 +7,8 @@ angles in degrees in case files. The tables of a case file:
 =============  ===================================================================================
 ``geometry``   variant (full Ø6.69 m / 1 m / 2 m scaled) and the cross-sections chosen for the
                races and the top-and-middle ring (TMR), which the thesis does not give
-``load``       dead load carried by the top structure (default: the variant's, §7.1) and gravity
-``undulation`` bottom-race axial undulation: ``scale`` × the §7.1 profile (periodic cubic spline)
+``load``       dead load carried by the top structure (default: the variant's, from the thesis) and gravity
+``undulation`` bottom-race axial undulation: ``scale`` × :data:`UNDULATION_PROFILE_DEG_MM` (periodic cubic spline)
 ``thermal``    radial offset Δ of the top race over one sector and of the bottom race over another
                (differential thermal expansion), smooth raised-cosine edges
 ``contact``    ``hertz`` (exact Hertz constants of each groove, default) or ``thesis`` (the
@@ -17,7 +17,7 @@ angles in degrees in case files. The tables of a case file:
 ``bottom``     fidelity of the bottom race (rigid on its support, or modal, bolted at ``bolts``)
 ``analysis``   ``quasi_static`` (load distribution; with ``travel_steps`` the balls roll through
                one revolution of the top race as a sequence of equilibria) or ``dynamic_explicit``
-``study``      which study of §7.1 the run is, and the values it sweeps
+``study``      which study (a)–(g) the run is, and the values it sweeps
 =============  ===================================================================================
 
 The dead load is carried as mass of the top structure (its density raised so that its weight is
@@ -39,13 +39,15 @@ __all__ = ["VARIANTS", "Geometry", "Load", "Undulation", "Thermal", "Contact", "
            "Study", "SlewingCase", "UNDULATION_PROFILE_DEG_MM", "THESIS_CONTACT_STIFFNESS_N_PER_M1P5", "THESIS_CONTACT_DAMPING_N_S_PER_M",
            "REDUCED_E_PA"]
 
-#: variant → (pitch diameter m, load balls, spacer ball diameter m, dead load t incl. the top race), §7.1
+#: variant → (pitch diameter m, load balls, spacer ball diameter m, dead load t incl. the top race), the
+#: thesis' full-scale ring and its 1 m and 2 m models
 VARIANTS = {
     "full": (6.69, 116, 85.25e-3, 503.25),
     "1m": (1.0, 16, 85.25e-3, 68.9),
     "2m": (2.0, 33, 92.0e-3, 140.0),
 }
-#: §7.1 undulation profile, (θ deg, h mm), peak-to-valley 1.0 mm; periodic cubic spline through it
+#: undulation profile, (θ deg, h mm), peak-to-valley 1.0 mm; periodic cubic spline through it. Chosen
+#: here: the thesis shows its profile in a figure only, without the data
 UNDULATION_PROFILE_DEG_MM = ((0.0, 0.0), (30.0, 0.5), (65.0, 0.0), (103.0, -0.5), (142.0, 0.0), (180.0, 0.5),
                              (215.0, 0.2), (240.0, 0.0), (251.0, -0.4), (262.0, 0.0), (300.0, 0.3), (330.0, 0.5))
 #: the thesis' ball–race contact (Table 2): K = 2 581 637 N/mm^1.5 per contact, in N/m^1.5
@@ -77,7 +79,7 @@ class Geometry:
     race_height_m: float = 0.100
     tmr_width_m: float = 0.500
     tmr_height_m: float = 0.400
-    spacer_diameter_m: float | None = None  # None: the variant's (§7.1)
+    spacer_diameter_m: float | None = None  # None: the variant's (thesis)
 
     def __post_init__(self) -> None:
         _positive("geometry", ball_diameter_m=self.ball_diameter_m, spacer_diameter_m=self.spacer_diameter_m)
@@ -126,7 +128,7 @@ class Geometry:
 
 @dataclass(frozen=True)
 class Load:
-    """Dead load on the balls (plug, TMR and top race), t; None: the variant's (§7.1)."""
+    """Dead load on the balls (plug, TMR and top race), t; None: the variant's (thesis)."""
 
     dead_load_t: float | None = None
     gravity_m_s2: float = 9.81
@@ -241,7 +243,8 @@ class Analysis:
     """``quasi_static``: equilibria with the balls held at their azimuths (``travel_steps`` > 0: the
     top race turns through ``travel_revolutions`` and the balls with it at their orbit speed);
     ``dynamic_explicit``: the top race driven at ``speed_rpm`` for ``duration_s`` from the static
-    equilibrium, spacer balls included when ``spacers``."""
+    equilibrium, spacer balls included when ``spacers``, at the step ``timestep_s`` (None: the
+    automatic stable step; a step above the explicit stability limit is refused, naming the limit)."""
 
     type: Literal["quasi_static", "dynamic_explicit"] = "quasi_static"
     speed_rpm: float = 6.55
@@ -262,13 +265,11 @@ class Analysis:
 
 
 Kind = Literal["single", "static", "rotation", "undulation", "thermal", "combined", "life", "full-scale"]
-#: studies that make the top structure modal whatever ``top.kind`` says (:mod:`.studies`)
-_STUDIES_WITH_MODAL_TOP = ("static", "undulation", "combined", "life", "full-scale")
 
 
 @dataclass(frozen=True)
 class Study:
-    """The study of DESIGN §7.1 this run is, and the values it sweeps.
+    """The study (a)–(g) of the slewing ring this run is, and the values it sweeps.
 
     ``single``: one run of the case as it stands. ``static`` (a): rigid and modal top structure
     against Q = W/(Z sin α). ``rotation`` (b): the top race turning. ``undulation`` (c): every
@@ -332,7 +333,9 @@ class SlewingCase:
         from .scene import DEFAULT_ELEMENT_SIZE_M, N_THETA
 
         g = self.geometry
-        top_modal = self.top.kind == "modal" or self.study.kind in _STUDIES_WITH_MODAL_TOP
+        from .studies import modal_top
+
+        top_modal = modal_top(self)  # some studies make it modal whatever top.kind says
         make_top = slewing_top_structure if self.top.include_tmr else slewing_top_race
         for key, fidelity, modal, make in (("top", self.top, top_modal, make_top),
                                            ("bottom", self.bottom, self.bottom.kind == "modal", slewing_bottom_race)):

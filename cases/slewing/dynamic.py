@@ -26,11 +26,12 @@ import numpy as np
 from mbd_core.contact import ball_on_groove
 from mbd_core.contact.hertz import sphere_on_sphere
 from foundation.materials import BEARING_STEEL
-from mbd_core.multibody import ModelBuilder
+from mbd_core.multibody import ModelBuilder, StepTooLargeError
 from mbd_core.multibody.bearings import _rotate_back, add_ball_row, ball_mass_kg, set_rolling_velocities
 from mbd_core.multibody.builder import ContactLaw, Driven, Fixed
 from mbd_core.multibody.statics import static_equilibrium
 
+from ..config import CaseError
 from ..integrate import integrate
 from . import scene
 from .case import THESIS_CONTACT_DAMPING_N_S_PER_M, THESIS_CONTACT_STIFFNESS_N_PER_M1P5, SlewingCase
@@ -224,7 +225,10 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
     sc = build_scene(case, bodies)
     state = start_state(sc, case if bodies.top is None else None)
     a = case.analysis
-    run = integrate(sc.model, state, a.duration_s, a.record_every, progress)
+    try:
+        run = integrate(sc.model, state, a.duration_s, a.record_every, progress, timestep_s=a.timestep_s)
+    except StepTooLargeError as exc:
+        raise CaseError(f"analysis.timestep_s = {a.timestep_s:g} s: {exc}") from None
     t = run["t"]
     q = run["fn"][:, list(sc.ball_pairs_top)]
     settled = t >= t[0] + 0.1 * (t[-1] - t[0])  # the first tenth: the start's small transient

@@ -1,6 +1,6 @@
 """Study (f) of the fast-reactor slewing ring: contact stress and life of the worst ball.
 
-For the normal contact load Q of the most heavily loaded ball (DESIGN §7.1 (f); thesis §4.4,
+For the normal contact load Q of the most heavily loaded ball (study (f); slewing-ring thesis §4.4,
 Tables 7–8) this module evaluates, on both raceways:
 
 * the Hertz contact (semi-axes a ≥ b, maximum pressure p0, mutual approach), exact elliptic
@@ -25,7 +25,8 @@ life is L_cd = A_cd·L10_nominal, as in the thesis (12 821 rev = 0.35 × 36 633 
 ISO life of the bearing times the factor of its most loaded ball.
 
 Defaults are the thesis': D_w = 95.25 mm, f = 0.525, α = 60°, E = 207 GPa, ν = 0.29 (Table 7),
-b_m = 1, f_c = 36.635 (§4.4.2); they give C_a = 1 997 045 N for Z = 116 (DESIGN §0).
+b_m = 1, f_c = 36.635 (§4.4.2); they give C_a = 1 997 045 N for Z = 116 (the
+thesis prints 1 950 868 N, the value for Z = 112).
 """
 
 from __future__ import annotations

@@ -33,7 +33,7 @@ def plot_static(curves: dict, analytic_N: float, nominal_N: float, case: Slewing
 
 def plot_ball_loads(curves: dict, azimuth_rad, case: SlewingCase, title: str, normalised: bool = False):
     """Load per ball (the thesis' Fig. 31–35): ``curves`` label → loads (Z,) at ``azimuth_rad``, or
-    label → (azimuth, loads) with ``azimuth_rad`` None; the §7.1 undulation (×1) on the right axis."""
+    label → (azimuth, loads) with ``azimuth_rad`` None; the undulation profile (×1) on the right axis."""
     fig, ax = plt().subplots(figsize=(9, 4.8), constrained_layout=True)
     for label, v in curves.items():
         az, q = (azimuth_rad, v) if azimuth_rad is not None else v

@@ -1,4 +1,4 @@
-"""The named sub-cases of the slewing ring (DESIGN §7.1 studies (a)–(g)) and their quick variants.
+"""The named sub-cases of the slewing ring (studies (a)–(g)) and their quick variants.
 
 ``--quick`` keeps the question and shrinks the work: coarser ring meshes and fewer modes, fewer
 positions or a shorter simulated time. The quick case is a case like any other (its resolved
@@ -59,9 +59,14 @@ _QUICK = {
                      analysis={"travel_steps": 72}),
     "life": dict(top={"element_size_m": 0.12, "n_modes": 12, "groove_harmonics": 8}, analysis={"travel_steps": 72}),
     "full-scale": dict(top={"element_size_m": 0.3, "n_modes": 12, "groove_harmonics": 8}),
-    "single": dict(top={"element_size_m": 0.12, "n_modes": 12, "groove_harmonics": 8},
-                   analysis={"duration_s": 0.4, "travel_steps": 36}),
+    "single": {},
 }
+#: ``single``: a coarser modal ring (a rigid one has nothing to coarsen, and its case.toml would
+#: carry keys no run reads)
+_QUICK_MODAL = {"element_size_m": 0.12, "n_modes": 12, "groove_harmonics": 8}
+#: ``single``: the shorter run of the kind the case makes (a quick equilibrium stays one, and a
+#: quasi-static case keeps no dynamic-only key its saved case.toml would have to refuse)
+_QUICK_SINGLE_ANALYSIS = {"dynamic": {"duration_s": 0.4}, "travels": {"travel_steps": 36}, "equilibria": {}}
 
 
 def preset(name: str) -> SlewingCase:
@@ -74,4 +79,10 @@ def quick(case: SlewingCase) -> SlewingCase:
     """The reduced variant of ``case`` that ``--quick`` runs (name gets a ``-quick`` suffix)."""
     from dataclasses import replace
 
-    return replace(case.with_(**_QUICK[case.study.kind]), name=f"{case.name}-quick")
+    from .studies import runs_of
+
+    tables = dict(_QUICK[case.study.kind])
+    if case.study.kind == "single":
+        tables["analysis"] = _QUICK_SINGLE_ANALYSIS[runs_of(case)[0]]
+        tables.update({k: _QUICK_MODAL for k in ("top", "bottom") if getattr(case, k).kind == "modal"})
+    return replace(case.with_(**tables), name=f"{case.name}-quick")

@@ -10,7 +10,8 @@ modes plus groove load shapes (inertia relief) up to ``groove_harmonics``; its d
 so that its weight is the dead load (:mod:`.case`). Bottom race: grounded at ``bolts`` patches of
 its bolt face (30 mm half-width) when modal.
 
-Undulation h(θ) = scale × periodic cubic spline through the §7.1 points (Bartels, Beatty &
+Undulation h(θ) = scale × periodic cubic spline through the points of
+:data:`.case.UNDULATION_PROFILE_DEG_MM` (Bartels, Beatty &
 Barsky: the periodic spline is C² and closes at 360° ≡ 0°). Thermal offset: Δ·w(θ) with
 w = 1 inside the sector and raised-cosine edges of ``edge_deg`` inside it, 0 outside.
 """
@@ -41,7 +42,7 @@ __all__ = ["Bodies", "ball_row", "undulation_m", "thermal_offset_m", "groove_off
 
 log = logging.getLogger(__name__)
 
-#: the races' steel (DESIGN §7.1); other moduli are rescalings of bodies reduced with this one
+#: the races' steel; other moduli are rescalings of bodies reduced with this one
 REFERENCE_E_PA = 200e9
 NU, DENSITY_KG_M3 = 0.3, 7850.0
 #: element size of the ring meshes per variant (quadratic hexahedra; the bending of rings this

@@ -1,8 +1,8 @@
-"""The studies of DESIGN §7.1 (a)–(g): each runs the scenes it needs and writes its figures.
+"""The slewing-ring studies (a)–(g) (cases/slewing/README.md): each runs the scenes it needs and writes its figures.
 
 Every study takes the resolved case, a :class:`cases.results.RunOutput` and an optional progress
 wrapper, and fills the output's summary (key figures, SI) and report lines. Thesis values quoted
-for comparison are from seed 003, chapters 3–4 (loads in tonnes-force of 9.81 kN).
+for comparison are from the slewing-ring thesis (README.md, Sources), chapters 3–4 (loads in tonnes-force of 9.81 kN).
 """
 
 from __future__ import annotations
@@ -16,12 +16,13 @@ import numpy as np
 from fem_rings.output import write_vtu
 
 from . import scene
+from ..overrides import StudyEntry, unused_keys
 from .case import SlewingCase
 from .life import plot_subsurface_shear, worst_ball_life
 from .plots import plot_ball_loads, plot_static, plot_travel
 from .quasistatic import analytic_ball_load_N, equilibrium, nominal_ball_load_N, travel
 
-__all__ = ["STUDIES", "run_study"]
+__all__ = ["RUN_KEYS", "STUDIES", "case_unused_keys", "modal_top", "run_study", "runs_of"]
 
 TONNE_N = 9810.0
 #: a ball counts as unloaded below this share of the nominal ball load
@@ -33,14 +34,21 @@ def _bodies(case: SlewingCase) -> scene.Bodies:
 
 
 def _fidelity(case: SlewingCase) -> str:
-    def one(f, name):
+    def one(f, name, modulus=None):
         if f.kind == "rigid":
             return f"{name} rigid"
-        return f"{name} modal ({f.n_modes} modes + groove shapes to harmonic {f.groove_harmonics}, E {f.E_Pa / 1e9:g} GPa)"
-    top = "top race + TMR" if case.top.include_tmr else "top race"
+        return (f"{name} modal ({f.n_modes} modes + groove shapes to harmonic {f.groove_harmonics}, "
+                f"E {modulus or f'{f.E_Pa / 1e9:g} GPa'})")
+    if "top.E_Pa" in STUDIES[case.study.kind].unused:  # the study sets the modulus itself
+        return f"{one(case.top, _top_name(case), 'from study.top_E_Pa')}; {one(case.bottom, 'bottom race')}"
+    top = _top_name(case)
     if case.study.kind == "static":  # runs both
         return f"{top} rigid, then {one(replace(case.top, kind='modal'), top)}; {one(case.bottom, 'bottom race')}"
     return f"{one(case.top, top)}; {one(case.bottom, 'bottom race')}"
+
+
+def _top_name(case: SlewingCase) -> str:
+    return "top race + TMR" if case.top.include_tmr else "top race"
 
 
 def _write_balls_vtu(out, name: str, case: SlewingCase, azimuth_rad, load_N) -> None:
@@ -250,18 +258,101 @@ def study_full_scale(case: SlewingCase, out, progress=None) -> None:
                     "full_vs_2m.png")
 
 
-STUDIES = {"static": study_static, "undulation": study_undulation, "thermal": study_thermal,
-           "combined": study_combined, "life": study_life, "full-scale": study_full_scale}
+#: keys of each kind of run; a study that makes no run of a kind does not read its keys
+_DYNAMIC_KEYS = ("analysis.speed_rpm", "analysis.duration_s", "analysis.timestep_s", "analysis.record_every",
+                 "analysis.spacers", "contact.damping_ratio", "contact.mu_static", "contact.mu_dynamic",
+                 "contact.v_static_m_s", "contact.v_dynamic_m_s", "contact.friction")
+RUN_KEYS = {
+    "dynamic": (dict.fromkeys(_DYNAMIC_KEYS), 'read by dynamic runs only (study.kind = "rotation", or "single" '
+                'with analysis.type = "dynamic_explicit")'),
+    "travels": (dict.fromkeys(("analysis.travel_steps", "analysis.travel_revolutions")),
+                'read by travels only (study.kind = "thermal", "combined", "life", or "single" with travel_steps)'),
+}
+_TYPE = {"analysis.type": "the study chooses its runs itself"}
+_MODAL_TOP = {"top.kind": "the study always takes a modal top structure"}
+
+#: study kind → what runs it and the keys it does not read (:mod:`cases.overrides`)
+STUDIES = {
+    "single": StudyEntry(None, reads=("analysis.travel_steps",)),
+    "static": StudyEntry(study_static, runs=("equilibria",), unused={
+        **_TYPE, "top.kind": "the study runs a rigid and a modal top structure",
+        "undulation": 'flat races here; study.kind = "undulation" undulates the bottom race',
+        "thermal": 'no offset here; study.kind = "thermal" sweeps study.offsets_m'}),
+    "rotation": StudyEntry(None, runs=("dynamic",), unused={
+        "analysis.type": "the rotation study is always a dynamic run"}),
+    "undulation": StudyEntry(study_undulation, sweeps=("undulation_scales", "top_E_Pa", "spacer_run_s"),
+                             runs=("equilibria", "dynamic"), unused={
+        **_TYPE, **_MODAL_TOP, "top.E_Pa": "set study.top_E_Pa (the moduli it sweeps)",
+        "undulation.scale": "set study.undulation_scales (the scales it sweeps)",
+        "analysis.duration_s": "set study.spacer_run_s (the simulated time of its spacer run)"}),
+    "thermal": StudyEntry(study_thermal, sweeps=("offsets_m",), runs=("travels",), unused={
+        **_TYPE, "thermal.offset_m": "set study.offsets_m (the offsets it sweeps)",
+        "undulation": 'flat races here; study.kind = "combined" adds the undulation'}),
+    "combined": StudyEntry(study_combined, sweeps=("combined_offsets_m", "top_E_Pa"), runs=("travels",), unused={
+        **_TYPE, **_MODAL_TOP, "top.E_Pa": "set study.top_E_Pa (the moduli it sweeps)",
+        "thermal.offset_m": "set study.combined_offsets_m (the offsets it sweeps)",
+        "undulation.scale": "the study takes the undulation ×1"}),
+    "life": StudyEntry(study_life, sweeps=("life_offset_m", "case_depth_m", "top_E_Pa"), runs=("travels",),
+                       reads=("analysis.speed_rpm",), unused={
+        **_TYPE, **_MODAL_TOP, "top.E_Pa": "set study.top_E_Pa (its last value is taken)",
+        "thermal.offset_m": "set study.life_offset_m", "undulation.scale": "the study takes the undulation ×1"}),
+    "full-scale": StudyEntry(study_full_scale, sweeps=("top_E_Pa",), runs=("equilibria",), unused={
+        **_TYPE, **_MODAL_TOP,
+        "top.E_Pa": "set study.top_E_Pa (its last value is the 2 m ring's; the full ring takes 200 GPa)",
+        "undulation.scale": "the study takes the undulation ×1"}),
+}
+
+
+#: fidelity keys of a ring that only a modal ring reads
+_MODAL_KEYS = ("n_modes", "groove_harmonics", "E_Pa", "damping_ratio", "element_size_m")
+
+
+def modal_top(case: SlewingCase) -> bool:
+    """True when the study makes the top structure modal in some run (it sets ``top.kind``
+    itself, or the case asks for it)."""
+    return case.top.kind == "modal" or "top.kind" in STUDIES[case.study.kind].unused
+
+
+def _fidelity_unused(case: SlewingCase) -> dict[str, str]:
+    """The fidelity keys no run of the case reads: those of a rigid ring, each ring's keys that
+    belong to the other one, and the damping ratio the thesis preset replaces."""
+    out = {"top.bolts": "only the bottom race is bolted (bottom.bolts)",
+           "bottom.include_tmr": "only the top structure carries the TMR (top.include_tmr)"}
+    if not modal_top(case):
+        out.update({f"top.{k}": 'the top structure is rigid here; set top.kind = "modal"'
+                    for k in (*_MODAL_KEYS, "include_tmr")})
+    if case.contact.preset == "thesis":
+        out["contact.damping_ratio"] = "the thesis preset takes the thesis' damping c = K/1000 s"
+    if case.bottom.kind != "modal":
+        out.update({f"bottom.{k}": 'the bottom race is rigid here; set bottom.kind = "modal"'
+                    for k in (*_MODAL_KEYS, "bolts")})
+    return out
+
+
+def runs_of(case: SlewingCase) -> tuple[str, ...]:
+    """The kinds of run (keys of :data:`RUN_KEYS`, and ``equilibria``) the case makes."""
+    entry = STUDIES[case.study.kind]
+    if case.study.kind == "undulation" and not case.study.spacer_run_s:
+        return ("equilibria",)  # no spacer run
+    if entry.runs:
+        return entry.runs
+    if case.analysis.type != "quasi_static":
+        return ("dynamic",)
+    return ("travels",) if case.analysis.travel_steps else ("equilibria",)
+
+
+def case_unused_keys(case: SlewingCase) -> dict[str, str]:
+    """Every key of ``case`` its study does not read → what does its job."""
+    return {**_fidelity_unused(case), **unused_keys(case.study.kind, STUDIES, RUN_KEYS, runs_of(case))}
 
 
 def run_study(case: SlewingCase, out, progress=None) -> None:
     """Run the study the case names (``single`` with ``quasi_static``: one equilibrium or a travel)."""
     out.note(f"modelled: {case.geometry.variant} ring, {case.geometry.n_balls} load balls, dead load "
              f"{case.dead_load_t:g} t; {_fidelity(case)}; contact {case.contact.preset}")
-    kind = case.study.kind
-    if kind in STUDIES:
-        return STUDIES[kind](case, out, progress)
-    if kind == "rotation" or case.analysis.type != "quasi_static":
+    if STUDIES[case.study.kind].run is not None:
+        return STUDIES[case.study.kind].run(case, out, progress)
+    if runs_of(case) == ("dynamic",):
         from .dynamic import run_dynamic
 
         return run_dynamic(case, out, progress)

@@ -1,4 +1,4 @@
-"""The case file of the 12 MW wind main bearing (DESIGN §7.2, paper seed 001): what a run needs.
+"""The case file of the 12 MW wind main bearing (Pang et al., *Lubricants* 12 (2024) 252): what a run needs.
 
 Tables: ``rollers`` (material, slices, rib and pocket play, thrust roller ends), ``bodies``
 (rigid or modal rings and cages), ``contact`` (stiffness preset, damping, friction), ``loads``
@@ -64,7 +64,7 @@ class Rollers:
 
 @dataclass(frozen=True)
 class Bodies:
-    """Rigid or modal rings and cages (DESIGN §7.2; the paper: 20 modes each).
+    """Rigid or modal rings and cages (the paper: 20 modes each).
 
     Modal rings: the inner ring floats on free–free modes (its frame carries the drive, the loads
     and gravity), the outer ring is held at ``bolts`` patches of its rear (bolt) face; their
@@ -99,7 +99,7 @@ class Bodies:
         return "modal" in (self.rings, self.cages)
 
 
-#: the paper's Adams IMPACT settings for every roller contact (seed 001, §3): K = 1e5 N/mm^1.5,
+#: the paper's Adams IMPACT settings for every roller contact (Pang et al. 2024, §3): K = 1e5 N/mm^1.5,
 #: n = 1.5, c = 70 N·s/mm, d_max = 0.1 mm — in SI
 ADAMS_CONTACT = dict(stiffness_N_per_m1p5=1e5 * 1e3**1.5, exponent=1.5, damping_N_s_m=70e3, d_max_m=0.1e-3)
 

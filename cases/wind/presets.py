@@ -1,4 +1,4 @@
-"""Named sub-cases of the wind main bearing (DESIGN §7.2 studies) and their quick variants.
+"""Named sub-cases of the wind main bearing (its studies) and their quick variants.
 
 ``--quick`` keeps the question and shrinks the work: 0.3 s simulated at 5 slices per roller with
 one load case held (the first 0.1 s excluded from the averages), two speeds or friction sets.

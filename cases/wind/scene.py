@@ -1,6 +1,6 @@
 """The multibody scene of the wind main bearing: driven inner ring, fixed outer ring, three roller rows.
 
-Bodies (DESIGN §7.2): the inner ring (3971 kg, the paper's two pieces as one body) turns at the
+Bodies: the inner ring (3971 kg, the paper's two pieces as one body) turns at the
 driving speed about z and is free to translate and tilt under the spectrum loads at its centre
 and gravity (−y); the outer ring with the nose is fixed. Each row (radial 98 × Ø55 mm, front and
 rear thrust 94 × Ø60 mm) has sliced roller–raceway contacts on both rings, a free cage with slot

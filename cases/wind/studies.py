@@ -1,6 +1,6 @@
-"""The studies of the wind main bearing (DESIGN §7.2); each fills a :class:`cases.results.RunOutput`.
+"""The studies of the wind main bearing; each fills a :class:`cases.results.RunOutput`.
 
-Paper values quoted for comparison are from seed 001 (Pang et al., *Lubricants* 12 (2024) 252):
+Paper values quoted for comparison are from Pang et al., *Lubricants* 12 (2024) 252:
 Table 4 (roller speeds), §4.3.1 (driving speed) and §4.3.2 (friction).
 """
 
@@ -12,13 +12,14 @@ import numpy as np
 
 from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
 
+from ..overrides import StudyEntry, unused_keys
 from . import dynamic, plots
 from .bodies import stress_maps
 from .case import INNER_RING_MASS_KG, WindCase
 from .scene import G_M_S2, load_history, rows
 from .spectrum import load_cases, write_csv
 
-__all__ = ["STUDIES", "run_study"]
+__all__ = ["STUDIES", "case_unused_keys", "run_study"]
 
 #: paper Table 4: theoretical roller speeds (r/min) and the rigid / rigid–flexible errors
 PAPER_ROLLER_ERRORS = {"radial": (0.0083, 0.0028), "rear thrust": (0.0070, 0.0042), "front thrust": (0.0079, 0.0021)}
@@ -158,9 +159,53 @@ def study_friction(case: WindCase, out, progress=None) -> None:
     out.note("drop of the mean cage force from μd " + f"{hi} to {lo}: " + ", ".join(f"{n} {100 * v:.0f} %" for n, v in drop.items()))
 
 
-STUDIES = {"static": study_static, "speeds": study_speeds, "rigid-flexible": study_rigid_flexible,
-           "driving-speed": study_driving_speed, "friction": study_friction}
+#: study kind → what runs it and the keys it does not read (:mod:`cases.overrides`); every
+#: study but ``static`` makes one kind of run, the dynamic one
+_STATIC_UNUSED = {
+    "bodies": "the static study is quasi-static with rigid rings",
+    "contact": "the static study is quasi-static (no damping, friction or cage pockets)",
+    "analysis": "the static study is quasi-static",
+    **{f"rollers.{k}": "the static study's load distribution has no roller ends or cage pockets"
+       for k in ("rib_clearance_m", "thrust_end_radius_m", "pocket_clearance_m")},
+    **{f"loads.{k}": "the static study solves each of the 32 load cases of the synthetic spectrum (loads.scale "
+       "applies)" for k in ("source", "csv_path", "case_index", "spectrum_duration_s", "include_torque")},
+}
+STUDIES = {
+    "static": StudyEntry(study_static, runs=("equilibria",), unused=_STATIC_UNUSED),
+    "speeds": StudyEntry(study_speeds, runs=("dynamic",)),
+    "rigid-flexible": StudyEntry(study_rigid_flexible, runs=("dynamic",), unused={
+        "bodies.rings": "the study runs rigid and modal rings", "bodies.cages": "the study runs rigid and modal cages"}),
+    "driving-speed": StudyEntry(study_driving_speed, sweeps=("speeds_rpm",), runs=("dynamic",), unused={
+        "analysis.speed_rpm": "set study.speeds_rpm (the speeds it sweeps)"}),
+    "friction": StudyEntry(study_friction, sweeps=("friction_sets",), runs=("dynamic",), unused={
+        "contact.mu_dynamic": "set study.friction_sets (the (μ_dynamic, μ_static) pairs it sweeps)",
+        "contact.mu_static": "set study.friction_sets (the (μ_dynamic, μ_static) pairs it sweeps)"}),
+}
+
+
+_RING_KEYS = ("ring_element_size_m", "bolts", "n_theta", "n_across")
+
+
+def _fidelity_unused(case: WindCase) -> dict[str, str]:
+    """The ``bodies`` keys of rigid rings or cages and the damping ratio the Adams preset replaces."""
+    b, out = case.bodies, {}
+    if case.study.kind != "rigid-flexible":  # (it runs both)
+        if b.rings != "modal":
+            out.update({f"bodies.{k}": 'the rings are rigid here; set bodies.rings = "modal"' for k in _RING_KEYS})
+        if b.cages != "modal":
+            out["bodies.cage_element_size_m"] = 'the cages are rigid here; set bodies.cages = "modal"'
+        if not b.any_modal:
+            out.update({f"bodies.{k}": 'rings and cages are rigid here; set bodies.rings or bodies.cages = "modal"'
+                        for k in ("n_modes", "modal_damping_ratio")})
+    if case.contact.preset == "adams":
+        out["contact.damping_ratio"] = "the adams preset takes the paper's damping c = 70 N·s/mm"
+    return out
+
+
+def case_unused_keys(case: WindCase) -> dict[str, str]:
+    """Every key of ``case`` its study does not read → what does its job."""
+    return {**_fidelity_unused(case), **unused_keys(case.study.kind, STUDIES, {}, STUDIES[case.study.kind].runs)}
 
 
 def run_study(case: WindCase, out, progress=None) -> None:
-    STUDIES[case.study.kind](case, out, progress)
+    STUDIES[case.study.kind].run(case, out, progress)

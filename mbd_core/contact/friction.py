@@ -108,7 +108,9 @@ class DrebFalling:
 
 @dataclass(frozen=True)
 class Kragelskii:
-    """Traction κ = (A + B·u)·exp(−C·u) + D (Kragelskii; seed 004)."""
+    """Traction κ = (A + B·u)·exp(−C·u) + D (Kragelskii; as used by A. Ashtekar, L. Tian and
+    C. Lancaster, Cummins Turbo Technologies, *An analytical investigation of turbocharger
+    rotor-bearing dynamics with rolling element bearings and squeeze film dampers*)."""
 
     A: float
     B_s_m: float
@@ -129,8 +131,8 @@ class Kragelskii:
         return np.array([self.A, self.B_s_m, self.C_s_m, self.D])
 
 
-#: The slewing-ring thesis' friction (DESIGN §7.1): μs = 0.24, μd = 0.14, vs = 1 mm/s, vd = 2 mm/s.
+#: The slewing-ring thesis' friction: μs = 0.24, μd = 0.14, vs = 1 mm/s, vd = 2 mm/s.
 THESIS_FRICTION = Coulomb(0.24, 0.14, 1e-3, 2e-3)
-#: The wind-bearing paper's Adams friction with μ_static ≥ μ_dynamic (DESIGN §7.2, the paper's
+#: The wind-bearing paper's Adams friction with μ_static ≥ μ_dynamic (Pang et al. 2024; the paper's
 #: tables swap them): μs = 0.2, μd = 0.1, vs = 10 mm/s, vd = 100 mm/s.
 ADAMS_PAPER_FRICTION = Coulomb(0.2, 0.1, 10e-3, 100e-3)

@@ -3,7 +3,7 @@
 The groove is the circle of its curvature centres in the ring frame (z the ring axis): radius r_c,
 height z_c, groove radius f·D. A ball of diameter D centred at x (ring frame) at angle
 θ = atan2(y, x) ∈ [0, 2π) touches the groove when its centre lies farther than f·D − D/2 from the
-curvature centre c(θ) (DESIGN §5.3):
+curvature centre c(θ):
 
     c(θ) = ((r_c + Δr(θ)) cos θ, (r_c + Δr(θ)) sin θ, z_c + h(θ)),
     δ = |x − c(θ)| − (f·D − D/2),      n = (x − c)/|x − c|,

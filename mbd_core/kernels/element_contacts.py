@@ -2,7 +2,7 @@
 
 Every function works in one frame (the caller picks it) and returns the penetration δ (m,
 negative: gap), the unit normal m of the force on the *element* and the contact point p (m).
-Penalty contacts carry force only for δ > 0 (DESIGN §5.3).
+Penalty contacts carry force only for δ > 0.
 
 Ball–ball (spacer balls), spheres of radii r_a, r_b centred at x_a, x_b:
     δ = r_a + r_b − |x_a − x_b|,   m = (x_a − x_b)/|x_a − x_b|,   p = x_a − r_a m.

@@ -1,6 +1,6 @@
 """Explicit symplectic time stepping of a rigid multibody model (the whole loop compiled).
 
-One step of size h (velocity Verlet in kick–drift–kick form; DESIGN §5.4):
+One step of size h (velocity Verlet in kick–drift–kick form):
 
     kick   v ← v + (h/2) M⁻¹ F,   ω ← ω + (h/2) I⁻¹ τ_B        (free components only)
     drift  r ← r + h v;  rotation: symplectic splitting of the free rigid-body rotation

@@ -5,9 +5,9 @@ work ``w`` one of preallocated scratch arrays (:class:`mbd_core.multibody.model.
 State: ``q`` (n_b, 7) = position r (world, m) and unit quaternion (w, x, y, z) body → world;
 ``v`` (n_b, 6) = velocity (world, m/s) and angular velocity ω (body frame, rad/s).
 
-Stages (DESIGN §5): external loads (constant + cubic-spline histories) → bushings → contacts. Each
+Stages: external loads (constant + cubic-spline histories) → bushings → contacts. Each
 contact gives a penetration δ, the unit normal m of the force on its element (body a), and a
-contact point p; then (DESIGN §5.3)
+contact point p; then
 
     F_n = normal_force(δ, δ̇) ≥ 0,        δ̇ = −(v_a(p) − v_b(p))·m,
     v_t = (v_a(p) − v_b(p)) − ((v_a(p) − v_b(p))·m) m,     F_t = −μ(|v_t|) F_n v_t/|v_t|,

@@ -1,6 +1,6 @@
 """Contact force laws: penalty normal force and slip-dependent friction (scalar kernels).
 
-Normal force, never tensile (DESIGN §5.3), δ the penetration (m) and δ̇ its rate (m/s):
+Normal force, never tensile, δ the penetration (m) and δ̇ its rate (m/s):
 
 ``NORMAL_IMPACT`` (the Adams IMPACT function)
     F = k δⁿ + STEP(δ, 0, 0, d_max, c) δ̇ — the damping coefficient ramps from 0 at touch-down to
@@ -15,7 +15,9 @@ Friction coefficient μ(u) of the slip speed u = |v_slip| ≥ 0 (m/s), parameter
 ``FRICTION_COULOMB`` — regularised Coulomb (Adams): p0 = μ_static, p1 = μ_dynamic,
     p2 = v_static, p3 = v_dynamic; μ = STEP(u, 0, 0, v_s, μ_s) below v_s, STEP(u, v_s, μ_s, v_d, μ_d)
     between, μ_d above. μ(0) = 0, so a contact at rest carries no force jump.
-``FRICTION_DREB_LINEAR`` — κ = B u (p0 = B, s/m) (Gupta, DREB, 1977: traction models of seed 002).
+``FRICTION_DREB_LINEAR`` — κ = B u (p0 = B, s/m) (a traction model of the DREB program, MTI
+    1977: *Rolling Element Bearing and Lubricant Technology Program, Part I: Prediction of Torque
+    in DMA Bearings*).
 ``FRICTION_DREB_CONSTANT`` — κ = A (p0 = A) for u > 0 (blended to 0 below p1 = u_0, m/s).
 ``FRICTION_DREB_FALLING`` — κ = A − B u (p0 = A, p1 = B), not below 0.
 ``FRICTION_KRAGELSKII`` — κ = (A + B u) e^(−C u) + D (p0 = A, p1 = B, p2 = C, p3 = D).

@@ -1,4 +1,4 @@
-"""Time stepping of modal (flexible) bodies in a floating frame of reference (DESIGN §5.2, §5.4).
+"""Time stepping of modal (flexible) bodies in a floating frame of reference.
 
 A modal body is a body of the model (frame origin r, orientation R, world velocity ṙ, body-frame ω)
 plus modal coordinates η (√kg) and rates η̇. With u = (v = Rᵀṙ, ω, η̇) its equations of motion are

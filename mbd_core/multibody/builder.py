@@ -87,7 +87,7 @@ class Driven:
 
 @dataclass(frozen=True)
 class ContactLaw:
-    """Penalty law of a contact pair (DESIGN §5.3).
+    """Penalty law of a contact pair.
 
     Parameters
     ----------

@@ -1,6 +1,6 @@
 """Explicit dynamic runs: the stable time step, the chunked run loop, and its errors.
 
-The time step is limited (DESIGN §5.4) by
+The time step is limited by
 
 * the contacts of each body, linearised at ``load_factor`` × their present load (at least the
   largest external force, so a run that starts unloaded is not underestimated): k = n F/δ at

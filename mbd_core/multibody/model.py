@@ -1,6 +1,6 @@
 """Frozen model, restartable state and preallocated work of a multibody bearing model.
 
-The model is a set of flat arrays (structure of arrays, DESIGN §5.1) grouped in one namedtuple so
+The model is a set of flat arrays (structure of arrays) grouped in one namedtuple so
 that the compiled kernels take it as a single argument; per-entity arrays are named
 ``entity_property``. Shapes (n_b bodies, n_c contact pairs, n_g grooves, n_r raceway/rib surfaces,
 n_p cage pockets, n_u bushings, n_l load histories):

@@ -1,6 +1,6 @@
 """Chunked on-disk record of a run, its checkpoint, and the reader.
 
-Layout of a run folder (one place, DESIGN §5.5)::
+Layout of a run folder (described here only)::
 
     layout.json         names, shapes, units, time step, decimation, status ("running",
                         "complete" or "failed: <reason>"), number of chunks

@@ -1,4 +1,4 @@
-"""Static equilibrium of a multibody model: a start without start-up shock (DESIGN §5.4).
+"""Static equilibrium of a multibody model: a start without start-up shock.
 
 Unknowns are the free translations of every body and the free rotations (small rotation vector,
 body frame) of the bodies that are not spheres (a ball's orientation carries no static stiffness

@@ -1,5 +1,5 @@
 """Plain-numpy twins of mbd_core.kernels (laws and ball–groove geometry), written independently
-from the formulas in the kernels' docstrings (DESIGN §5.3)."""
+from the formulas in the kernels' docstrings."""
 
 import numpy as np
 

@@ -1,5 +1,5 @@
 """Plain-numpy twin of the explicit time step of mbd_core.kernels.explicit, written from the scheme in
-its module docstring (velocity Verlet in kick–drift–kick form, DESIGN §5.4):
+its module docstring (velocity Verlet in kick–drift–kick form):
 
     kick   v ← v + (h/2) M⁻¹ F;  rotation: see below                   (free components only)
     drift  r ← r + h v;  orientation: see below

@@ -1,5 +1,5 @@
 """Plain-numpy twins of the multibody kernels (mbd_core.kernels.element_contacts, .splines, .forces,
-.explicit), written from the formulas in their docstrings (DESIGN §5.3) with rotation matrices
+.explicit), written from the formulas in their docstrings with rotation matrices
 (scipy.spatial.transform.Rotation) instead of quaternion algebra.
 
 The force stage is vectorised differently from the kernels: every contact first yields its contact
@@ -205,7 +205,7 @@ class _Bodies:
 
 
 def contact_point_force(m, bodies, c, delta, normal, p, surface_velocity=None):
-    """Penalty and friction force of one contact point (DESIGN §5.3).
+    """Penalty and friction force of one contact point.
 
     ``surface_velocity`` (3,) world: velocity of body b's surface at p beyond its rigid motion (the
     modal velocity of a flexible raceway). Returns (F_n, |v_t|, |F_t|, elastic energy, force (3,) on
