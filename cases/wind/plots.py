@@ -6,15 +6,13 @@ import math
 
 import numpy as np
 
-from cases.results import plt
+from cases.results import RPM_PER_RAD_S, plt, share_ylim
 
 from .dynamic import roller_spin_rad_s, watched_roller
 from .scene import rolling_speeds
 from .spectrum import plot_spectrum
 
-__all__ = ["spectrum_figure", "max_loads_figure", "roller_speed_figure", "sweep_figure"]
-
-RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)
+__all__ = ["spectrum_figure", "max_loads_figure", "roller_speed_figure", "roller_speed_figures", "sweep_figure"]
 
 
 def spectrum_figure(times_s, loads, share, path):
@@ -24,12 +22,12 @@ def spectrum_figure(times_s, loads, share, path):
 def max_loads_figure(per_row: dict, share):
     p = plt()
     fig, ax = p.subplots(figsize=(8, 4.5))
-    k = np.arange(len(share))
+    k = np.arange(1, len(share) + 1)  # numbered from 1, as in max_roller_loads.csv
     for name, vals in per_row.items():
-        ax.plot(k, [v[0] / 1e3 for v in vals], marker="o", ms=3, label=name)
+        ax.plot(k, [v[0] for v in vals], marker="o", ms=3, label=name)
     ax.set_xlabel("load case")
-    ax.set_ylabel("largest roller load, kN")
-    ax.set_title("Quasi-static roller loads (rigid rings) under the 32 load cases")
+    ax.set_ylabel("largest roller load, N")
+    ax.set_title(f"Quasi-static roller loads (rigid rings) under the {len(share)} load cases")
     ax.grid(alpha=0.3)
     ax.legend()
     return fig
@@ -45,7 +43,7 @@ def roller_speed_figure(case, sc, rec):
         _, w_s = rolling_speeds(row, w_i)
         j = watched_roller(sc, rec, k)
         spin = np.abs(roller_spin_rad_s(sc, rec, k)[:, j]) * RPM_PER_RAD_S
-        ax.plot(rec["t"], spin, lw=0.8, label=f"roller {j} (relative to the cage)")
+        ax.plot(rec["t"], spin, lw=0.8, label=f"roller {j + 1} (relative to the cage)")
         ax.axhline(abs(w_s) * RPM_PER_RAD_S, color="k", ls="--", lw=1, label=f"no slip {abs(w_s) * RPM_PER_RAD_S:.1f} r/min")
         ax.set_ylabel("r/min")
         ax.set_title(f"{row.name} row", fontsize=10)
@@ -56,6 +54,15 @@ def roller_speed_figure(case, sc, rec):
     fig.suptitle(f"Roller spin at {case.analysis.speed_rpm:g} r/min ({b.rings} rings, {b.cages} cages)")
     fig.tight_layout()
     return fig
+
+
+def roller_speed_figures(runs: dict) -> dict:
+    """:func:`roller_speed_figure` of each run, ``runs`` label → (case, scene, record); the
+    figures of one comparison share the y range of each row (the larger of them)."""
+    figs = {label: roller_speed_figure(*run) for label, run in runs.items()}
+    for k in range(3):
+        share_ylim(f.axes[k] for f in figs.values())
+    return figs
 
 
 def sweep_figure(results: dict, xlabel: str):
