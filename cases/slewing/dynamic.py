@@ -36,7 +36,7 @@ from . import scene
 from .case import THESIS_CONTACT_DAMPING_N_S_PER_M, THESIS_CONTACT_STIFFNESS_N_PER_M1P5, SlewingCase
 from .quasistatic import analytic_ball_load_N
 
-__all__ = ["DynamicScene", "build_scene", "state_from_quasistatic", "start_state", "run_dynamic", "spacer_columns",
+__all__ = ["DynamicScene", "build_scene", "state_from_quasistatic", "start_state", "run_dynamic", "ball_columns", "spacer_columns",
            "start_up_window", "spacer_force_figures"]
 
 log = logging.getLogger(__name__)
@@ -233,6 +233,11 @@ def spacer_force_figures(forces_N: np.ndarray) -> dict:
             "p99_spacer_force_N": float(np.percentile(forces_N, 99.0))}
 
 
+def ball_columns(n_balls: int) -> list[str]:
+    """CSV columns of the load balls' loads, numbered 1…Z as in the plots."""
+    return [f"ball_{i + 1}_N" for i in range(n_balls)]
+
+
 def spacer_columns(n_balls: int) -> list[str]:
     """CSV columns of the spacer contacts, numbered 1…Z like the balls: for spacer j, its
     contact with ball j, then with ball j + 1 (the order of :func:`_add_spacers`)."""
@@ -266,7 +271,7 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
         fig.update(spacer_force_figures(fs[settled]))
     out.summary.update(fig)
     out.summary["start_up_excluded_s"] = float(settled_from_s - t[0])
-    out.write_csv("ball_loads_time.csv", ["t_s"] + [f"ball_{i + 1}_N" for i in range(q.shape[1])],
+    out.write_csv("ball_loads_time.csv", ["t_s"] + ball_columns(q.shape[1]),
                   (np.concatenate([[ti], qi]) for ti, qi in zip(t, q)))
     if sc.spacer_pairs:
         out.write_csv("spacer_forces_time.csv", ["t_s"] + spacer_columns(len(sc.balls)),

@@ -34,7 +34,8 @@ def max_loads_figure(per_row: dict, share):
 
 
 def roller_speed_figure(case, sc, rec):
-    """Spin of the most loaded roller of each row at the start, relative to the cage, with the no-slip value."""
+    """Spin of the most loaded roller of each row at the start (numbered from 1), relative to the
+    cage, with the no-slip value; the settling window that the summary's averages leave out is shaded."""
     p = plt()
     fig, axes = p.subplots(3, 1, figsize=(8, 8), sharex=True)
     w_i = case.analysis.speed_rpm * 2.0 * math.pi / 60.0
@@ -43,6 +44,9 @@ def roller_speed_figure(case, sc, rec):
         _, w_s = rolling_speeds(row, w_i)
         j = watched_roller(sc, rec, k)
         spin = np.abs(roller_spin_rad_s(sc, rec, k)[:, j]) * RPM_PER_RAD_S
+        settle = case.analysis.settle_s
+        if settle > rec["t"][0]:
+            ax.axvspan(rec["t"][0], settle, color="0.88", label="settling, not in summary.json's averages")
         ax.plot(rec["t"], spin, lw=0.8, label=f"roller {j + 1} (relative to the cage)")
         ax.axhline(abs(w_s) * RPM_PER_RAD_S, color="k", ls="--", lw=1, label=f"no slip {abs(w_s) * RPM_PER_RAD_S:.1f} r/min")
         ax.set_ylabel("r/min")
