@@ -18,14 +18,11 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from cases.fem_report import MODE_AMPLITUDE_M, shape_at_amplitude
-from cases.quick import quick_variant
-from cases.results import OUTPUT_UNITS, RunOutput, output_units, plural
+from cases.results import RunOutput
 from cases.run import PRESETS, resolve_case
 from cases.slewing import dynamic as slewing_dynamic
 from cases.slewing.plots import plot_dynamic
 from fem_rings.output import displacement_magnitude
-from fem_rings.render import round_ticks
 
 README = Path(__file__).resolve().parents[1] / "README.md"
 
@@ -126,6 +123,7 @@ def test_balls_are_numbered_alike_in_the_csv_columns_and_the_plot_legend():
 def test_csv_columns_and_summary_keys_carry_the_output_units(tmp_path):
     """Reference: the unit definitions, 1 m = 1000 mm, 1 Pa = 1e-6 MPa, 1 rad/s = 60/(2π) r/min,
     1 rad = 180/π deg; forces stay in N. A curvature in 1/m is not a length."""
+    from cases.results import output_units
     out = RunOutput(tmp_path)
     out.write_csv("t.csv", ["ball", "load_N", "offset_m", "p0_Pa", "cage_rad_s", "angle_rad"],
                   [(1, 4.2e4, 4e-4, 2.0e9, 1.0, math.pi / 2)])
@@ -146,6 +144,7 @@ def test_csv_columns_and_summary_keys_carry_the_output_units(tmp_path):
 
 
 def test_the_readme_tables_every_output_unit():
+    from cases.results import OUTPUT_UNITS
     text = README.read_text(encoding="utf-8")
     section = text[text.index("## Output units"):]
     section = section[: section.index("\n## ", 4)]
@@ -226,6 +225,8 @@ def test_colour_bar_ticks_are_round_and_cover_the_field(seed):
     that step, at most 7, the first at or below the smallest value and the last at or above the
     largest (seeded random ranges over 16 decades, signs mixed; the
     tolerance is the rounding of ticks far from zero)."""
+    from fem_rings.render import round_ticks
+
     rng = np.random.default_rng(seed)
     scale = 10.0 ** rng.integers(-8, 9)
     lo = rng.uniform(-1, 1) * scale
@@ -245,6 +246,7 @@ def test_colour_bar_ticks_are_round_and_cover_the_field(seed):
 def test_a_mode_shape_is_drawn_at_a_stated_physical_amplitude():
     """A mass-normalised shape (m/√kg) becomes a displacement whose largest nodal magnitude is
     MODE_AMPLITUDE_M = 1 mm, in the same direction everywhere (a scaled copy)."""
+    from cases.fem_report import MODE_AMPLITUDE_M, shape_at_amplitude
     rng = np.random.default_rng(3)
     phi = 1e-3 * rng.standard_normal((200, 3))
     u = shape_at_amplitude(phi)
@@ -265,6 +267,7 @@ def test_a_quick_case_describes_itself_as_quick(name):
 
 
 def test_quick_description_names_what_it_reduces():
+    from cases.quick import quick_variant
     case = PRESETS["slewing-rotation"]
     q = quick_variant(case, {"analysis": {"duration_s": 0.4, "record_every": 100}})
     assert "analysis.duration_s = 0.4" in q.description and "analysis.record_every = 100" in q.description
@@ -273,4 +276,5 @@ def test_quick_description_names_what_it_reduces():
 
 @pytest.mark.parametrize("n, text", [(0, "0 balls"), (1, "1 ball"), (2, "2 balls"), (116, "116 balls")])
 def test_counts_agree_with_their_noun(n, text):
+    from cases.results import plural
     assert plural(n, "ball") == text
