@@ -17,6 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
+from foundation.text import plural
+
 __all__ = ["RunOutput", "plt", "output_units", "output_name", "OUTPUT_UNITS", "plural", "newtons", "label_lines", "share_ylim", "RPM_PER_RAD_S"]
 
 #: r/min per rad/s: speeds leave the model in rad/s and are written in r/min (README, output units)
@@ -76,11 +78,6 @@ def output_units(x):
     if isinstance(x, (list, tuple)):
         return [output_units(v) for v in x]
     return x
-
-
-def plural(n: int, word: str, many: str | None = None) -> str:
-    """``"1 ball"``, ``"3 balls"``: a count with its noun in agreement (``many`` for irregular plurals)."""
-    return f"{n} {word if n == 1 else (many or word + 's')}"
 
 
 def newtons(force_N: float) -> str:

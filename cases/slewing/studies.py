@@ -282,7 +282,7 @@ def run_study(case: SlewingCase, out, progress=None) -> None:
     _write_balls_vtu(out, "balls.vtu", case, res.rows[0].azimuth_rad, res.rows[0].load_N)
     if bodies.top is not None:
         _write_top_vtu(out, "top_structure.vtu", bodies, res.modal("top"))
-    out.save_figure(plot_ball_loads({"": res.rows[0].load_N}, res.rows[0].azimuth_rad, case, case.name),
+    out.save_figure(plot_ball_loads({"normal ball load": res.rows[0].load_N}, res.rows[0].azimuth_rad, case, case.name),
                     "ball_loads.png")
     out.note(f"max ball load {res.rows[0].load_N.max():.0f} N")
     return None

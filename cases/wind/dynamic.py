@@ -22,7 +22,7 @@ import numpy as np
 
 from cases.config import CaseError
 from cases.integrate import integrate
-from cases.results import RPM_PER_RAD_S
+from cases.results import RPM_PER_RAD_S, plural
 
 from .case import INNER_RING_MASS_KG, WindCase
 from .scene import G_M_S2, WindScene, build_scene, rolling_speeds
@@ -50,7 +50,7 @@ def _settled(case: WindCase, rec: dict) -> np.ndarray:
     ok = rec["t"] >= case.analysis.settle_s
     if np.count_nonzero(ok) < MIN_SETTLED_SAMPLES:
         a = case.analysis
-        raise CaseError(f"analysis.settle_s = {a.settle_s:g} s leaves {np.count_nonzero(ok)} recorded samples "
+        raise CaseError(f"analysis.settle_s = {a.settle_s:g} s leaves {plural(int(np.count_nonzero(ok)), 'recorded sample')} "
                         f"before analysis.duration_s = {a.duration_s:g} s (one every analysis.record_every = "
                         f"{a.record_every} steps of {rec['timestep_s']:.3g} s, {len(rec['t'])} in all): "
                         f"lower settle_s or record_every, or lengthen duration_s")
