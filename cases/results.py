@@ -38,9 +38,10 @@ def plt():
 
 
 #: the unit of each quantity kind in every output file and plot (README, "Output units"):
-#: SI-suffixed names and values from the model → (suffix, factor) in the outputs. Forces stay
-#: in N, moments in N·m, times in s, frequencies in Hz.
-OUTPUT_UNITS = {"_m": ("_mm", 1e3), "_Pa": ("_MPa", 1e-6), "_rad_s": ("_rpm", RPM_PER_RAD_S),
+#: SI-suffixed names and values from the model → (suffix, factor) in the outputs, the first
+#: matching ending applies (an elastic modulus ``E_Pa`` in GPa, other stresses in MPa). Forces
+#: stay in N, moments in N·m, times in s, frequencies in Hz.
+OUTPUT_UNITS = {"_m": ("_mm", 1e3), "E_Pa": ("E_GPa", 1e-9), "_Pa": ("_MPa", 1e-6), "_rad_s": ("_rpm", RPM_PER_RAD_S),
                 "_rad": ("_deg", 180.0 / math.pi)}
 #: name endings that look like an SI suffix but are not one (a curvature in 1/m)
 _NOT_A_UNIT = ("_per_m",)
@@ -92,7 +93,7 @@ def label_lines(ax, lines, names, what: str) -> None:
     if len(lines) <= LEGEND_MAX_LINES:
         for line, name in zip(lines, names):
             line.set_label(f"{what} {name}")
-        ax.legend(fontsize=7, ncol=max(1, (len(lines) + 7) // 8), loc="best")
+        ax.legend(fontsize=7, ncol=max(1, (len(lines) + 9) // 10), loc="upper left", bbox_to_anchor=(1.01, 1.0))
         return
     import matplotlib as mpl
 

@@ -121,8 +121,9 @@ def test_balls_are_numbered_alike_in_the_csv_columns_and_the_plot_legend():
 
 # -- one unit per quantity kind --------------------------------------------------------------
 def test_csv_columns_and_summary_keys_carry_the_output_units(tmp_path):
-    """Reference: the unit definitions, 1 m = 1000 mm, 1 Pa = 1e-6 MPa, 1 rad/s = 60/(2π) r/min,
-    1 rad = 180/π deg; forces stay in N. A curvature in 1/m is not a length."""
+    """Reference: the unit definitions, 1 m = 1000 mm, 1 Pa = 1e-6 MPa (stresses) = 1e-9 GPa
+    (moduli), 1 rad/s = 60/(2π) r/min, 1 rad = 180/π deg; forces stay in N. A curvature in 1/m is
+    not a length."""
     from cases.results import output_units
     out = RunOutput(tmp_path)
     out.write_csv("t.csv", ["ball", "load_N", "offset_m", "p0_Pa", "cage_rad_s", "angle_rad"],
@@ -135,10 +136,11 @@ def test_csv_columns_and_summary_keys_carry_the_output_units(tmp_path):
     assert float(row["cage_rpm"]) == pytest.approx(60.0 / (2.0 * math.pi), rel=1e-9)
     assert float(row["angle_deg"]) == pytest.approx(90.0, rel=1e-9)
     assert float(row["load_N"]) == 4.2e4
-    out.summary = {"max_load_N": 4.2e4, "cases": [{"offset_m": 4e-4, "p0_Pa": [1e9, 2e9]}],
+    out.summary = {"max_load_N": 4.2e4, "cases": [{"offset_m": 4e-4, "p0_Pa": [1e9, 2e9], "top_E_Pa": 1.5975e9}],
                    "cage": {"kinematic_rad_s": 2.0}, "curvature_sum_per_m": 5.0}
     s = json.loads(out.write_summary().read_text())
-    assert s == {"max_load_N": 4.2e4, "cases": [{"offset_mm": pytest.approx(0.4), "p0_MPa": [1000.0, 2000.0]}],
+    assert s == {"max_load_N": 4.2e4,
+                 "cases": [{"offset_mm": pytest.approx(0.4), "p0_MPa": [1000.0, 2000.0], "top_E_GPa": pytest.approx(1.5975)}],
                  "cage": {"kinematic_rpm": pytest.approx(120.0 / (2.0 * math.pi))}, "curvature_sum_per_m": 5.0}
     assert output_units(output_units(out.summary)) == output_units(out.summary)  # idempotent
 

@@ -70,7 +70,7 @@ def test_rotation_keeps_the_ball_loads_uniform(tmp_path):
 
 def test_undulation_max_load_grows_with_height_and_falls_with_stiffness(tmp_path):
     s, out = _run("slewing-undulation", tmp_path)
-    by = {(c["top_E_MPa"], c["undulation_scale"]): c["max_ball_load_N"] for c in s["cases"]}
+    by = {(c["top_E_GPa"], c["undulation_scale"]): c["max_ball_load_N"] for c in s["cases"]}
     Es = sorted({e for e, _ in by})
     scales = sorted({h for _, h in by})
     for E in Es:
