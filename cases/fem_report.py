@@ -91,7 +91,7 @@ def write_modes(model: FEModel, modes: Modes, summary: dict, out_dir: str | os.P
         for k in elastic:
             u = shape_at_amplitude(modes.shapes[:, k].reshape(-1, 3))
             render_png(tmp / f"mode_{k + 1:02d}.png", model.mesh, displacement_magnitude(u), scale=1e3,
-                       label=f"|u|, largest {MODE_AMPLITUDE_M * 1e3:g} mm", unit="mm", displacement_m=u,
+                       label="displacement", unit="mm", displacement_m=u,
                        title=f"{summary['part']}: mode {k + 1}, {modes.frequencies_Hz[k]:.2f} Hz, "
                              f"scaled to a largest displacement of {MODE_AMPLITUDE_M * 1e3:g} mm")
         (tmp / "summary.json").write_text(json.dumps(output_units(summary), indent=1))
