@@ -103,6 +103,8 @@ def label_lines(ax, lines, names, what: str) -> None:
     for line, n in zip(lines, numbers):
         line.set_color(cmap(norm(n)))
     ax.figure.colorbar(mpl.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax, label=f"{what} number")
+    if ax.get_legend_handles_labels()[0]:  # the other labelled lines and spans keep their legend
+        ax.legend(fontsize=7, loc="best")
 
 
 def share_ylim(axes) -> tuple[float, float]:
