@@ -18,7 +18,7 @@ from fem_rings.output import write_vtu
 from . import scene
 from .case import SlewingCase
 from .life import plot_subsurface_shear, worst_ball_life
-from ..results import plural
+from ..results import plural, share_ylim
 from .plots import plot_ball_loads, plot_static, plot_travel
 from .quasistatic import analytic_ball_load_N, equilibrium, nominal_ball_load_N, travel
 
@@ -119,10 +119,11 @@ def study_undulation(case: SlewingCase, out, progress=None) -> None:
                   [(i + 1, math.degrees(azimuth[i]), *(q[i] for q in curves.values())) for i in range(len(azimuth))])
     if s.spacer_run_s > 0.0:
         _spacer_run(base, out, progress)
-    for E in s.top_E_Pa:
-        sub = {h: curves[(E, h)] for h in s.undulation_scales}
-        out.save_figure(plot_ball_loads(sub, azimuth, case, f"top structure E = {E / 1e9:g} GPa"),
-                        f"ball_loads_E{E / 1e9:g}GPa.png")
+    figs = {E: plot_ball_loads({h: curves[(E, h)] for h in s.undulation_scales}, azimuth, case,
+                               f"top structure E = {E / 1e9:g} GPa") for E in s.top_E_Pa}
+    share_ylim(f.axes[0] for f in figs.values())  # the moduli compared on one load scale
+    for E, f in figs.items():
+        out.save_figure(f, f"ball_loads_E{E / 1e9:g}GPa.png")
 
 
 def _spacer_run(case: SlewingCase, out, progress) -> None:
