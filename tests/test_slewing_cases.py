@@ -68,8 +68,20 @@ def test_rotation_keeps_the_ball_loads_uniform(tmp_path):
     assert s["ball_orbit_over_kinematic"] == pytest.approx(1.0, abs=0.01)  # Harris ch. 8 within 1 %
 
 
-def test_undulation_max_load_grows_with_height_and_falls_with_stiffness(tmp_path):
+def test_undulation_max_load_grows_with_height_and_falls_with_stiffness(tmp_path, monkeypatch):
+    import matplotlib.pyplot as plt
+
+    from cases.results import RunOutput
+
+    figures = {}
+    monkeypatch.setattr(RunOutput, "save_figure", lambda self, fig, name: figures.setdefault(name, fig))
     s, out = _run("slewing-undulation", tmp_path)
+    # the two moduli's ball-load plots share one load scale that holds the largest load of both
+    # (the largest load is the summary's; README, output units: N on both)
+    ylims = {figures[f"ball_loads_E{E:g}GPa.png"].axes[0].get_ylim() for E in (200, 1.5975)}
+    assert len(ylims) == 1 and ylims.pop()[1] >= max(c["max_ball_load_N"] for c in s["cases"])
+    for f in figures.values():
+        plt.close(f)
     by = {(c["top_E_GPa"], c["undulation_scale"]): c["max_ball_load_N"] for c in s["cases"]}
     Es = sorted({e for e, _ in by})
     scales = sorted({h for _, h in by})
