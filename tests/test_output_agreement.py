@@ -280,3 +280,26 @@ def test_quick_description_names_what_it_reduces():
 def test_counts_agree_with_their_noun(n, text):
     from cases.results import plural
     assert plural(n, "ball") == text
+
+
+def test_loaddist_csv_and_summary_agree_in_numbering_and_units(tmp_path):
+    """element_loads.csv numbers the 116 balls 1…116 and carries the summary's approach in mm:
+    the same numbers under the same names (reference: the summary itself, 1 m = 1000 mm from the
+    model's SI result written by LoadDistribution.to_dict)."""
+    from cases.catalog import builtin_bearing
+    from cases.cli import main
+    from mbd_core.quasistatic import solve_load_distribution
+
+    out = tmp_path / "slewing"
+    assert main(["loaddist", "--out", str(out)]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    with open(out / "element_loads.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert [int(r["element"]) for r in rows] == list(range(1, 117))
+    row = summary["rows"][0]
+    assert "approach_mm" in row and "approach_mm" in rows[0]
+    np.testing.assert_allclose([float(r["approach_mm"]) for r in rows], row["approach_mm"], rtol=1e-8)
+    np.testing.assert_allclose([float(r["load_N"]) for r in rows], row["load_N"], rtol=1e-8)
+    case = builtin_bearing("slewing-ring")
+    direct = solve_load_distribution(case.bearing, case.default_load).rows[0]
+    np.testing.assert_allclose(row["approach_mm"], direct.approach_m * 1e3, rtol=1e-9)
