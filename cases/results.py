@@ -19,7 +19,8 @@ import numpy as np
 
 from foundation.text import plural
 
-__all__ = ["RunOutput", "plt", "output_units", "output_name", "OUTPUT_UNITS", "plural", "newtons", "label_lines", "share_ylim", "RPM_PER_RAD_S"]
+__all__ = ["RunOutput", "plt", "output_units", "output_name", "OUTPUT_UNITS", "RPM_PER_RAD_S", "plural", "newtons",
+           "label_lines", "share_ylim"]
 
 #: r/min per rad/s: speeds leave the model in rad/s and are written in r/min (README, output units)
 RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)
@@ -118,6 +119,14 @@ def share_ylim(axes) -> tuple[float, float]:
     return lo, hi
 
 
+def _csv_cell(v, factor: float):
+    """A CSV cell: floats with 9 significant digits, numbers of a unit column in the output unit."""
+    if isinstance(v, (float, np.floating)) or (factor != 1.0 and isinstance(v, (int, np.integer))
+                                               and not isinstance(v, (bool, np.bool_))):
+        return f"{v * factor:.9g}"
+    return v
+
+
 def _json_ready(x):
     if isinstance(x, dict):
         return {str(k): _json_ready(v) for k, v in x.items()}
@@ -160,7 +169,7 @@ class RunOutput:
             w = csv.writer(fh)
             w.writerow(names)
             for r in rows:
-                w.writerow([f"{v * f:.9g}" if isinstance(v, (float, np.floating)) else v for v, f in zip(r, factors)])
+                w.writerow([_csv_cell(v, f) for v, f in zip(r, factors)])
         return p
 
     def save_figure(self, fig, name: str) -> Path:
