@@ -83,7 +83,9 @@ def test_spacer_peak_of_the_summary_is_the_peak_drawn_and_the_start_up_is_marked
         # 2529 N falls in it): 1723 N
         assert drawn == figures["max_spacer_force_N"] == 1723.0
         assert min(float(np.min(ln.get_xdata())) for ln in _line_data(ax_spacers)) >= start_s
-        # the start-up window is shaded and says that it is left out, on both axes
+        # the start-up window is shaded and says that it is left out, on both axes; the spacers'
+        # names the impact it leaves out
+        assert "peak 2\u2009529 N" in next(str(p.get_label()) for p in ax_spacers.patches)
         for ax in (ax_balls, ax_spacers):
             spans = [p for p in ax.patches if "start-up" in str(p.get_label())]
             assert len(spans) == 1

@@ -269,6 +269,8 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
     if sc.spacer_pairs:
         fs = run["fn"][:, list(sc.spacer_pairs)]
         fig.update(spacer_force_figures(fs[settled]))
+        if (~settled).any():  # reported apart: the start's impacts, not the rolling ring's
+            fig["start_up_max_spacer_force_N"] = float(fs[~settled].max())
     out.summary.update(fig)
     out.summary["start_up_excluded_s"] = float(settled_from_s - t[0])
     out.write_csv("ball_loads_time.csv", ["t_s"] + ball_columns(q.shape[1]),

@@ -114,7 +114,8 @@ def plot_dynamic(t_s, ball_loads_N, spacer_forces_N, analytic_N: float, case: Sl
     if spacer_forces_N is not None:
         ax = axes[1, 0]
         fs = np.asarray(spacer_forces_N)[keep]
-        _start_up(ax, t_s, settled_from_s)
+        left_out = np.asarray(spacer_forces_N)[~keep]
+        _start_up(ax, t_s, settled_from_s, float(left_out.max()) if left_out.size else None)
         lines = ax.plot(t_s[keep], fs, lw=0.6, alpha=0.8)
         # pairs come as (ball j–spacer j, ball j+1–spacer j) for each spacer j
         label_lines(ax, lines, np.arange(fs.shape[1]) // 2 + 1, "spacer")
@@ -128,7 +129,9 @@ def plot_dynamic(t_s, ball_loads_N, spacer_forces_N, analytic_N: float, case: Sl
     return fig
 
 
-def _start_up(ax, t_s, settled_from_s: float) -> None:
-    """Shade the start-up window that the figure and the summary leave out."""
+def _start_up(ax, t_s, settled_from_s: float, peak_N: float | None = None) -> None:
+    """Shade the start-up window that the figure and the summary's figures leave out (with the
+    peak force in it, ``peak_N``, when given)."""
     if settled_from_s > t_s[0]:
-        ax.axvspan(t_s[0], settled_from_s, color="0.88", label="start-up, not drawn (nor in summary.json)")
+        peak = "" if peak_N is None else f", peak {newtons(peak_N)}"
+        ax.axvspan(t_s[0], settled_from_s, color="0.88", label=f"start-up{peak}: not drawn, not in the summary's figures")

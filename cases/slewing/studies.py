@@ -137,11 +137,14 @@ def _spacer_run(case: SlewingCase, out, progress) -> None:
     sub = RunOutput(out.path("spacer_run/summary.json").parent)
     run_dynamic(c, sub, progress)
     sub.write_summary()
-    fs = {k: sub.summary[k] for k in ("max_spacer_force_N", "mean_spacer_force_N", "p99_spacer_force_N")}
+    fs = {k: sub.summary[k] for k in ("max_spacer_force_N", "mean_spacer_force_N", "p99_spacer_force_N",
+                                      "start_up_excluded_s", "start_up_max_spacer_force_N") if k in sub.summary}
     out.summary["spacer_run"] = {"duration_s": case.study.spacer_run_s, "top": "rigid", **fs}
+    start = (f"; the first {fs['start_up_excluded_s']:.3g} s left out (start-up, peak "
+             f"{fs['start_up_max_spacer_force_N']:.0f} N)" if "start_up_max_spacer_force_N" in fs else "")
     out.note(f"dynamic, rigid top, undulation ×1, {case.study.spacer_run_s:g} s: spacer–load ball force "
              f"peak {fs['max_spacer_force_N']:.0f} N (impacts of unloaded balls), 99th percentile "
-             f"{fs['p99_spacer_force_N']:.0f} N, mean {fs['mean_spacer_force_N']:.1f} N")
+             f"{fs['p99_spacer_force_N']:.0f} N, mean {fs['mean_spacer_force_N']:.1f} N{start}")
 
 
 # -- (d) thermal offset and (e) combined -------------------------------------------------------
