@@ -305,3 +305,17 @@ def test_loaddist_csv_and_summary_agree_in_numbering_and_units(tmp_path):
     case = builtin_bearing("slewing-ring")
     direct = solve_load_distribution(case.bearing, case.default_load).rows[0]
     np.testing.assert_allclose(row["approach_mm"], direct.approach_m * 1e3, rtol=1e-9)
+
+
+def test_roller_slices_in_warnings_are_numbered_from_1():
+    """The ISO 76 warning of an overloaded roller row names its most loaded slice as "slice k of n",
+    k from 1 (reference: the index of the largest slice load of the solution, plus one)."""
+    from cases.catalog import builtin_bearing
+    from mbd_core.quasistatic import RingLoad, solve_load_distribution
+
+    case = builtin_bearing("three-row-roller")
+    res = solve_load_distribution(case.bearing, RingLoad(Fy_N=-2.0e7))
+    radial = res.rows[0]
+    k, j = np.unravel_index(int(np.argmax(radial.slice_load_N)), radial.slice_load_N.shape)
+    found = [w for w in res.warnings if w.startswith("row 'radial'") and "ISO 76" in w]
+    assert found and f"slice {j + 1} of {radial.slice_load_N.shape[1]}:" in found[0]

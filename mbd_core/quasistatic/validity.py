@@ -97,7 +97,7 @@ def _roller_row_warnings(row: RollerRow, res) -> list[str]:
     q = float(res.slice_load_N[k, j])
     found = [pressure_warning(float(c.max_pressure_Pa(q)), P0_STATIC_LIMIT_ROLLER_PA, "roller"),
              small_contact_warning(float(c.half_width_m(q)), row.roller_diameter_m / 2.0)]
-    return [f"row {row.name!r}, roller at ψ = {math.degrees(res.azimuth_rad[k]):.4g}°, slice {j}: {w}"
+    return [f"row {row.name!r}, roller at ψ = {math.degrees(res.azimuth_rad[k]):.4g}°, slice {j + 1} of {row.n_slices}: {w}"
             for w in found if w]
 
 
