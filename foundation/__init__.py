@@ -1,4 +1,5 @@
-"""The bottom layer every package builds on: elastic materials, input checks, npz file reading, the words of messages (:mod:`foundation.text`).
+"""The bottom layer every package builds on: elastic materials, input checks, npz file reading,
+the words of messages (:mod:`foundation.text`).
 
 Nothing here imports the rest of flexbearing; ``fem_rings``, ``cms_reduction``, ``mbd_core`` and
 ``cases`` all import from it.
