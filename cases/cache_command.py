@@ -11,6 +11,7 @@ from __future__ import annotations
 import time
 
 from fem_rings.cache import cache_dir
+from foundation.text import plural
 from fem_rings.cache_admin import cache_entries, remove_entries, summarise
 
 __all__ = ["add_cache_parser", "cache_help_line"]
@@ -24,7 +25,7 @@ def cache_help_line() -> str:
         s = summarise(cache_entries())
     except OSError:
         return f"model cache: {cache_dir()} (unreadable)"
-    return (f"model cache: {cache_dir()} ({s['entries']} entries, {s['size_bytes'] / _MB:.0f} MB; "
+    return (f"model cache: {cache_dir()} ({plural(s['entries'], 'entry', 'entries')}, {s['size_bytes'] / _MB:.0f} MB; "
             "$FLEXBEARING_CACHE moves it; see 'flexbearing cache info')")
 
 
@@ -39,7 +40,7 @@ def cmd_cache_info(args) -> dict:
     if entries:
         summary["least_recently_used_days"] = (time.time() - entries[0].last_used_s) / 86400.0
     if not args.json:
-        print(f"model cache {summary['folder']}: {summary['entries']} entries, "
+        print(f"model cache {summary['folder']}: {plural(summary['entries'], 'entry', 'entries')}, "
               f"{summary['size_bytes'] / _MB:.1f} MB")
         _print_kinds(summary)
         if entries:
@@ -53,8 +54,8 @@ def cmd_cache_clean(args) -> dict:
                "left": summarise(cache_entries())}
     if not args.json:
         age = "" if args.older_than_days is None else f" not used for {args.older_than_days:g} days"
-        print(f"removed {len(removed)} entries{age} ({summary['removed']['size_bytes'] / _MB:.1f} MB) "
-              f"from {summary['folder']}; {summary['left']['entries']} entries "
+        print(f"removed {plural(len(removed), 'entry', 'entries')}{age} ({summary['removed']['size_bytes'] / _MB:.1f} MB) "
+              f"from {summary['folder']}; {plural(summary['left']['entries'], 'entry', 'entries')} "
               f"({summary['left']['size_bytes'] / _MB:.1f} MB) left")
     return summary
 

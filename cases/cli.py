@@ -1,7 +1,9 @@
 """The ``flexbearing`` command line.
 
 Inputs on the command line are in engineering units (mm, N, N·m, deg, GPa) and converted once
-to SI. ``--json`` prints machine-readable SI results instead of tables (strict JSON: a value
+to SI. ``--json`` prints machine-readable results instead of tables: SI for ``hertz``, for the
+commands that write a results folder the summary as ``summary.json`` holds it, in the output units
+of :data:`cases.results.OUTPUT_UNITS` (strict JSON: a value
 that is not finite is written as null, with a warning on stderr). Exit status: 0 done, 2 a failure
 the input caused (one line on stderr naming the cause and the option or key), 1 an internal error
 (one line and a hint; ``--debug`` shows the traceback), 130 interrupted.
@@ -37,6 +39,7 @@ from .outdir import check_output_target
 from .parts import RING_PARTS, ring_part
 from .progress_display import terminal_progress
 from .report import format_table, load_distribution_table, write_load_distribution
+from .results import output_units
 
 __all__ = ["main"]
 
@@ -247,7 +250,7 @@ def cmd_loaddist(args) -> dict:
         print(load_distribution_table(res))
         if args.out:
             print(f"\nresults: {args.out}/summary.json, element_loads.csv, element_loads.png")
-    return res.to_dict()
+    return output_units(res.to_dict())
 
 
 def cmd_modes(args) -> dict:
@@ -268,7 +271,7 @@ def cmd_modes(args) -> dict:
         print(modes_table(summary))
         if args.out:
             print(f"\nresults: {args.out}/summary.json, modes.vtu (ParaView), mode_*.png")
-    return summary
+    return output_units(summary)
 
 
 def cmd_run(args) -> dict:

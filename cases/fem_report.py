@@ -18,8 +18,9 @@ from .mesh_budget import check_model_size
 from .parts import RingPart
 from .outdir import atomic_folder
 from .report import format_table
+from .results import output_units
 
-__all__ = ["part_modes", "modes_table", "write_modes"]
+__all__ = ["part_modes", "modes_table", "write_modes", "shape_at_amplitude", "MODE_AMPLITUDE_M"]
 
 
 def part_modes(part: RingPart, n_modes: int, size_m: float | None = None, element: str | None = None,
@@ -67,17 +68,31 @@ def modes_table(summary: dict) -> str:
     return head + "\n" + format_table(rows, ("mode", "f Hz", "family", "waves n"))
 
 
+#: largest nodal displacement a mode shape is drawn at (a mode's own amplitude is arbitrary), m
+MODE_AMPLITUDE_M = 1e-3
+
+
+def shape_at_amplitude(shape, amplitude_m: float = MODE_AMPLITUDE_M) -> np.ndarray:
+    """A mode shape (n, 3) (mass-normalised, m/√kg) scaled so its largest nodal displacement
+    magnitude is ``amplitude_m``: a physical displacement field, m."""
+    shape = np.asarray(shape, dtype=float)
+    return shape * (amplitude_m / float(displacement_magnitude(shape).max()))
+
+
 def write_modes(model: FEModel, modes: Modes, summary: dict, out_dir: str | os.PathLike, n_pictures: int = 2) -> Path:
-    """summary.json, modes.vtu (all mode shapes as point data) and PNGs of the first elastic modes."""
+    """summary.json (output units, :data:`cases.results.OUTPUT_UNITS`), modes.vtu (all mode shapes as
+    point data, mass-normalised) and PNGs of the first elastic modes, each scaled to a largest
+    displacement of ``MODE_AMPLITUDE_M`` and coloured by its displacement in mm."""
     with atomic_folder(out_dir, str(summary.get("part", ""))) as tmp:
         shapes = {f"mode_{k + 1:02d}_{f:.2f}Hz": modes.shapes[:, k].reshape(-1, 3)
                   for k, f in enumerate(modes.frequencies_Hz)}
         write_vtu(tmp / "modes.vtu", model.mesh, shapes)
         elastic = np.flatnonzero(~modes.rigid)[:n_pictures]
         for k in elastic:
-            u = modes.shapes[:, k].reshape(-1, 3)
-            render_png(tmp / f"mode_{k + 1:02d}.png", model.mesh, displacement_magnitude(u),
-                       label="φ", unit="m/√kg", displacement_m=u,
-                       title=f"{summary['part']}: mode {k + 1}, {modes.frequencies_Hz[k]:.2f} Hz")
-        (tmp / "summary.json").write_text(json.dumps(summary, indent=1))
+            u = shape_at_amplitude(modes.shapes[:, k].reshape(-1, 3))
+            render_png(tmp / f"mode_{k + 1:02d}.png", model.mesh, displacement_magnitude(u), scale=1e3,
+                       label="displacement", unit="mm", displacement_m=u,
+                       title=f"{summary['part']}: mode {k + 1}, {modes.frequencies_Hz[k]:.2f} Hz, "
+                             f"scaled to a largest displacement of {MODE_AMPLITUDE_M * 1e3:g} mm")
+        (tmp / "summary.json").write_text(json.dumps(output_units(summary), indent=1))
     return Path(out_dir)

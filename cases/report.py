@@ -12,6 +12,7 @@ import numpy as np
 from mbd_core.quasistatic import LoadDistribution
 
 from .outdir import atomic_folder
+from .results import output_units
 
 __all__ = ["atomic_folder", "format_table", "load_distribution_table", "write_load_distribution"]
 
@@ -46,14 +47,14 @@ def load_distribution_table(res: LoadDistribution) -> str:
             r.name,
             r.kind,
             len(r.load_N),
-            f"{r.max_load_N / 1e3:.3f}",
+            f"{r.max_load_N:.0f}",
             f"{np.degrees(r.azimuth_rad[i]):.1f}",
-            f"{(loaded.min() if loaded.size else 0.0) / 1e3:.3f}",
+            f"{(loaded.min() if loaded.size else 0.0):.0f}",
             r.n_unloaded,
             f"{np.degrees(r.contact_angle_rad[i]):.3f}",
             f"{r.approach_m[i] * 1e3:.4f}",
         ))
-    out.append(format_table(rows, ("row", "kind", "Z", "Q_max kN", "at deg", "Q_min>0 kN", "unloaded",
+    out.append(format_table(rows, ("row", "kind", "Z", "Q_max N", "at deg", "Q_min>0 N", "unloaded",
                                    "angle deg", "approach mm")))
     out += [f"WARNING: {w}" for w in res.warnings]
     return "\n".join(out)
@@ -69,9 +70,9 @@ def _plot(res: LoadDistribution, path: Path) -> None:
     for r in res.rows:
         psi = np.degrees(r.azimuth_rad) % 360.0
         order = np.argsort(psi)
-        ax.plot(psi[order], r.load_N[order] / 1e3, marker="o", ms=3, lw=1, label=f"{r.name} ({r.kind})")
+        ax.plot(psi[order], r.load_N[order], marker="o", ms=3, lw=1, label=f"{r.name} ({r.kind})")
     ax.set_xlabel("element azimuth ψ (deg)")
-    ax.set_ylabel("element load Q (kN)")
+    ax.set_ylabel("element load Q (N)")
     ax.set_xlim(0, 360)
     ax.set_ylim(bottom=0)
     ax.grid(True, alpha=0.3)
@@ -82,20 +83,21 @@ def _plot(res: LoadDistribution, path: Path) -> None:
 
 
 def write_load_distribution(res: LoadDistribution, out_dir: str | os.PathLike, extra: dict | None = None) -> Path:
-    """Write summary.json, element_loads.csv and element_loads.png to ``out_dir`` (atomically,
+    """Write summary.json, element_loads.csv and element_loads.png to ``out_dir`` in the output
+    units (:data:`cases.results.OUTPUT_UNITS`; elements numbered from 1 per row) (atomically,
     :func:`cases.outdir.atomic_folder`: an existing folder is replaced only if the project wrote it)."""
     with atomic_folder(out_dir, (extra or {}).get("case", res.bearing_name)) as tmp:
         with open(tmp / "element_loads.csv", "w", newline="") as fh:
             w = csv.writer(fh)
-            w.writerow(["row", "element", "azimuth_deg", "load_N", "approach_m", "contact_angle_deg", "unloaded"])
+            w.writerow(["row", "element", "azimuth_deg", "load_N", "approach_mm", "contact_angle_deg", "unloaded"])
             for r in res.rows:
                 for i in range(len(r.load_N)):
-                    w.writerow([r.name, i, f"{np.degrees(r.azimuth_rad[i]):.6f}", f"{r.load_N[i]:.6f}",
-                                f"{r.approach_m[i]:.9e}", f"{np.degrees(r.contact_angle_rad[i]):.6f}",
+                    w.writerow([r.name, i + 1, f"{np.degrees(r.azimuth_rad[i]):.6f}", f"{r.load_N[i]:.6f}",
+                                f"{r.approach_m[i] * 1e3:.9e}", f"{np.degrees(r.contact_angle_rad[i]):.6f}",
                                 int(r.unloaded[i])])
         _plot(res, tmp / "element_loads.png")
         summary = res.to_dict()
         if extra:
             summary.update(extra)
-        (tmp / "summary.json").write_text(json.dumps(summary, indent=1))
+        (tmp / "summary.json").write_text(json.dumps(output_units(summary), indent=1))
     return Path(out_dir)

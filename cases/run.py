@@ -30,7 +30,7 @@ from .config import FAMILY_KEY, CaseError, dumps_case, from_mapping, qualified_m
 from .integrate import ResumeError, checkpoints
 from .overrides import check_case, reference_case
 from .outdir import OutputTargetError, atomic_folder, check_output_target, is_results_folder, marker_source
-from .results import RunOutput
+from .results import RunOutput, output_units
 from .slewing import presets as slewing_presets
 from .slewing import studies as slewing_studies
 from .slewing.case import SlewingCase
@@ -211,8 +211,9 @@ def run_case(case, out_dir, progress=None, resume: bool = False, source: str | N
             out = RunOutput(tmp)
             out.path("case.toml").write_text(text)
             _FAMILIES[type(case)][1].run_study(case, out, progress)
-            out.summary = {"case": case.name, "study": case.study.kind, "description": case.description,
-                           **out.summary, "wall_time_s": time.perf_counter() - t0, "peak_rss_mb": _peak_rss_mb()}
+            out.summary = output_units({"case": case.name, "study": case.study.kind, "description": case.description,
+                                        **out.summary, "wall_time_s": time.perf_counter() - t0,
+                                        "peak_rss_mb": _peak_rss_mb()})
             out.write_summary()
     except BaseException:
         if any(keep.glob("run_*/piece_*.npz")):

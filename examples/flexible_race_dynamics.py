@@ -22,6 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from cases.results import label_lines  # noqa: E402
 from cms_reduction import render_stress_pngs, worst_time, write_stress_series  # noqa: E402
 from cms_reduction.pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, reduced_body  # noqa: E402
 from fem_rings import MeshSpec  # noqa: E402
@@ -66,18 +67,17 @@ worst = worst_time(race, t, eta)
 write_stress_series(out_dir / "stress", race, t, eta, every=5)
 render_stress_pngs(out_dir, race, t, eta, [worst.time_s], name="race_worst")
 
-fig, ax = plt.subplots(figsize=(8, 4.5))
-for k in range(row.n_balls):
-    ax.plot(t * 1e3, ball_load_N[:, k] / 1e3, lw=1.0)
-ax.set_xlabel("time [ms]")
-ax.set_ylabel("ball load on the bottom race [kN]")
-ax.set_title(f"16 balls, 68.9 t + tilting moment up to {MOMENT_NM / 1e3:.0f} kN·m (flexible bottom race, 8 bolts)")
+fig, ax = plt.subplots(figsize=(9, 4.5), constrained_layout=True)
+lines = ax.plot(t, ball_load_N, lw=1.0)
+label_lines(ax, lines, range(1, row.n_balls + 1), "ball")  # numbered from 1, as every output
+ax.set_xlabel("time [s]")
+ax.set_ylabel("ball load on the bottom race [N]")
+ax.set_title(f"{row.n_balls} balls, 68.9 t + tilting moment up to {MOMENT_NM:.0f} N·m (flexible bottom race, 8 bolts)")
 ax.grid(alpha=0.3)
-fig.tight_layout()
 fig.savefig(out_dir / "ball_loads.png", dpi=120)
 plt.close(fig)
 
 if __name__ == "__main__":
-    print(f"ball loads at the end: {ball_load_N[-1].min() / 1e3:.1f}–{ball_load_N[-1].max() / 1e3:.1f} kN; "
-          f"worst von Mises {worst.von_mises_Pa / 1e6:.1f} MPa at t = {worst.time_s * 1e3:.1f} ms")
+    print(f"ball loads at the end: {ball_load_N[-1].min():.0f}–{ball_load_N[-1].max():.0f} N; "
+          f"worst von Mises {worst.von_mises_Pa / 1e6:.1f} MPa at t = {worst.time_s:.4f} s")
     print(f"wrote {out_dir}")

@@ -77,11 +77,11 @@ max_deflection_m = float(np.abs(result.displacement_m[:, 2]).max())
 write_vtu(OUT / "race.vtu", model.mesh, {"displacement_m": result.displacement_m, "stress_Pa": stress,
                                           "von_mises_Pa": von_mises})
 render_png(OUT / "von_mises.png", model.mesh, von_mises, scale=1e-6, displacement_m=result.displacement_m,
-           title=f"1 m bottom race, {N_BALLS} balls × {Q_N / 1e3:.1f} kN at {ALPHA_DEG:g}°")
+           title=f"1 m bottom race, {N_BALLS} balls × {Q_N:.0f} N at {ALPHA_DEG:g}°")
 
 if __name__ == "__main__":
-    print(f"{model.ring.summary()}; ball load {Q_N / 1e3:.2f} kN on a {2 * a_m * 1e3:.1f} × "
+    print(f"{model.ring.summary()}; ball load {Q_N:.0f} N on a {2 * a_m * 1e3:.1f} × "
           f"{2 * b_m * 1e3:.1f} mm Hertz ellipse")
     print(f"applied {applied_N} N, reactions {reaction_N} N")
-    print(f"max axial deflection {max_deflection_m * 1e6:.2f} µm, max von Mises {von_mises.max() / 1e6:.1f} MPa")
+    print(f"max axial deflection {max_deflection_m * 1e3:.4f} mm, max von Mises {von_mises.max() / 1e6:.1f} MPa")
     print(f"wrote {OUT}/race.vtu, {OUT}/von_mises.png")

@@ -16,7 +16,7 @@ import numpy as np
 from .cache import atomic_path
 from .output import _cell_info, displacement_magnitude, vtk_cells
 
-__all__ = ["render_png", "auto_warp_factor"]
+__all__ = ["render_png", "auto_warp_factor", "round_ticks"]
 
 logger = logging.getLogger(__name__)
 
@@ -49,6 +49,30 @@ def auto_warp_factor(points: np.ndarray, u: np.ndarray) -> float:
     if u_max == 0.0:
         return 0.0
     return _AUTO_WARP_FRACTION * _model_size(np.asarray(points, dtype=float)) / u_max
+
+
+def round_ticks(low: float, high: float, max_ticks: int = 7) -> np.ndarray:
+    """Evenly spaced round values (1, 2, 2.5 or 5 × 10^k apart) from at or below ``low`` to at or
+    above ``high``, at most ``max_ticks`` of them: the colour bar's range and labels."""
+    low, high = float(low), float(high)
+    if not high > low:  # a constant field: one step of a round size around it
+        pad = abs(low) * 0.1 or 1.0
+        low, high = low - pad, high + pad
+    for step in _round_steps((high - low) / (max_ticks - 1)):
+        first, last = math.floor(low / step + 1e-9), math.ceil(high / step - 1e-9)
+        if last - first + 1 <= max_ticks:
+            return np.arange(first, last + 1) * step
+    raise AssertionError("unreachable: the steps grow without bound")
+
+
+def _round_steps(smallest: float):
+    """Round step sizes ≥ ``smallest``, increasing."""
+    k = math.floor(math.log10(smallest))
+    while True:
+        for m in (1.0, 2.0, 2.5, 5.0):
+            if m * 10.0**k >= smallest * (1 - 1e-12):
+                yield m * 10.0**k
+        k += 1
 
 
 def _checked_scalars(scalars, n_nodes: int, label: str) -> np.ndarray:
@@ -154,7 +178,7 @@ def render_png(path: str | os.PathLike, mesh, scalars: np.ndarray, *,
     The outer surface of the curved cells is drawn (each face subdivided so that curvature and
     the quadratic field variation show) in a parallel projection from the +x, −y, +z octant,
     fitted so the whole model is visible, on a white background, with a colour bar titled
-    ``f"{label} [{unit}]"``. The PNG is exactly ``window_size`` pixels and is written under a
+    ``f"{label} [{unit}]"`` whose range and labels are round values (:func:`round_ticks`). The PNG is exactly ``window_size`` pixels and is written under a
     temporary name first, then renamed.
 
     Parameters
@@ -208,9 +232,10 @@ def render_png(path: str | os.PathLike, mesh, scalars: np.ndarray, *,
     surface = _pyvista_surface(mesh, points, values, bar_title)
     # colour range of the nodal values: the tessellated faces interpolate the quadratic field
     # and may overshoot it (e.g. a slightly negative von Mises stress)
-    clim = (float(values.min()), float(values.max()))
+    # rounded to the colour bar's labels (round_ticks)
+    ticks = round_ticks(values.min(), values.max())
     image = _render_surface(surface, bar_title, _title_text(title, factor), cmap,
-                            (width_px, height_px), clim)
+                            (width_px, height_px), (float(ticks[0]), float(ticks[-1])), len(ticks))
     with atomic_path(path, ".png") as tmp:
         _write_png(tmp, image)
     logger.info("wrote %s (%d × %d px)", path, width_px, height_px)
@@ -218,7 +243,7 @@ def render_png(path: str | os.PathLike, mesh, scalars: np.ndarray, *,
 
 
 def _render_surface(surface, bar_title: str, text: str, cmap: str,
-                    window_size: tuple[int, int], clim: tuple[float, float]) -> np.ndarray:
+                    window_size: tuple[int, int], clim: tuple[float, float], n_labels: int = 6) -> np.ndarray:
     """Off-screen render; returns the RGB image (height, width, 3) of uint8."""
     if not os.environ.get("DISPLAY"):
         # no X server: go straight to EGL instead of trying X first (VTK prints a warning)
@@ -235,7 +260,7 @@ def _render_surface(surface, bar_title: str, text: str, cmap: str,
             smooth_shading=True, split_sharp_edges=True,
             scalar_bar_args=dict(
                 title=bar_title, vertical=True, position_x=0.84, position_y=0.08,
-                width=0.05, height=0.74, color="black", fmt="%.4g", n_labels=6,
+                width=0.05, height=0.74, color="black", fmt="%.4g", n_labels=n_labels,
                 title_font_size=font, label_font_size=font, unconstrained_font_size=True,
             ),
         )

@@ -24,7 +24,7 @@ def _direct_warnings(scale: float) -> set[str]:
     for k, f in enumerate(loads * scale):
         res = solve_load_distribution(bearing, RingLoad(Fx_N=f[0], Fy_N=f[1] - INNER_RING_MASS_KG * G_M_S2,
                                                         Fz_N=f[2], Mx_Nm=f[3], My_Nm=f[4]))
-        found |= {f"load case {k}: {w}" for w in res.warnings}
+        found |= {f"load case {k + 1}: {w}" for w in res.warnings}  # load cases numbered from 1 in the outputs
     return found
 
 

@@ -68,9 +68,21 @@ def test_rotation_keeps_the_ball_loads_uniform(tmp_path):
     assert s["ball_orbit_over_kinematic"] == pytest.approx(1.0, abs=0.01)  # Harris ch. 8 within 1 %
 
 
-def test_undulation_max_load_grows_with_height_and_falls_with_stiffness(tmp_path):
+def test_undulation_max_load_grows_with_height_and_falls_with_stiffness(tmp_path, monkeypatch):
+    import matplotlib.pyplot as plt
+
+    from cases.results import RunOutput
+
+    figures = {}
+    monkeypatch.setattr(RunOutput, "save_figure", lambda self, fig, name: figures.setdefault(name, fig))
     s, out = _run("slewing-undulation", tmp_path)
-    by = {(c["top_E_Pa"], c["undulation_scale"]): c["max_ball_load_N"] for c in s["cases"]}
+    # the two moduli's ball-load plots share one load scale that holds the largest load of both
+    # (the largest load is the summary's; README, output units: N on both)
+    ylims = {figures[f"ball_loads_E{E:g}GPa.png"].axes[0].get_ylim() for E in (200, 1.5975)}
+    assert len(ylims) == 1 and ylims.pop()[1] >= max(c["max_ball_load_N"] for c in s["cases"])
+    for f in figures.values():
+        plt.close(f)
+    by = {(c["top_E_GPa"], c["undulation_scale"]): c["max_ball_load_N"] for c in s["cases"]}
     Es = sorted({e for e, _ in by})
     scales = sorted({h for _, h in by})
     for E in Es:
@@ -113,7 +125,8 @@ def test_life_of_the_worst_ball_uses_the_hertz_contact_of_the_foundation(tmp_pat
     g = case.geometry
     c = ball_on_groove(g.ball_diameter_m, g.conformity, g.pitch_diameter_m, math.radians(60), "inner",
                        BEARING_STEEL, BEARING_STEEL)
-    assert s["life"]["p0_inner_Pa"] == pytest.approx(float(c.max_pressure_Pa(Q)), rel=1e-12)
+    # summary.json in the output units: stresses MPa (README, output units)
+    assert s["life"]["p0_inner_MPa"] == pytest.approx(float(c.max_pressure_Pa(Q)) * 1e-6, rel=1e-12)
     # the worst ball of the undulated, thermally offset ring carries more than the uniform load
     assert Q > 1.2 * nominal_ball_load_N(case)
     assert (out / "subsurface_shear.png").stat().st_size > 0

@@ -274,7 +274,7 @@ def plot_subsurface_shear(life: WorstBallLife, path) -> Path:
     ax.set_xlabel("maximum shear stress τ_max (MPa)")
     ax.set_ylabel("depth below raceway surface z (mm)")
     race = "top race (inner)" if w == "inner" else "bottom race (outer)"
-    ax.set_title(f"Subsurface shear, {race}: Q = {life.Q_N / 1e3:.1f} kN ({life.Q_N / (1e3 * _G):.2f} t), "
+    ax.set_title(f"Subsurface shear, {race}: Q = {life.Q_N:.0f} N, "
                  f"p0 = {r['p0_Pa'] / 1e6:.0f} MPa")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="lower right", fontsize=9)

@@ -8,6 +8,7 @@ TOML is saved with the run), and the tests run it.
 from __future__ import annotations
 
 from ..config import from_mapping
+from ..quick import quick_variant
 from .case import REDUCED_E_PA, SlewingCase
 
 __all__ = ["PRESETS", "preset", "quick"]
@@ -20,7 +21,7 @@ _PRESET_TABLES = {
         "against Q = W/(Z sin α), rigid and modal top structure (top race + TMR)",
         study={"kind": "static"}, geometry={"variant": "full"}),
     "slewing-rotation": dict(
-        name="slewing-rotation", description="(b) 1 m ring, flat races, the top race turning at 6.55 rpm with "
+        name="slewing-rotation", description="(b) 1 m ring, flat races, the top race turning at 6.55 r/min with "
         "friction and spacer balls (explicit dynamics): the load per ball stays uniform",
         study={"kind": "rotation"}, geometry={"variant": "1m"},
         analysis={"type": "dynamic_explicit", "duration_s": 4.6}),
@@ -76,13 +77,11 @@ def preset(name: str) -> SlewingCase:
 
 
 def quick(case: SlewingCase) -> SlewingCase:
-    """The reduced variant of ``case`` that ``--quick`` runs (name gets a ``-quick`` suffix)."""
-    from dataclasses import replace
-
+    """The reduced variant of ``case`` that ``--quick`` runs (:func:`cases.quick.quick_variant`)."""
     from .studies import runs_of
 
     tables = dict(_QUICK[case.study.kind])
     if case.study.kind == "single":
         tables["analysis"] = _QUICK_SINGLE_ANALYSIS[runs_of(case)[0]]
         tables.update({k: _QUICK_MODAL for k in ("top", "bottom") if getattr(case, k).kind == "modal"})
-    return replace(case.with_(**tables), name=f"{case.name}-quick")
+    return quick_variant(case, {t: v for t, v in tables.items() if v})

@@ -19,12 +19,12 @@ from . import scene
 from ..overrides import StudyEntry, unused_keys
 from .case import SlewingCase
 from .life import plot_subsurface_shear, worst_ball_life
+from ..results import plural, share_ylim
 from .plots import plot_ball_loads, plot_static, plot_travel
 from .quasistatic import analytic_ball_load_N, equilibrium, nominal_ball_load_N, travel
 
 __all__ = ["RUN_KEYS", "STUDIES", "case_unused_keys", "modal_top", "run_study", "runs_of"]
 
-TONNE_N = 9810.0
 #: a ball counts as unloaded below this share of the nominal ball load
 UNLOADED_SHARE = 1e-3
 
@@ -89,16 +89,16 @@ def study_static(case: SlewingCase, out, progress=None) -> None:
                          "spread": float((q.max() - q.min()) / q.mean()),
                          "axial_sum_over_load": float(res.reaction[2] / c.dead_load_N),
                          "loaded_contact_angle_deg": float(np.degrees(res.rows[0].contact_angle_rad.mean()))}
-        out.note(f"{kind:5s} top: mean ball load {q.mean() / 1e3:.3f} kN, largest error {100 * figures[kind]['max_error_vs_analytic']:.3f} % "
-                 f"against Q = {Q / 1e3:.3f} kN at the loaded angle {math.degrees(alpha):.3f}° "
-                 f"({100 * figures[kind]['max_error_vs_nominal_angle']:.2f} % against W/(Z sin α0) = {Q0 / 1e3:.3f} kN)")
+        out.note(f"{kind:5s} top: mean ball load {q.mean():.0f} N, largest error {100 * figures[kind]['max_error_vs_analytic']:.3f} % "
+                 f"against Q = {Q:.0f} N at the loaded angle {math.degrees(alpha):.3f}° "
+                 f"({100 * figures[kind]['max_error_vs_nominal_angle']:.2f} % against W/(Z sin α0) = {Q0:.0f} N)")
         _write_balls_vtu(out, f"balls_{kind}.vtu", c, res.rows[0].azimuth_rad, q)
         if kind == "modal":
             _write_top_vtu(out, "top_structure_modal.vtu", bodies, res.modal("top"))
     out.summary.update(analytic_ball_load_N=Q, analytic_contact_angle_deg=math.degrees(alpha), nominal_ball_load_N=Q0,
                        **{f"{k}_top": v for k, v in figures.items()})
     out.write_csv("ball_loads.csv", ["ball", "rigid_load_N", "modal_load_N"],
-                  [(i, curves["rigid"][i], curves["modal"][i]) for i in range(len(curves["rigid"]))])
+                  [(i + 1, curves["rigid"][i], curves["modal"][i]) for i in range(len(curves["rigid"]))])
     out.save_figure(plot_static(curves, Q, Q0, case), "ball_loads.png")
 
 
@@ -118,19 +118,20 @@ def study_undulation(case: SlewingCase, out, progress=None) -> None:
         fig = _distribution_figures(res)
         curves[(E, h)] = res.rows[0].load_N
         table.append({"top_E_Pa": E, "undulation_scale": h, **fig})
-        out.note(f"E {E / 1e9:7.4g} GPa, undulation ×{h:g}: max ball load {fig['max_ball_load_N'] / TONNE_N:5.2f} t, "
-                 f"{fig['unloaded_balls']} balls unloaded")
+        out.note(f"E {E / 1e9:7.4g} GPa, undulation ×{h:g}: max ball load {fig['max_ball_load_N']:.0f} N, "
+                 f"{plural(fig['unloaded_balls'], 'ball')} unloaded")
         _write_top_vtu(out, f"top_E{E / 1e9:g}GPa_x{h:g}.vtu", bodies, res.modal("top"))
     azimuth = res.rows[0].azimuth_rad
     out.summary["cases"] = table
-    out.write_csv("ball_loads.csv", ["ball", "azimuth_deg"] + [f"load_N_E{E / 1e9:g}GPa_x{h:g}" for E, h in curves],
-                  [(i, math.degrees(azimuth[i]), *(q[i] for q in curves.values())) for i in range(len(azimuth))])
+    out.write_csv("ball_loads.csv", ["ball", "azimuth_deg"] + [f"load_E{E / 1e9:g}GPa_x{h:g}_N" for E, h in curves],
+                  [(i + 1, math.degrees(azimuth[i]), *(q[i] for q in curves.values())) for i in range(len(azimuth))])
     if s.spacer_run_s > 0.0:
         _spacer_run(base, out, progress)
-    for E in s.top_E_Pa:
-        sub = {h: curves[(E, h)] for h in s.undulation_scales}
-        out.save_figure(plot_ball_loads(sub, azimuth, case, f"top structure E = {E / 1e9:g} GPa"),
-                        f"ball_loads_E{E / 1e9:g}GPa.png")
+    figs = {E: plot_ball_loads({h: curves[(E, h)] for h in s.undulation_scales}, azimuth, case,
+                               f"top structure E = {E / 1e9:g} GPa") for E in s.top_E_Pa}
+    share_ylim(f.axes[0] for f in figs.values())  # the moduli compared on one load scale
+    for E, f in figs.items():
+        out.save_figure(f, f"ball_loads_E{E / 1e9:g}GPa.png")
 
 
 def _spacer_run(case: SlewingCase, out, progress) -> None:
@@ -144,11 +145,14 @@ def _spacer_run(case: SlewingCase, out, progress) -> None:
     sub = RunOutput(out.path("spacer_run/summary.json").parent)
     run_dynamic(c, sub, progress)
     sub.write_summary()
-    fs = {k: sub.summary[k] for k in ("max_spacer_force_N", "mean_spacer_force_N", "p99_spacer_force_N")}
+    fs = {k: sub.summary[k] for k in ("max_spacer_force_N", "mean_spacer_force_N", "p99_spacer_force_N",
+                                      "start_up_excluded_s", "start_up_max_spacer_force_N") if k in sub.summary}
     out.summary["spacer_run"] = {"duration_s": case.study.spacer_run_s, "top": "rigid", **fs}
+    start = (f"; the first {fs['start_up_excluded_s']:.3g} s left out (start-up, peak "
+             f"{fs['start_up_max_spacer_force_N']:.0f} N)" if "start_up_max_spacer_force_N" in fs else "")
     out.note(f"dynamic, rigid top, undulation ×1, {case.study.spacer_run_s:g} s: spacer–load ball force "
              f"peak {fs['max_spacer_force_N']:.0f} N (impacts of unloaded balls), 99th percentile "
-             f"{fs['p99_spacer_force_N']:.0f} N, mean {fs['mean_spacer_force_N']:.1f} N")
+             f"{fs['p99_spacer_force_N']:.0f} N, mean {fs['mean_spacer_force_N']:.1f} N{start}")
 
 
 # -- (d) thermal offset and (e) combined -------------------------------------------------------
@@ -169,11 +173,11 @@ def _travel_study(case: SlewingCase, out, offsets, stiffness, undulation: float,
             histories[(E, d)] = (np.degrees(np.mod(tr.ball_azimuth_rad[:, b], 2 * math.pi)), tr.load_N[:, b],
                                  np.degrees(tr.top_rotation_rad))
             rows.append({"top_E_Pa": E, "offset_m": d, "max_ball_load_N": float(tr.load_N.max()),
-                         "worst_ball": b, "worst_azimuth_deg": float(np.degrees(tr.ball_azimuth_rad[k, b]) % 360),
+                         "worst_ball": b + 1, "worst_azimuth_deg": float(np.degrees(tr.ball_azimuth_rad[k, b]) % 360),
                          "worst_top_rotation_deg": float(np.degrees(tr.top_rotation_rad[k])),
                          "min_ball_load_N": float(tr.load_N.min())})
             out.note(f"{prefix} Δ = {d * 1e3:.2f} mm" + (f", E {E / 1e9:g} GPa" if case.top.kind == "modal" else "")
-                     + f": worst ball load {tr.load_N.max() / TONNE_N:.2f} t at ψ = {rows[-1]['worst_azimuth_deg']:.0f}°")
+                     + f": worst ball load {tr.load_N.max():.0f} N at ψ = {rows[-1]['worst_azimuth_deg']:.0f}°")
             out.write_csv(f"{prefix}_ball_history_{d * 1e3:g}mm_E{E / 1e9:g}GPa.csv",
                           ["top_rotation_deg", "ball_azimuth_deg", "load_N"],
                           zip(np.degrees(tr.top_rotation_rad), *histories[(E, d)][:2]))
@@ -218,10 +222,10 @@ def study_life(case: SlewingCase, out, progress=None) -> None:
     out.save_figure(plot_travel({f"Δ = {s.life_offset_m * 1e3:g} mm, E = {s.top_E_Pa[-1] / 1e9:g} GPa": v
                                  for v in hist.values()}, case, "Worst ball over a revolution"),
                     "worst_ball_history.png")
-    out.note(f"worst ball {Q / TONNE_N:.2f} t: p0 {life.p0_inner_Pa / 1e6:.0f} MPa (top race), τ_max "
+    out.note(f"worst ball {Q:.0f} N: p0 {life.p0_inner_Pa / 1e6:.0f} MPa (top race), τ_max "
              f"{life.tau_max_inner_Pa / 1e6:.0f} MPa at {life.depth_tau_max_inner_m * 1e3:.2f} mm; required case depth "
              f"{life.required_case_depth_m * 1e3:.1f} mm; A_cd {life.A_cd:.3f} at {s.case_depth_m * 1e3:g} mm")
-    out.note(f"ISO 281: C_a {life.C_a_N / 1e3:.0f} kN, L10 {life.L10_nominal_Mrev:.4g} Mrev at the dead load, "
+    out.note(f"ISO 281: C_a {life.C_a_N:.0f} N, L10 {life.L10_nominal_Mrev:.4g} Mrev at the dead load, "
              f"{life.L10_worst_Mrev:.4g} Mrev with the worst ball everywhere, case-depth corrected "
              f"{life.L_cd_Mrev:.4g} Mrev")
 
@@ -248,11 +252,12 @@ def study_full_scale(case: SlewingCase, out, progress=None) -> None:
                    unloaded_share=fig["unloaded_balls"] / c.geometry.n_balls,
                    lowest_frequency_Hz=float(bodies.top.frequencies_Hz[0]), n_nodes=len(bodies.top.nodes_m))
         out.summary[variant] = fig
-        out.note(f"{variant:4s} (E {E / 1e9:g} GPa): max ball load {fig['max_ball_load_N'] / TONNE_N:.2f} t = "
-                 f"{fig['max_over_nominal']:.2f} × nominal, {fig['unloaded_balls']} of {c.geometry.n_balls} balls unloaded")
+        out.note(f"{variant:4s} (E {E / 1e9:g} GPa): max ball load {fig['max_ball_load_N']:.0f} N = "
+                 f"{fig['max_over_nominal']:.2f} × nominal, {fig['unloaded_balls']} of {plural(c.geometry.n_balls, 'ball')} "
+                 "unloaded")
         _write_top_vtu(out, f"top_structure_{variant}.vtu", bodies, res.modal("top"))
         out.write_csv(f"ball_loads_{variant}.csv", ["ball", "azimuth_deg", "load_N"],
-                      [(i, math.degrees(res.rows[0].azimuth_rad[i]), q[i]) for i in range(len(q))])
+                      [(i + 1, math.degrees(res.rows[0].azimuth_rad[i]), q[i]) for i in range(len(q))])
     out.save_figure(plot_ball_loads({v: (az, q / Q) for v, (az, q, Q) in results.items()}, None, case,
                                     "Full scale vs 2 m with reduced stiffness", normalised=True),
                     "full_vs_2m.png")
@@ -348,8 +353,8 @@ def case_unused_keys(case: SlewingCase) -> dict[str, str]:
 
 def run_study(case: SlewingCase, out, progress=None) -> None:
     """Run the study the case names (``single`` with ``quasi_static``: one equilibrium or a travel)."""
-    out.note(f"modelled: {case.geometry.variant} ring, {case.geometry.n_balls} load balls, dead load "
-             f"{case.dead_load_t:g} t; {_fidelity(case)}; contact {case.contact.preset}")
+    out.note(f"modelled: {case.geometry.variant} ring, {plural(case.geometry.n_balls, 'load ball')}, dead load "
+             f"{case.dead_load_t:g} t ({case.dead_load_N:.0f} N); {_fidelity(case)}; contact {case.contact.preset}")
     if STUDIES[case.study.kind].run is not None:
         return STUDIES[case.study.kind].run(case, out, progress)
     if runs_of(case) == ("dynamic",):
@@ -372,7 +377,7 @@ def run_study(case: SlewingCase, out, progress=None) -> None:
     _write_balls_vtu(out, "balls.vtu", case, res.rows[0].azimuth_rad, res.rows[0].load_N)
     if bodies.top is not None:
         _write_top_vtu(out, "top_structure.vtu", bodies, res.modal("top"))
-    out.save_figure(plot_ball_loads({"": res.rows[0].load_N}, res.rows[0].azimuth_rad, case, case.name),
+    out.save_figure(plot_ball_loads({"normal ball load": res.rows[0].load_N}, res.rows[0].azimuth_rad, case, case.name),
                     "ball_loads.png")
-    out.note(f"max ball load {res.rows[0].load_N.max() / TONNE_N:.2f} t")
+    out.note(f"max ball load {res.rows[0].load_N.max():.0f} N")
     return None

@@ -22,6 +22,7 @@ import numpy as np
 
 from cases.config import CaseError
 from cases.integrate import integrate
+from cases.results import RPM_PER_RAD_S, plural
 
 from .case import INNER_RING_MASS_KG, WindCase
 from .scene import G_M_S2, WindScene, build_scene, rolling_speeds
@@ -49,7 +50,7 @@ def _settled(case: WindCase, rec: dict) -> np.ndarray:
     ok = rec["t"] >= case.analysis.settle_s
     if np.count_nonzero(ok) < MIN_SETTLED_SAMPLES:
         a = case.analysis
-        raise CaseError(f"analysis.settle_s = {a.settle_s:g} s leaves {np.count_nonzero(ok)} recorded samples "
+        raise CaseError(f"analysis.settle_s = {a.settle_s:g} s leaves {plural(int(np.count_nonzero(ok)), 'recorded sample')} "
                         f"before analysis.duration_s = {a.duration_s:g} s (one every analysis.record_every = "
                         f"{a.record_every} steps of {rec['timestep_s']:.3g} s, {len(rec['t'])} in all): "
                         f"lower settle_s or record_every, or lengthen duration_s")
@@ -85,12 +86,12 @@ def roller_speeds(case: WindCase, sc: WindScene, rec: dict) -> dict:
         loaded = fn > LOADED_SHARE * fn.max(axis=1, keepdims=True)
         j = watched_roller(sc, rec, k)
         one = spin[:, j]
-        to_rpm = 60.0 / (2.0 * math.pi)
+        to_rpm = RPM_PER_RAD_S
         out[row.name] = {
             "kinematic_rpm": abs(w_s) * to_rpm,
             "loaded_mean_rpm": abs(spin[loaded].mean()) * to_rpm,
             "loaded_error": float(spin[loaded].mean() / w_s - 1.0),
-            "one_roller": j,
+            "one_roller": j + 1,  # numbered from 1, as in the plots
             "one_roller_mean_rpm": abs(one.mean()) * to_rpm,
             "one_roller_error": float(one.mean() / w_s - 1.0),
             "one_roller_fluctuation_rpm": float(one.std() * to_rpm),
@@ -100,7 +101,7 @@ def roller_speeds(case: WindCase, sc: WindScene, rec: dict) -> dict:
 
 
 def cage_speeds(case: WindCase, sc: WindScene, rec: dict) -> dict:
-    """Per row: mean cage speed about z against the no-slip orbit speed, rad/s."""
+    """Per row: mean cage speed about z against the no-slip orbit speed, rad/s (r/min in the outputs)."""
     ok = _settled(case, rec)
     out = {}
     for rb, row in zip(sc.rows, sc.row_defs):

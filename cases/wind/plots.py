@@ -6,15 +6,13 @@ import math
 
 import numpy as np
 
-from cases.results import plt
+from cases.results import RPM_PER_RAD_S, plt, share_ylim
 
 from .dynamic import roller_spin_rad_s, watched_roller
 from .scene import rolling_speeds
 from .spectrum import plot_spectrum
 
-__all__ = ["spectrum_figure", "max_loads_figure", "roller_speed_figure", "sweep_figure"]
-
-RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)
+__all__ = ["spectrum_figure", "max_loads_figure", "roller_speed_figure", "roller_speed_figures", "sweep_figure"]
 
 
 def spectrum_figure(times_s, loads, share, path):
@@ -24,19 +22,20 @@ def spectrum_figure(times_s, loads, share, path):
 def max_loads_figure(per_row: dict, share):
     p = plt()
     fig, ax = p.subplots(figsize=(8, 4.5))
-    k = np.arange(len(share))
+    k = np.arange(1, len(share) + 1)  # numbered from 1, as in max_roller_loads.csv
     for name, vals in per_row.items():
-        ax.plot(k, [v[0] / 1e3 for v in vals], marker="o", ms=3, label=name)
+        ax.plot(k, [v[0] for v in vals], marker="o", ms=3, label=name)
     ax.set_xlabel("load case")
-    ax.set_ylabel("largest roller load, kN")
-    ax.set_title("Quasi-static roller loads (rigid rings) under the 32 load cases")
+    ax.set_ylabel("largest roller load, N")
+    ax.set_title(f"Quasi-static roller loads (rigid rings) under the {len(share)} load cases")
     ax.grid(alpha=0.3)
     ax.legend()
     return fig
 
 
 def roller_speed_figure(case, sc, rec):
-    """Spin of the most loaded roller of each row at the start, relative to the cage, with the no-slip value."""
+    """Spin of the most loaded roller of each row at the start (numbered from 1), relative to the
+    cage, with the no-slip value; the settling window that the summary's averages leave out is shaded."""
     p = plt()
     fig, axes = p.subplots(3, 1, figsize=(8, 8), sharex=True)
     w_i = case.analysis.speed_rpm * 2.0 * math.pi / 60.0
@@ -45,7 +44,10 @@ def roller_speed_figure(case, sc, rec):
         _, w_s = rolling_speeds(row, w_i)
         j = watched_roller(sc, rec, k)
         spin = np.abs(roller_spin_rad_s(sc, rec, k)[:, j]) * RPM_PER_RAD_S
-        ax.plot(rec["t"], spin, lw=0.8, label=f"roller {j} (relative to the cage)")
+        settle = case.analysis.settle_s
+        if settle > rec["t"][0]:
+            ax.axvspan(rec["t"][0], settle, color="0.88", label="settling, not in summary.json's averages")
+        ax.plot(rec["t"], spin, lw=0.8, label=f"roller {j + 1} (relative to the cage)")
         ax.axhline(abs(w_s) * RPM_PER_RAD_S, color="k", ls="--", lw=1, label=f"no slip {abs(w_s) * RPM_PER_RAD_S:.1f} r/min")
         ax.set_ylabel("r/min")
         ax.set_title(f"{row.name} row", fontsize=10)
@@ -56,6 +58,15 @@ def roller_speed_figure(case, sc, rec):
     fig.suptitle(f"Roller spin at {case.analysis.speed_rpm:g} r/min ({b.rings} rings, {b.cages} cages)")
     fig.tight_layout()
     return fig
+
+
+def roller_speed_figures(runs: dict) -> dict:
+    """:func:`roller_speed_figure` of each run, ``runs`` label → (case, scene, record); the
+    figures of one comparison share the y range of each row (the larger of them)."""
+    figs = {label: roller_speed_figure(*run) for label, run in runs.items()}
+    for k in range(3):
+        share_ylim(f.axes[k] for f in figs.values())
+    return figs
 
 
 def sweep_figure(results: dict, xlabel: str):

@@ -6,9 +6,8 @@ one load case held (the first 0.1 s excluded from the averages), two speeds or f
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 from ..config import from_mapping
+from ..quick import quick_variant
 from .case import WindCase
 
 __all__ = ["PRESETS", "preset", "quick"]
@@ -64,5 +63,5 @@ def preset(name: str) -> WindCase:
 
 
 def quick(case: WindCase) -> WindCase:
-    """The reduced variant of ``case`` that ``--quick`` runs (name gets a ``-quick`` suffix)."""
-    return replace(case.with_(**_QUICK[case.study.kind]), name=f"{case.name}-quick")
+    """The reduced variant of ``case`` that ``--quick`` runs (:func:`cases.quick.quick_variant`)."""
+    return quick_variant(case, _QUICK[case.study.kind])

@@ -228,7 +228,8 @@ def read_csv(path) -> tuple[np.ndarray, np.ndarray]:
 
 
 def plot_spectrum(times_s, loads, time_share, path, bc_type="not-a-knot") -> Path:
-    """PNG: top, the six components vs time (MN, MN·m; spline and knots); bottom, time shares.
+    """PNG: top, the six components vs time (N, N·m; spline and knots); bottom, time shares of
+    the load cases, numbered from 1.
 
     The default ``bc_type`` draws the curve ``ModelBuilder.add_load_history`` applies.
     """
@@ -238,13 +239,13 @@ def plot_spectrum(times_s, loads, time_share, path, bc_type="not-a-knot") -> Pat
     curve = spline(t, f, bc_type=bc_type)(dense)
     fig, (top, bottom) = pyplot.subplots(2, 1, figsize=(9, 7), constrained_layout=True)
     for j, name in enumerate(CSV_HEADER[1:]):  # forces solid, moments dashed
-        line, = top.plot(dense, curve[:, j] / 1e6, "-" if j < 3 else "--", label=name)
-        top.plot(t, f[:, j] / 1e6, "o", ms=3, color=line.get_color())
-    top.set(xlabel="time (s)", ylabel="force (MN), moment (MN·m)")
+        line, = top.plot(dense, curve[:, j], "-" if j < 3 else "--", label=name)
+        top.plot(t, f[:, j], "o", ms=3, color=line.get_color())
+    top.set(xlabel="time (s)", ylabel="force (N), moment (N·m)")
     top.legend(ncol=3, fontsize=8, loc="upper left")
     top.grid(alpha=0.3)
-    bottom.bar(np.arange(len(time_share)), 100.0 * np.asarray(time_share, float))
-    bottom.set(xlabel="load case index", ylabel="time share (%)")
+    bottom.bar(np.arange(1, len(time_share) + 1), 100.0 * np.asarray(time_share, float))
+    bottom.set(xlabel="load case", ylabel="time share (%)")
     fig.savefig(path, dpi=120)
     pyplot.close(fig)
     return Path(path)

@@ -46,17 +46,17 @@ def study_static(case: WindCase, out, progress=None) -> None:
         res = solve_load_distribution(bearing, RingLoad(Fx_N=f[0], Fy_N=f[1] - INNER_RING_MASS_KG * G_M_S2,
                                                         Fz_N=f[2], Mx_Nm=f[3], My_Nm=f[4]))
         worst = max(worst, float(res.equilibrium_error))
-        out.warn(res.warnings, f"load case {k}")
+        out.warn(res.warnings, f"load case {k + 1}")
         for r in res.rows:
             per_row[r.name].append((float(r.load_N.max()), int(np.sum(r.load_N > 0))))
-    out.write_csv("max_roller_loads.csv", ["case", "time_share", *[f"{n} max load N" for n in per_row]],
-                  [(k, share[k], *[per_row[n][k][0] for n in per_row]) for k in range(len(loads))])
+    out.write_csv("max_roller_loads.csv", ["case", "time_share", *[f"{n.replace(' ', '_')}_max_load_N" for n in per_row]],
+                  [(k + 1, share[k], *[per_row[n][k][0] for n in per_row]) for k in range(len(loads))])
     out.save_figure(plots.max_loads_figure(per_row, share), "max_roller_loads.png")
     _spectrum_files(case, out)
     out.summary.update(equilibrium_error_max=worst,
                        max_roller_load_N={n: max(v[0] for v in vals) for n, vals in per_row.items()})
     for n, vals in per_row.items():
-        out.note(f"{n:12s}: largest roller load {max(v[0] for v in vals) / 1e3:7.1f} kN over the 32 cases")
+        out.note(f"{n:12s}: largest roller load {max(v[0] for v in vals):9.0f} N over the {len(loads)} load cases")
 
 
 def _one_run(case: WindCase, progress=None) -> tuple[dict, object, dict]:
@@ -101,15 +101,17 @@ def study_rigid_flexible(case: WindCase, out, progress=None) -> None:
     """The speeds study with rigid bodies and with modal rings and cages; the ratio of the two
     models' roller speed errors (paper Table 4: 1.67–3.76), for the loaded rollers and for the
     watched roller over the whole run (loaded and unloaded zones, as the paper's one roller)."""
-    figs = {}
+    figs, runs = {}, {}
     for label, kind in (("rigid", "rigid"), ("flexible", "modal")):
         c = case.with_(bodies={"rings": kind, "cages": kind})
         fig, sc, rec = _one_run(c, progress)
-        out.save_figure(plots.roller_speed_figure(c, sc, rec), f"roller_speeds_{label}.png")
+        runs[label] = (c, sc, rec)
         _speed_notes(out, fig, f"{label:8s} ")
         figs[label] = fig
         if kind == "modal":
             _stress(case, out, fig, sc, rec)
+    for label, f in plots.roller_speed_figures(runs).items():  # one y scale per row for both
+        out.save_figure(f, f"roller_speeds_{label}.png")
     _spectrum_files(case, out)
     def ratio(key: str) -> dict:
         return {n: abs(figs["rigid"]["speeds"][n][key]) / max(abs(figs["flexible"]["speeds"][n][key]), 1e-12)

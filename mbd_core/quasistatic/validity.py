@@ -29,6 +29,8 @@ from ..contact.limits import (
     pressure_warning,
     small_contact_warning,
 )
+from foundation.text import plural
+
 from ..contact.line import line_contact
 from .rows import BallRow, Bearing, RollerRow
 
@@ -76,11 +78,11 @@ def _ball_row_warnings(row: BallRow, res) -> list[str]:
         at_limit = loaded & ((res.contact_angle_rad - lo < ANGLE_LIMIT_MARGIN_RAD)
                              | (hi - res.contact_angle_rad < ANGLE_LIMIT_MARGIN_RAD))
         if at_limit.any():
-            out.append(f"row {row.name!r}: {int(at_limit.sum())} loaded balls at the groove's contact-angle limit "
+            out.append(f"row {row.name!r}: {plural(int(at_limit.sum()), 'loaded ball')} at the groove's contact-angle limit "
                        f"({math.degrees(lo):.3g}° / {math.degrees(hi):.3g}°)")
     off = (res.approach_m > 0.0) & ~loaded
     if off.any():
-        out.append(f"row {row.name!r}: {int(off.sum())} balls pressed beyond the groove edge carry no load "
+        out.append(f"row {row.name!r}: {plural(int(off.sum()), 'ball')} pressed beyond the groove edge carry no load "
                    "(the groove model ends there)")
     return out
 
@@ -95,7 +97,7 @@ def _roller_row_warnings(row: RollerRow, res) -> list[str]:
     q = float(res.slice_load_N[k, j])
     found = [pressure_warning(float(c.max_pressure_Pa(q)), P0_STATIC_LIMIT_ROLLER_PA, "roller"),
              small_contact_warning(float(c.half_width_m(q)), row.roller_diameter_m / 2.0)]
-    return [f"row {row.name!r}, roller at ψ = {math.degrees(res.azimuth_rad[k]):.4g}°, slice {j}: {w}"
+    return [f"row {row.name!r}, roller at ψ = {math.degrees(res.azimuth_rad[k]):.4g}°, slice {j + 1} of {row.n_slices}: {w}"
             for w in found if w]
 
 
