@@ -70,6 +70,15 @@ def _project(c, keys):
     return tuple(out)
 
 
+
+def _blank_figure():
+    """A figure with three empty axes in place of a plot (studies may align the axes of theirs)."""
+    from matplotlib.figure import Figure
+
+    fig = Figure()
+    fig.subplots(3, 1)
+    return fig
+
 def _install_recorders(monkeypatch, log: list) -> None:
     def equilibrium(c, bodies, *a, **k):
         log.append(("equilibrium", _project(c, _QUASI_STATIC), a, tuple(sorted(k.items()))))
@@ -113,7 +122,7 @@ def _install_recorders(monkeypatch, log: list) -> None:
     monkeypatch.setattr(slewing_dynamic, "run_dynamic", run_dynamic)
     for name in ("plot_static", "plot_ball_loads", "plot_travel", "plot_subsurface_shear", "_write_balls_vtu",
                  "_write_top_vtu"):
-        monkeypatch.setattr(S, name, lambda *a, **k: None)
+        monkeypatch.setattr(S, name, lambda *a, **k: _blank_figure())
 
 
 def _leaf_fields(cls, prefix=""):

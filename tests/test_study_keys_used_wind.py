@@ -41,6 +41,15 @@ def _contact(c):
     return tuple(sorted(d.items()))
 
 
+
+def _blank_figure():
+    """A figure with three empty axes in place of a plot (studies may align the axes of theirs)."""
+    from matplotlib.figure import Figure
+
+    fig = Figure()
+    fig.subplots(3, 1)
+    return fig
+
 def _install_recorders(monkeypatch, log: list) -> None:
     def run(c, progress=None):
         log.append(("dynamic", c.rollers, _bodies(c.bodies), _contact(c.contact), c.loads, c.analysis))
@@ -65,7 +74,7 @@ def _install_recorders(monkeypatch, log: list) -> None:
     monkeypatch.setattr(W, "_spectrum_files", lambda case, out: log.append(("spectrum", case.loads)))
     monkeypatch.setattr(W, "_stress", lambda *a: None)
     for name in ("roller_speed_figure", "sweep_figure", "max_loads_figure", "spectrum_figure"):
-        monkeypatch.setattr(W.plots, name, lambda *a, **k: None)
+        monkeypatch.setattr(W.plots, name, lambda *a, **k: _blank_figure())
 
 
 def _records(case, monkeypatch, tmp_path):
