@@ -254,6 +254,14 @@ STUDIES = {"static": study_static, "undulation": study_undulation, "thermal": st
            "combined": study_combined, "life": study_life, "full-scale": study_full_scale}
 
 
+def uses_dynamics(case: SlewingCase) -> bool:
+    """True when the case runs the explicit dynamics (the numba kernels) at some point."""
+    kind = case.study.kind
+    if kind in STUDIES:
+        return kind == "undulation" and case.study.spacer_run_s > 0.0
+    return kind == "rotation" or case.analysis.type != "quasi_static"
+
+
 def run_study(case: SlewingCase, out, progress=None) -> None:
     """Run the study the case names (``single`` with ``quasi_static``: one equilibrium or a travel)."""
     out.note(f"modelled: {case.geometry.variant} ring, {case.geometry.n_balls} load balls, dead load "

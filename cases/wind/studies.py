@@ -162,5 +162,10 @@ STUDIES = {"static": study_static, "speeds": study_speeds, "rigid-flexible": stu
            "driving-speed": study_driving_speed, "friction": study_friction}
 
 
+def uses_dynamics(case: WindCase) -> bool:
+    """True when the case runs the explicit dynamics (the numba kernels) at some point."""
+    return case.study.kind != "static"
+
+
 def run_study(case: WindCase, out, progress=None) -> None:
     STUDIES[case.study.kind](case, out, progress)
