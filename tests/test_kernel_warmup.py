@@ -144,3 +144,26 @@ def test_no_warmup_when_cached_or_switched_off(monkeypatch, env, cached):
 
 if __name__ == "__main__":
     _child()
+
+
+@pytest.mark.parametrize("name, quick, dynamic", [
+    ("slewing-undulation", False, True),     # its spacer run (study.spacer_run_s > 0)
+    ("slewing-rotation", True, True),
+    ("slewing-static", False, False),
+    ("slewing-thermal", False, False),
+    ("wind-static", False, False),
+    ("wind-rigid-flexible", True, True),
+])
+def test_warmup_starts_for_the_cases_that_run_dynamics(name, quick, dynamic):
+    """Reference: the studies' code, where a dynamic run is reached (cases/*/studies.py run_study)."""
+    from cases.run import _FAMILIES, resolve_case
+
+    case = resolve_case(name, quick)
+    assert _FAMILIES[type(case)][1].uses_dynamics(case) is dynamic
+
+
+def test_undulation_without_spacer_run_needs_no_kernels():
+    from cases.run import resolve_case
+    from cases.slewing.studies import uses_dynamics
+
+    assert uses_dynamics(resolve_case("slewing-undulation", False, ["study.spacer_run_s=0"])) is False
