@@ -42,7 +42,7 @@ PHASES = {
                                            "cms_reduction.stress_modes:add_stress_modes"),
     "quasi-static solves": ("cases.slewing.quasistatic:equilibrium", "cases.slewing.quasistatic:travel"),
     "dynamic run": ("cases.slewing.dynamic:run_dynamic", "cases.wind.dynamic:run"),
-    "waiting for the kernel warm-up": ("mbd_core.kernels.warmup:wait",),
+    "waiting for the kernel warm-up": ("mbd_core.multibody.warmup:wait",),
 }
 COMPILE = "numba compilation"
 #: the CI run of ``--quick`` alone: (case, --set overrides)
