@@ -26,6 +26,8 @@ import time
 import tomllib
 from pathlib import Path
 
+from mbd_core.multibody import warmup
+
 from .config import FAMILY_KEY, CaseError, dumps_case, from_mapping, qualified_message, read_toml, with_overrides
 from .integrate import ResumeError, checkpoints
 from .overrides import check_case, reference_case
@@ -206,21 +208,26 @@ def run_case(case, out_dir, progress=None, resume: bool = False, source: str | N
     keep = resume_folder(out_dir)
     keep.parent.mkdir(parents=True, exist_ok=True)
     _open_resume_folder(keep, text, resume)
+    studies = _FAMILIES[type(case)][1]
+    if studies.uses_dynamics(case):
+        warmup.start()  # compiles the kernels on another core while the rings are meshed and reduced
     try:
         with atomic_folder(out_dir, case.name, source) as tmp, checkpoints(keep, resume):
             out = RunOutput(tmp)
             out.path("case.toml").write_text(text)
-            _FAMILIES[type(case)][1].run_study(case, out, progress)
+            studies.run_study(case, out, progress)
             out.summary = output_units({"case": case.name, "study": case.study.kind, "description": case.description,
                                         **out.summary, "wall_time_s": time.perf_counter() - t0,
                                         "peak_rss_mb": _peak_rss_mb()})
             out.write_summary()
     except BaseException:
+        warmup.stop()
         if any(keep.glob("run_*/piece_*.npz")):
             log.warning("the explicit runs done so far are kept in %s: continue with --resume", keep)
         else:  # nothing worth resuming
             shutil.rmtree(keep, ignore_errors=True)
         raise
+    warmup.stop()  # (a run that never built a model did not wait for it)
     shutil.rmtree(keep, ignore_errors=True)
     out.folder = Path(out_dir)
     return out

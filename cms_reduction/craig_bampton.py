@@ -341,6 +341,13 @@ def rigid_fields_q(model: FEModel, interfaces, retained: np.ndarray) -> np.ndarr
     return np.vstack(rows)
 
 
+def _block(A: sp.csr_matrix, index: np.ndarray) -> sp.csc_matrix:
+    """A[index][:, index] in CSC (without the intermediate copies when ``index`` is every row)."""
+    if len(index) == A.shape[0] and np.array_equal(index, np.arange(A.shape[0])):
+        return A.tocsc()
+    return A[index][:, index].tocsc()
+
+
 def reduce_model(
     model: FEModel,
     n_modes: int,
@@ -376,8 +383,11 @@ def reduce_model(
     if floating and grounded:
         raise ValueError("a floating body cannot have grounded interfaces")
     T, retained, master_cols = rbe2_transform(model, interfaces)
-    Kq = (T.T @ model.K @ T).tocsr()
-    Mq = (T.T @ model.M @ T).tocsr()
+    if len(master_cols) == 0 and T.shape[0] == T.shape[1]:  # T = I: no copies of the (large) K and M
+        Kq, Mq = model.K.tocsr(), model.M.tocsr()
+    else:
+        Kq = (T.T @ model.K @ T).tocsr()
+        Mq = (T.T @ model.M @ T).tocsr()
     nq = Kq.shape[0]
     rigid_itf = [i for i in interfaces if i.kind == "rigid"]
     held = np.concatenate([master_cols[6 * j: 6 * j + 6] for j, itf in enumerate(rigid_itf) if itf.grounded]
@@ -385,8 +395,7 @@ def reduce_model(
     C_avg, avg_grounded = averaging_constraints(model, interfaces, retained)
     boundary = np.setdiff1d(master_cols, held)
     interior = np.setdiff1d(np.arange(nq), master_cols)
-    KII = Kq[interior][:, interior].tocsc()
-    MII = Mq[interior][:, interior].tocsc()
+    KII, MII = (_block(A, interior) for A in (Kq, Mq))
     loads_q = np.column_stack([T.T @ a.load_vectors(model, model.ring.spec.full_circle) for a in augmentation]) \
         if augmentation else np.zeros((nq, 0))
     Rq = rigid_fields_q(model, interfaces, retained)

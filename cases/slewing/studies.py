@@ -351,6 +351,11 @@ def case_unused_keys(case: SlewingCase) -> dict[str, str]:
     return {**_fidelity_unused(case), **unused_keys(case.study.kind, STUDIES, RUN_KEYS, runs_of(case))}
 
 
+def uses_dynamics(case: SlewingCase) -> bool:
+    """True when the case runs the explicit dynamics (the numba kernels) at some point."""
+    return "dynamic" in runs_of(case)
+
+
 def run_study(case: SlewingCase, out, progress=None) -> None:
     """Run the study the case names (``single`` with ``quasi_static``: one equilibrium or a travel)."""
     out.note(f"modelled: {case.geometry.variant} ring, {plural(case.geometry.n_balls, 'load ball')}, dead load "

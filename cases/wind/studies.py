@@ -14,7 +14,7 @@ from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
 
 from ..overrides import StudyEntry, unused_keys
 from . import dynamic, plots
-from .bodies import stress_maps
+from .bodies import modal_bodies, stress_maps
 from .case import INNER_RING_MASS_KG, WindCase
 from .scene import G_M_S2, load_history, rows
 from .spectrum import load_cases, write_csv
@@ -102,6 +102,9 @@ def study_rigid_flexible(case: WindCase, out, progress=None) -> None:
     models' roller speed errors (paper Table 4: 1.67–3.76), for the loaded rollers and for the
     watched roller over the whole run (loaded and unloaded zones, as the paper's one roller)."""
     figs, runs = {}, {}
+    # the modal bodies first (cached on disk): meshed and reduced while the kernels compile in the
+    # background for the rigid run (mbd_core.multibody.warmup)
+    modal_bodies(case.with_(bodies={"rings": "modal", "cages": "modal"}))
     for label, kind in (("rigid", "rigid"), ("flexible", "modal")):
         c = case.with_(bodies={"rings": kind, "cages": kind})
         fig, sc, rec = _one_run(c, progress)
@@ -207,6 +210,11 @@ def _fidelity_unused(case: WindCase) -> dict[str, str]:
 def case_unused_keys(case: WindCase) -> dict[str, str]:
     """Every key of ``case`` its study does not read → what does its job."""
     return {**_fidelity_unused(case), **unused_keys(case.study.kind, STUDIES, {}, STUDIES[case.study.kind].runs)}
+
+
+def uses_dynamics(case: WindCase) -> bool:
+    """True when the case runs the explicit dynamics (the numba kernels) at some point."""
+    return "dynamic" in STUDIES[case.study.kind].runs
 
 
 def run_study(case: WindCase, out, progress=None) -> None:

@@ -24,6 +24,7 @@ from ..kernels.roller_slices import (
     RACEWAY_PLANE_UP,
 )
 from foundation.validation import check_positive
+from . import warmup
 from .model import Model, ModelArrays, State
 
 __all__ = ["ModelBuilder", "ContactLaw", "Free", "Fixed", "Driven", "quat_from_axis_angle", "quat_z_to"]
@@ -582,6 +583,7 @@ class ModelBuilder:
     # -- finalize -------------------------------------------------------------------------------
     def finalize(self) -> tuple[Model, State]:
         """Validate and freeze: returns the model of flat arrays and the initial state."""
+        warmup.wait()  # before the first kernel call of a model (module docstring of .warmup)
         if not self._bodies:
             raise ValueError("model: no bodies")
         bodies, pairs = self._bodies, self._pairs
