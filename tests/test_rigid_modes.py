@@ -124,7 +124,10 @@ PART_SIZES_M = {
     "slewing-top-race": (0.32, 0.24),
     "slewing-tmr": (0.45, 0.3),
     "three-row-inner-ring": (0.18, 0.12),
-    "three-row-outer-ring": (0.18, 0.12),
+    # 0.18 m is the coarsest all-hexahedral section gmsh makes of the outer ring (0.2 m fails); 2.5×
+    # for the fine mesh: 78k instead of 94k DOF, modal solve 38 s instead of 54 s measured; the
+    # pair (98.08 Hz) changes −0.022 % (−0.028 % to 0.12 m)
+    "three-row-outer-ring": (0.18, 0.15),
     "three-row-radial-cage": (0.08, 0.05),
     "three-row-front-cage": (0.08, 0.05),
     "three-row-rear-cage": (0.08, 0.05),
