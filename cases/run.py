@@ -18,6 +18,7 @@ piece of the same resolved case and writes results identical to those of an unin
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import platform
 import resource
@@ -96,7 +97,10 @@ def resolve_case(name_or_path: str, quick_run: bool = False, overrides=()):
         except ValueError as exc:  # a dataclass's own check, without the table's name
             raise CaseError(f"--quick: {qualified_message(type(case), str(exc))}") from None
     file_case = case if name_or_path not in PRESETS else None
-    case = with_overrides(case, list(overrides)) if overrides else case
+    if overrides:
+        case = with_overrides(case, list(overrides))
+        said = "; ".join(x for x in (case.description, f"changed by --set {', '.join(overrides)}") if x)
+        case = dataclasses.replace(case, description=said)  # the case says what ran
     _check_unused(case, overrides, file_case, name_or_path)
     for key, file in getattr(case, "input_files", dict)().items():
         if not Path(file).is_file():

@@ -232,3 +232,14 @@ def test_a_results_folder_written_before_sources_were_recorded(tmp_path, monkeyp
     assert default_out_dir(case, "slewing-static") == Path("results/slewing-static-quick")
     with pytest.raises(CaseError, match="--out"):
         default_out_dir(case, str(tmp_path / "my.toml"))
+
+
+def test_a_set_override_is_named_in_the_case_description():
+    """A quick case changed by --set says so: its description (written to case.toml and
+    summary.json) names the override, not only the quick variant's own changes."""
+    from cases.run import resolve_case
+
+    case = resolve_case("wind-rigid-flexible", True, ["bodies.ring_element_size_m=0.2"])
+    assert case.bodies.ring_element_size_m == 0.2
+    assert case.description.startswith("quick variant of wind-rigid-flexible")
+    assert case.description.endswith("changed by --set bodies.ring_element_size_m=0.2")

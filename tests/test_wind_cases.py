@@ -91,12 +91,11 @@ def test_rigid_run_cage_speeds(speeds_run):
 
 def test_rigid_and_flexible_quick_runs(tmp_path):
     """Modal rings and cages (8 modes, coarse meshes in the quick variant) against the rigid model."""
-    # rings meshed at 0.18 m (the coarsest all-hexahedral section of the outer ring) and cages at
-    # 0.05 m instead of the quick variant's 0.1 m and 0.03 m: 150 s instead of 212 s CPU, 1.5 instead
-    # of 2.5 GB measured (quick meshes: flexible 0.14 % force, 0.05 % moment, speeds −0.01 / −0.01 /
-    # +0.28 %, stress peaks 2.0–22 MPa)
-    s, out = _run("wind-rigid-flexible", tmp_path, "--set", "bodies.ring_element_size_m=0.18",
-                  "--set", "bodies.cage_element_size_m=0.05")
+    # the quick variant meshes the rings at 0.18 m (the coarsest all-hexahedral section of the outer
+    # ring) and the cages at 0.05 m: 150 s CPU and 1.5 GB measured (at 0.1 m and 0.03 m: 212 s,
+    # 2.5 GB; flexible 0.14 % force, 0.05 % moment, speeds −0.01 / −0.01 / +0.28 %, stress peaks
+    # 2.0–22 MPa)
+    s, out = _run("wind-rigid-flexible", tmp_path)
     for label in ("rigid", "flexible"):
         # Newton's second law for the inner ring, 0.5 % acceptance (measured flexible: 0.04 % force,
         # 0.10 % moment; rigid: 0.03 %, 0.12 %)

@@ -50,7 +50,7 @@ _QUICK = {
     "static": {},
     "speeds": _DYNAMIC_QUICK,
     "rigid-flexible": {**_DYNAMIC_QUICK, "analysis": {"duration_s": 0.1, "settle_s": 0.05, "record_every": 100},
-                       "bodies": {"n_modes": 8, "bolts": 24, "ring_element_size_m": 0.1, "cage_element_size_m": 0.03}},
+                       "bodies": {"n_modes": 8, "bolts": 24, "ring_element_size_m": 0.18, "cage_element_size_m": 0.05}},
     "driving-speed": {**_DYNAMIC_QUICK, "study": {"speeds_rpm": (20.0, 30.0)}},
     "friction": {**_DYNAMIC_QUICK, "study": {"friction_sets": ((0.025, 0.05), (0.1, 0.2))}},
 }
