@@ -288,9 +288,10 @@ def cmd_run(args) -> dict:
     out = run_case(case, out_dir, progress=track, resume=args.resume, source=source)
     for line in out.report:
         print(f"  {line}")
-    files = sorted({p.suffix for p in out.folder.iterdir()})
+    entries = sorted({f"*{p.suffix}" for p in out.folder.iterdir() if p.is_file() and not p.name.startswith(".")})
+    entries += sorted(f"{p.name}/" for p in out.folder.iterdir() if p.is_dir())
     print(f"wall time {out.summary['wall_time_s']:.1f} s, peak memory {out.summary['peak_rss_mb']:.0f} MB; "
-          f"results in {out.folder}/ ({', '.join(f'*{x}' for x in files)})")
+          f"results in {out.folder}/ ({', '.join(entries)})")
     return out.summary
 
 
