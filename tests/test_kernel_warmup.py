@@ -133,6 +133,33 @@ def test_failed_warmup_only_warns(monkeypatch, caplog):
     assert "exit status 3: broken" in caplog.text
 
 
+def test_waiting_for_the_warmup_is_a_phase_on_screen(monkeypatch):
+    """While the main process waits for a warm-up still compiling, a phase says so (the kernels
+    compile in another process, where the main process's compile listener sees nothing); it
+    lasts as long as the wait, here a child that sleeps 0.5 s (±0.4 s for process start-up)."""
+    import time
+
+    from foundation.progress import Reporter, reporting
+    from mbd_core.kernels.compile_progress import COMPILING_LABEL
+    from mbd_core.multibody import warmup
+
+    class Recorder(Reporter):
+        def __init__(self):
+            self.finished = []
+
+        def finish(self, phase):
+            self.finished.append((phase.label, phase.elapsed_s()))
+
+    proc = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(0.5)"], stderr=subprocess.PIPE)
+    monkeypatch.setattr(warmup, "_process", proc)
+    monkeypatch.setattr(warmup, "_started_s", time.perf_counter())
+    rec = Recorder()
+    with reporting(rec):
+        warmup.wait()
+    assert len(rec.finished) == 1 and rec.finished[0][0].startswith(COMPILING_LABEL)
+    assert 0.1 < rec.finished[0][1] < 0.9
+
+
 @pytest.mark.parametrize("env, cached", [({}, True), ({"FLEXBEARING_KERNEL_WARMUP": "0"}, False),
                                          ({"NUMBA_DISABLE_JIT": "1"}, False)])
 def test_no_warmup_when_cached_or_switched_off(monkeypatch, env, cached):

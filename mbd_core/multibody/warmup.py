@@ -28,6 +28,10 @@ import time
 
 import numpy as np
 
+from foundation.progress import phase
+
+from ..kernels.compile_progress import COMPILING_LABEL
+
 __all__ = ["start", "wait", "compile_kernels", "small_model", "kernels_cached", "WARMUP_ENV"]
 
 log = logging.getLogger(__name__)
@@ -81,10 +85,13 @@ def wait() -> None:
     proc, _process = _process, None
     if proc is None:
         return
-    if proc.poll() is None:
-        log.info("waiting for the background compilation of the dynamics kernels")
     try:
-        _, err = proc.communicate(timeout=max(WAIT_LIMIT_S - (time.perf_counter() - _started_s), 1.0))
+        if proc.poll() is None:
+            log.info("waiting for the background compilation of the dynamics kernels")
+            with phase(f"{COMPILING_LABEL}, in the background since {time.perf_counter() - _started_s:.0f} s"):
+                _, err = proc.communicate(timeout=max(WAIT_LIMIT_S - (time.perf_counter() - _started_s), 1.0))
+        else:
+            _, err = proc.communicate()
     except subprocess.TimeoutExpired:
         proc.kill()
         proc.communicate()
