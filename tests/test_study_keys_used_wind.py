@@ -73,6 +73,8 @@ def _install_recorders(monkeypatch, log: list) -> None:
     monkeypatch.setattr(W, "solve_load_distribution", solve)
     monkeypatch.setattr(W, "_spectrum_files", lambda case, out: log.append(("spectrum", case.loads)))
     monkeypatch.setattr(W, "_stress", lambda *a: None)
+    # the modal bodies built ahead of the rigid-flexible runs: recorded, not meshed and reduced
+    monkeypatch.setattr(W, "modal_bodies", lambda c: log.append(("modal bodies", c.bodies)))
     for name in ("roller_speed_figure", "sweep_figure", "max_loads_figure", "spectrum_figure"):
         monkeypatch.setattr(W.plots, name, lambda *a, **k: _blank_figure())
 
