@@ -194,17 +194,23 @@ def _cases():
     return out
 
 
+def discarded_keys(case, base, unused_of, records) -> list[str]:
+    """The leaf keys of ``case`` whose change leaves both the declared unused keys
+    (``unused_of(case)``) and the recorded work (``records(case)``, ``base`` for ``case``) alone."""
+    declared, out = unused_of(case), []
+    for key, table, name, hint in _leaf_fields(type(case)):
+        other = _perturbed(case, table, name, hint)
+        if other is not None and unused_of(other) == declared and records(other) == base:
+            out.append(key)
+    return out
+
+
 @pytest.mark.parametrize("label, case", list(_cases().items()))
 def test_the_keys_a_study_discards_are_declared(label, case, monkeypatch, tmp_path):
     base = _records(case, monkeypatch, tmp_path)
     assert base, label  # the recorders saw the study's work
     declared = S.case_unused_keys(case)
-    discarded = []
-    for key, table, name, hint in _leaf_fields(SlewingCase):
-        other = _perturbed(case, table, name, hint)
-        if other is not None and S.case_unused_keys(other) == declared and \
-                _records(other, monkeypatch, tmp_path) == base:
-            discarded.append(key)
+    discarded = discarded_keys(case, base, S.case_unused_keys, lambda c: _records(c, monkeypatch, tmp_path))
     undeclared = [k for k in discarded if _covering(k, declared) is None]
     assert not undeclared, f"{label}: discarded but not declared: {undeclared}"
     # the keys a study replaces by its own (swept or fixed) value are really discarded

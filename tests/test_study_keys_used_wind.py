@@ -15,9 +15,8 @@ import pytest
 import cases.wind.dynamic as wind_dynamic
 import cases.wind.studies as W
 from cases.overrides import _covering
-from cases.wind.case import WindCase
 from cases.wind.presets import PRESETS, quick
-from tests.test_study_keys_used import _Out, _leaf_fields, _perturbed
+from tests.test_study_keys_used import _Out, discarded_keys
 
 ROWS = ("radial", "front thrust", "rear thrust")
 
@@ -93,12 +92,7 @@ def test_the_keys_a_wind_study_discards_are_declared(name, monkeypatch, tmp_path
     base = _records(case, monkeypatch, tmp_path)
     assert base, name
     declared = W.case_unused_keys(case)
-    discarded = []
-    for key, table, field, hint in _leaf_fields(WindCase):
-        other = _perturbed(case, table, field, hint)
-        if other is not None and W.case_unused_keys(other) == declared and \
-                _records(other, monkeypatch, tmp_path) == base:
-            discarded.append(key)
+    discarded = discarded_keys(case, base, W.case_unused_keys, lambda c: _records(c, monkeypatch, tmp_path))
     undeclared = [k for k in discarded if _covering(k, declared) is None]
     assert not undeclared, f"{name}: discarded but not declared: {undeclared}"
     replaced = [k for k in W.STUDIES[case.study.kind].unused if k.split(".")[0] in ("analysis", "contact") and "." in k]
