@@ -88,7 +88,8 @@ def wait() -> None:
     try:
         if proc.poll() is None:
             log.info("waiting for the background compilation of the dynamics kernels")
-            with phase(f"{COMPILING_LABEL}, in the background since {time.perf_counter() - _started_s:.0f} s"):
+            with phase(f"{COMPILING_LABEL}, in the background since {time.perf_counter() - _started_s:.0f} s",
+                       once=True):  # one-off: out of the time-left estimates around it
                 _, err = proc.communicate(timeout=max(WAIT_LIMIT_S - (time.perf_counter() - _started_s), 1.0))
         else:
             _, err = proc.communicate()
