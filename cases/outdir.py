@@ -4,8 +4,10 @@ A run writes into a temporary folder beside the target and, when it completes, s
 
 1. the finished folder gets the marker file :data:`MARKER` (JSON: format, case name and, for a
    case run, ``source``: the named case or the case file it came from, :func:`marker_source`);
-2. an existing target is renamed aside (``.NAME.fb-old-<pid>-<hex>``), the new folder is renamed
-   to the target, then the aside copy is deleted.
+2. an existing target is exchanged with the new folder in one atomic step (Linux ``renameat2``
+   ``RENAME_EXCHANGE``) and the old result, now in the temporary folder, is deleted; where the
+   system cannot exchange, the target is renamed aside (``.NAME.fb-old-<pid>-<hex>``), the new
+   folder renamed to the target, then the aside copy deleted.
 
 Both renames stay within one folder, so each is atomic (POSIX ``rename``); the signals that
 stop a run (SIGINT, SIGTERM, SIGHUP, see :mod:`cases.signals`) are held back between them. A run
@@ -21,6 +23,7 @@ folder holding one of them, a file and a symbolic link are refused before any wo
 
 from __future__ import annotations
 
+import ctypes
 import json
 import logging
 import os
@@ -155,6 +158,10 @@ def recover(parent) -> None:
             log.info("removed %s left by a killed run", p)
 
 
+#: ``renameat2`` arguments: the current folder as base, and "exchange the two paths"
+_AT_FDCWD = -100
+_RENAME_EXCHANGE = 2
+
 def _make_folder(path: Path) -> Path:
     """``mkdir`` with the usual permissions (0777 less the umask, unlike ``tempfile.mkdtemp``)."""
     os.mkdir(path)
@@ -166,9 +173,26 @@ def _write_marker(folder: Path, name: str, source: str | None = None) -> None:
     (folder / MARKER).write_text(json.dumps(data) + "\n", encoding="utf-8")
 
 
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap two existing paths in one atomic step (Linux ``renameat2`` with ``RENAME_EXCHANGE``,
+    glibc ≥ 2.28); False where the system or file system cannot, and nothing has changed then."""
+    try:
+        fn = ctypes.CDLL(None, use_errno=True).renameat2
+    except (OSError, AttributeError):
+        return False
+    fn.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]
+    fn.restype = ctypes.c_int
+    return fn(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE) == 0
+
+
 def _swap_in(tmp: Path, out: Path) -> None:
     check_output_target(out)  # the target may have changed during the run
     with held():
+        if out.exists() and _exchange(tmp, out):
+            # the target is never missing, not even to SIGKILL; the old result now sits in the
+            # temporary folder, which the next run deletes if this one is killed before it does
+            shutil.rmtree(tmp, ignore_errors=True)
+            return
         aside = None
         if out.exists():
             aside = _leftover_name(out, _OLD)
