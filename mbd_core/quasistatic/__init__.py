@@ -9,11 +9,12 @@ from .flexible import (
     build_flexible_model,
     solve_flexible_load_distribution,
 )
-from .rows import BallRow, Bearing, RollerRow
+from .rows import BallRow, Bearing, FourPointRow, RollerRow
 from .solver import LoadDistribution, LoadDistributionError, RingLoad, solve_load_distribution
 
 __all__ = [
     "BallRow",
+    "FourPointRow",
     "RollerRow",
     "Bearing",
     "RingLoad",

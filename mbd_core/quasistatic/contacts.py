@@ -30,7 +30,8 @@ from ..contact.hertz import ball_on_groove
 from ..contact.limits import P0_STATIC_LIMIT_BALL_PA, P0_STATIC_LIMIT_ROLLER_PA
 from ..contact.line import line_contact
 from .results import LoadDistribution, RowLoads
-from .rows import BallRow, Bearing, RollerRow
+from .validity import DIAGONAL_LABELS
+from .rows import BallRow, Bearing, FourPointRow, RollerRow
 
 __all__ = ["ContactSet", "contact_sets", "register_contact_sets", "CONTACT_SET_BUILDERS"]
 
@@ -115,7 +116,7 @@ def groove_truncated(semi_major_m: np.ndarray, groove_radius_m: float, contact_a
     return (alpha - half < angle_min_rad) | (alpha + half > angle_max_rad)
 
 
-def ball_groove_sets(row: BallRow, res: RowLoads, label_suffix: str = "",
+def ball_groove_sets(row: BallRow | FourPointRow, res: RowLoads, label_suffix: str = "",
                      angle_range_rad: tuple[float, float] | None = None) -> list[ContactSet]:
     """Contact sets of balls in two grooves (moving and fixed ring), loads ``res.load_N``."""
     fixed = "outer" if row.moving_raceway == "inner" else "inner"
@@ -141,6 +142,16 @@ def ball_groove_sets(row: BallRow, res: RowLoads, label_suffix: str = "",
 @register_contact_sets(BallRow)
 def _ball_row_sets(row: BallRow, res: RowLoads) -> list[ContactSet]:
     return ball_groove_sets(row, res)
+
+
+@register_contact_sets(FourPointRow)
+def _four_point_row_sets(row: FourPointRow, res: RowLoads) -> list[ContactSet]:
+    """Four sets: the moving and the fixed groove of each diagonal (+α, −α), each diagonal's ellipse
+    truncated where it leaves its arc between the arch apex and the shoulder (:mod:`.rows_four_point`)."""
+    out = []
+    for j, label in enumerate(DIAGONAL_LABELS):
+        out += ball_groove_sets(row, res.diagonal(j), f", diagonal {label}", row.groove_angle_range_rad)
+    return out
 
 
 def _roller_raceways(row: RollerRow) -> list[tuple[str, float, bool]]:

@@ -14,7 +14,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .rows import BallRow, Bearing, RollerRow
+from .rows import BallRow, Bearing, FourPointRow, RollerRow
 
 __all__ = ["BallGroup", "SliceGroup", "build_groups", "displacement_matrix", "shift_ball_centres"]
 
@@ -35,7 +35,8 @@ class BallGroup:
     radial_sign, axial_sign : (n,) ±1, for the loaded contact angle
     angle_min_rad, angle_max_rad : (n,) loaded contact angles the groove can carry, rad
     e_r : (n, 3) radial unit vector
-    row : (n,) int row index; element : (n,) int index of the ball within its row
+    row : (n,) int row index; element : (n,) int index of the ball within its row (a four-point
+        ball has two entries, one per diagonal, :mod:`.rows_four_point`)
     """
 
     p_m: np.ndarray
@@ -89,16 +90,18 @@ def _frame(psi: np.ndarray):
     return e_r, e_t
 
 
-def _ball_arrays(i_row: int, row: BallRow) -> dict[str, np.ndarray]:
-    n = row.n_balls
-    psi = _azimuths(n, row.first_azimuth_rad)
+def _ball_pair_arrays(i_row: int, row, psi: np.ndarray, axial_sign: np.ndarray, element: np.ndarray):
+    """Entries of ball pairs (moving and fixed groove along one line of centres) at azimuths ``psi``
+    with axial signs ``axial_sign`` (n,) of a :class:`BallRow` or :class:`FourPointRow`."""
+    n = len(psi)
     e_r, e_t = _frame(psi)
     e_z = np.array([0.0, 0.0, 1.0])
     a0, D = row.contact_angle_rad, row.ball_diameter_m
-    sr, sz = row.radial_sign, row.axial_sign
-    d_hat = (sr * np.cos(a0)) * e_r + (sz * np.sin(a0)) * e_z
+    sr = row.radial_sign
+    d_hat = (sr * np.cos(a0)) * e_r + (axial_sign * np.sin(a0))[:, None] * e_z
     ball_centre = 0.5 * row.pitch_diameter_m * e_r + row.axial_position_m * e_z
     A, c = row.curvature_centre_distance_m, row.radial_clearance_m
+    lo, hi = row.groove_angle_range_rad
     # the clearance moves the grooves apart radially (concentric rings): ISO/TS 16281, Harris ch. 2
     return dict(
         p_m=ball_centre + (row.conformity_moving - 0.5) * D * d_hat,
@@ -108,13 +111,25 @@ def _ball_arrays(i_row: int, row: BallRow) -> dict[str, np.ndarray]:
         s0_excess_m2=np.full(n, c * (c - 2.0 * A * np.cos(a0))),  # |A·d̂ − c·s_r·e_r|² − A², c = P_d/2
         K=np.full(n, row.contact_stiffness()),
         radial_sign=np.full(n, float(sr)),
-        axial_sign=np.full(n, float(sz)),
-        angle_min_rad=np.full(n, row.groove_angle_range_rad[0]),
-        angle_max_rad=np.full(n, row.groove_angle_range_rad[1]),
+        axial_sign=np.asarray(axial_sign, dtype=float),
+        angle_min_rad=np.full(n, lo),
+        angle_max_rad=np.full(n, hi),
         e_r=e_r,
         row=np.full(n, i_row),
-        element=np.arange(n),
+        element=element,
     )
+
+
+def _ball_arrays(i_row: int, row: BallRow | FourPointRow) -> dict[str, np.ndarray]:
+    """One entry per ball of a :class:`BallRow`; two per ball of a :class:`FourPointRow`, one per
+    diagonal (+α, −α), interleaved ball by ball."""
+    n = row.n_balls
+    psi = _azimuths(n, row.first_azimuth_rad)
+    if isinstance(row, FourPointRow):
+        k = len(row.DIAGONAL_SIGNS)
+        return _ball_pair_arrays(i_row, row, np.repeat(psi, k), np.tile(np.array(row.DIAGONAL_SIGNS, float), n),
+                                 np.repeat(np.arange(n), k))
+    return _ball_pair_arrays(i_row, row, psi, np.full(n, float(row.axial_sign)), np.arange(n))
 
 
 def _slice_arrays(i_row: int, row: RollerRow) -> dict[str, np.ndarray]:
@@ -157,7 +172,7 @@ def _stack(parts: list[dict[str, np.ndarray]], keys: tuple[str, ...], widths: di
 
 def build_groups(bearing: Bearing) -> tuple[BallGroup, SliceGroup]:
     """Flatten the rows of a bearing into one ball group and one slice group."""
-    balls = [_ball_arrays(i, r) for i, r in enumerate(bearing.rows) if isinstance(r, BallRow)]
+    balls = [_ball_arrays(i, r) for i, r in enumerate(bearing.rows) if isinstance(r, (BallRow, FourPointRow))]
     slices = [_slice_arrays(i, r) for i, r in enumerate(bearing.rows) if isinstance(r, RollerRow)]
     vec3 = {"p_m": 3, "t": 3, "s0_m": 3, "e_r": 3, "normal": 3}
     bg = BallGroup(**_stack(balls, tuple(BallGroup.__dataclass_fields__), vec3))

@@ -63,7 +63,7 @@ import numpy as np
 from .elements import BallGroup, SliceGroup, build_groups, displacement_matrix, shift_ball_centres
 from .newton import safe_norm
 from .results import LoadDistributionError
-from .rows import BallRow, Bearing
+from .rows import BallRow, Bearing, FourPointRow
 from .solver import (
     DOF_NAMES,
     LoadDistribution,
@@ -436,6 +436,10 @@ def build_flexible_model(bearing: Bearing, rings=(), offsets=()) -> FlexibleBear
     Raises ValueError naming the field for a ring or offset that does not fit the bearing.
     """
     rings, offsets = _checked_inputs(bearing, rings, offsets)
+    for r in bearing.rows:
+        if isinstance(r, FourPointRow):
+            raise ValueError(f"bearing {bearing.name!r}: row {r.name!r} is a four-point row, which the flexible-ring "
+                             "model does not take (solve it with rigid rings: solve_load_distribution)")
     balls, slices = build_groups(bearing)
     delta = _offsets(bearing, balls, slices, offsets)
     starts = 5 + np.concatenate(([0], np.cumsum([r.body.n_modes for r in rings]))).astype(int)

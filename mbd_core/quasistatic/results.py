@@ -55,6 +55,16 @@ class RowLoads:
     contact_angle_rad : (Z,) loaded contact angle (balls); nominal 0 / π/2 (radial / thrust rollers)
     unloaded : (Z,) True where the element carries no load
     slice_load_N : (Z, n_s) slice loads of rollers, or None for balls
+
+    Four-point rows (:mod:`.rows_four_point`) also give per ball and diagonal (+α, −α), else None:
+
+    contact_load_N : (Z, 2) normal load of each diagonal, N
+    contact_angles_rad : (Z, 2) loaded contact angle of each diagonal, rad
+    contact_approach_m : (Z, 2) approach of each diagonal, m
+    n_contact_points : (Z,) int, 0, 2 or 4 (two per loaded diagonal)
+
+    and ``load_N``, ``approach_m``, ``contact_angle_rad`` are those of each ball's more loaded
+    diagonal (of the one with the larger approach where both are unloaded).
     """
 
     name: str
@@ -65,6 +75,18 @@ class RowLoads:
     contact_angle_rad: np.ndarray
     unloaded: np.ndarray
     slice_load_N: np.ndarray | None = None
+    contact_load_N: np.ndarray | None = None
+    contact_angles_rad: np.ndarray | None = None
+    contact_approach_m: np.ndarray | None = None
+    n_contact_points: np.ndarray | None = None
+
+    def diagonal(self, j: int) -> RowLoads:
+        """The loads of diagonal ``j`` (0: +α, 1: −α) of a four-point row, as a one-contact row."""
+        if self.contact_load_N is None:
+            raise ValueError(f"row {self.name!r} has one contact per element, no diagonals")
+        Q = self.contact_load_N[:, j]
+        return RowLoads(self.name, self.kind, self.azimuth_rad, Q, self.contact_approach_m[:, j],
+                        self.contact_angles_rad[:, j], Q <= 0.0)
 
     @property
     def max_load_N(self) -> float:
@@ -88,6 +110,11 @@ class RowLoads:
         }
         if self.slice_load_N is not None:
             d["slice_load_N"] = self.slice_load_N.tolist()
+        if self.contact_load_N is not None:
+            d["contact_load_N"] = self.contact_load_N.tolist()
+            d["contact_angles_deg"] = np.degrees(self.contact_angles_rad).tolist()
+            d["contact_approach_m"] = self.contact_approach_m.tolist()
+            d["n_contact_points"] = self.n_contact_points.tolist()
         return d
 
 

@@ -35,28 +35,19 @@ import math
 from dataclasses import dataclass, field
 from typing import Literal
 
-from ..contact.hertz import ball_on_groove, series_stiffness
 from ..contact.line import LINE_EXPONENT, iso16281_stiffness, palmgren_stiffness, series_line_stiffness
 from foundation.materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
 from foundation.validation import check_positive
 
-__all__ = ["BallRow", "RollerRow", "Bearing"]
+from .row_common import ball_pair_stiffness, check_count, check_finite, check_sign, settled_clearance
+from .rows_four_point import FourPointRow
+
+__all__ = ["BallRow", "FourPointRow", "RollerRow", "Bearing"]
 
 
-def _finite(owner: str, **values: float) -> None:
-    for name, v in values.items():
-        if not (isinstance(v, (int, float)) and math.isfinite(v)):
-            raise ValueError(f"{owner}: {name} must be a finite number, got {v!r}")
-
-
-def _count(owner: str, name: str, n: int, minimum: int = 1) -> None:
-    if isinstance(n, bool) or not isinstance(n, int) or n < minimum:
-        raise ValueError(f"{owner}: {name} must be an integer >= {minimum}, got {n!r}")
-
-
-def _sign(owner: str, name: str, s: int) -> None:
-    if s not in (1, -1):
-        raise ValueError(f"{owner}: {name} must be +1 or -1, got {s!r}")
+_finite = check_finite
+_count = check_count
+_sign = check_sign
 
 
 @dataclass(frozen=True)
@@ -146,32 +137,10 @@ class BallRow:
 
     def _settle_clearance(self, who: str) -> None:
         """Fill in the clearance not given from the one given (P_d = 2·radial)."""
-        d, r = self.diametral_clearance_m, self.radial_clearance_m
-        for name, v in (("diametral_clearance_m", d), ("radial_clearance_m", r)):
-            if v is not None:
-                _finite(who, **{name: v})
-        if d is None and r is None:
-            d = r = 0.0
-        elif d is None:
-            d = 2.0 * r
-        elif r is None:
-            r = 0.5 * d
-        elif abs(d - 2.0 * r) > 1e-12 * max(abs(d), 1e-12):
-            raise ValueError(
-                f"{who}: diametral_clearance_m ({d!r}) and radial_clearance_m ({r!r}) disagree "
-                "(P_d = 2·radial); give one of them, the other as None"
-            )
-        A = self.curvature_centre_distance_m
-        if r >= A * math.cos(self.contact_angle_rad) and r > 0.0:
-            raise ValueError(
-                f"{who}: radial_clearance_m = {r!r} must be below A·cos α0 = {A * math.cos(self.contact_angle_rad):.6g} m "
-                "(A = (f_m + f_f − 1)·D): with more play the ball leaves the groove before it touches"
-            )
-        if -r >= A:
-            raise ValueError(f"{who}: a preload (negative clearance) of {d!r} m exceeds the groove geometry "
-                             f"(A = {A:.6g} m)")
-        object.__setattr__(self, "diametral_clearance_m", float(d))
-        object.__setattr__(self, "radial_clearance_m", float(r))
+        d, r = settled_clearance(who, self.diametral_clearance_m, self.radial_clearance_m,
+                                 self.curvature_centre_distance_m, self.contact_angle_rad)
+        object.__setattr__(self, "diametral_clearance_m", d)
+        object.__setattr__(self, "radial_clearance_m", r)
 
     @property
     def gap_m(self) -> float:
@@ -217,13 +186,7 @@ class BallRow:
         """K of Q = K·δ^1.5 for one ball (moving and fixed contacts in series), N/m^1.5."""
         if self.stiffness_N_per_m1p5 is not None:
             return self.stiffness_N_per_m1p5
-        fixed = "outer" if self.moving_raceway == "inner" else "inner"
-        args = (self.ball_diameter_m,)
-        k_m = ball_on_groove(*args, self.conformity_moving, self.pitch_diameter_m, self.contact_angle_rad,
-                             self.moving_raceway, self.ball_material, self.race_material)
-        k_f = ball_on_groove(*args, self.conformity_fixed, self.pitch_diameter_m, self.contact_angle_rad,
-                             fixed, self.ball_material, self.race_material)
-        return series_stiffness(k_m.stiffness_N_per_m1p5, k_f.stiffness_N_per_m1p5)
+        return ball_pair_stiffness(self)
 
 
 @dataclass(frozen=True)
@@ -333,7 +296,7 @@ class Bearing:
     """Rows of rolling elements acting in parallel between one fixed and one moving ring."""
 
     name: str
-    rows: tuple[BallRow | RollerRow, ...]
+    rows: tuple[BallRow | FourPointRow | RollerRow, ...]
 
     def __post_init__(self) -> None:
         if not self.rows:
@@ -342,8 +305,8 @@ class Bearing:
         if len(set(names)) != len(names):
             raise ValueError(f"bearing {self.name!r}: row names must be unique, got {names}")
         for r in self.rows:
-            if not isinstance(r, (BallRow, RollerRow)):
-                raise ValueError(f"bearing {self.name!r}: rows must be BallRow or RollerRow, got {type(r)}")
+            if not isinstance(r, (BallRow, FourPointRow, RollerRow)):
+                raise ValueError(f"bearing {self.name!r}: rows must be BallRow, FourPointRow or RollerRow, got {type(r)}")
 
     @property
     def reference_length_m(self) -> float:

@@ -33,7 +33,7 @@ import numpy as np
 from .elements import BallGroup, SliceGroup, build_groups, displacement_matrix
 from .newton import Evaluation, minimise_potential, ray_start, safe_norm
 from .results import DOF_NAMES, LOAD_NAMES, LoadDistribution, LoadDistributionError, RingLoad, RowLoads
-from .rows import BallRow, Bearing
+from .rows import BallRow, Bearing, FourPointRow
 from .validity import approach_limit_error, load_distribution_warnings
 
 __all__ = ["RingLoad", "RowLoads", "LoadDistribution", "LoadDistributionError", "solve_load_distribution", "DOF_NAMES"]
@@ -372,6 +372,26 @@ def _collect(prob: _Problem, bearing: Bearing, load: RingLoad, q: np.ndarray, it
     return LoadDistribution(bearing.name, load.as_array(), q, rb + rs, rows, iterations, error, held, warnings)
 
 
+def _ball_angles(bg: BallGroup, m: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Loaded contact angle atan2(s_z·s·e_z, s_r·s·e_r) of the ball entries ``m``, rad."""
+    s_r = np.sum(s[m] * bg.e_r[m], axis=1) * bg.radial_sign[m]
+    return np.arctan2(s[m, 2] * bg.axial_sign[m], s_r)
+
+
+def _four_point_loads(row: FourPointRow, psi: np.ndarray, Q: np.ndarray, delta: np.ndarray,
+                      alpha: np.ndarray) -> RowLoads:
+    """RowLoads of a four-point row from its entries (two per ball, interleaved by diagonal)."""
+    Z, k = row.n_balls, len(row.DIAGONAL_SIGNS)
+    Q, delta, alpha = (np.asarray(v).reshape(Z, k) for v in (Q, delta, alpha))
+    # the more loaded diagonal of each ball; where neither is loaded, the one pressed the further
+    pick = np.where(Q[:, 0] != Q[:, 1], np.argmax(Q, axis=1), np.argmax(delta, axis=1))
+    rows_ = np.arange(Z)
+    n_points = 2 * np.count_nonzero(Q > 0.0, axis=1)
+    return RowLoads(row.name, "ball", psi, Q[rows_, pick], delta[rows_, pick], alpha[rows_, pick],
+                    Q[rows_, pick] <= 0.0, contact_load_N=Q, contact_angles_rad=alpha,
+                    contact_approach_m=delta, n_contact_points=n_points)
+
+
 def row_loads(bearing: Bearing, bg: BallGroup, sg: SliceGroup, balls, slices) -> tuple[RowLoads, ...]:
     """Per-row loads from the element results ``balls`` = (Q, δ, s) of :func:`ball_forces` and
     ``slices`` = (Q, δ) of :func:`slice_forces`."""
@@ -380,11 +400,12 @@ def row_loads(bearing: Bearing, bg: BallGroup, sg: SliceGroup, balls, slices) ->
     rows = []
     for i, row in enumerate(bearing.rows):
         psi = row.first_azimuth_rad + 2.0 * np.pi * np.arange(row.n_elements) / row.n_elements
-        if isinstance(row, BallRow):
+        if isinstance(row, FourPointRow):
             m = bg.row == i
-            s_r = np.sum(s[m] * bg.e_r[m], axis=1) * bg.radial_sign[m]
-            s_z = s[m, 2] * bg.axial_sign[m]
-            rows.append(RowLoads(row.name, "ball", psi, Qb[m], db[m], np.arctan2(s_z, s_r), Qb[m] <= 0.0))
+            rows.append(_four_point_loads(row, psi, Qb[m], db[m], _ball_angles(bg, m, s)))
+        elif isinstance(row, BallRow):
+            m = bg.row == i
+            rows.append(RowLoads(row.name, "ball", psi, Qb[m], db[m], _ball_angles(bg, m, s), Qb[m] <= 0.0))
         else:
             m = sg.row == i
             ns = row.n_slices

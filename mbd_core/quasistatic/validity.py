@@ -5,7 +5,8 @@ Checked at equilibrium, per row (limits and references in :mod:`mbd_core.contact
 * the largest contact pressure p0 of any element against the ISO 76 static limit (4.2 GPa ball,
   4.0 GPa roller bearings), balls from the Hertz contacts of both grooves at the nominal contact
   angle, roller slices as line contacts of length L/n_s on the inner (convex) raceway;
-* a ball's contact ellipse running over the groove edge (truncation), and balls whose contact
+* a ball's contact ellipse running over the groove edge (truncation; for four-point rows each
+  diagonal against its own range, apex to shoulder), and balls whose contact
   angle reached its limit or ran over the groove edge (they are unloaded there);
 * the ring displacement against a quarter of the smallest rolling-element diameter (the model
   takes small displacements: fixed element azimuths, small rotations, contact normals of the
@@ -32,9 +33,12 @@ from ..contact.limits import (
 from foundation.text import plural
 
 from ..contact.line import line_contact
-from .rows import BallRow, Bearing, RollerRow
+from .rows import BallRow, Bearing, FourPointRow, RollerRow
 
-__all__ = ["DISPLACEMENT_LIMIT_RATIO", "ANGLE_LIMIT_MARGIN_RAD", "load_distribution_warnings", "approach_limit_error"]
+#: Names of a four-point row's diagonals, in the order of its per-contact arrays.
+DIAGONAL_LABELS = ("+α", "−α")
+
+__all__ = ["DIAGONAL_LABELS", "DISPLACEMENT_LIMIT_RATIO", "ANGLE_LIMIT_MARGIN_RAD", "load_distribution_warnings", "approach_limit_error"]
 
 #: Largest ring displacement, as a fraction of the smallest rolling-element diameter, for the
 #: small-displacement model.
@@ -44,7 +48,7 @@ ANGLE_LIMIT_MARGIN_RAD = math.radians(0.5)
 
 
 def _element_diameter_m(row) -> float:
-    return row.ball_diameter_m if isinstance(row, BallRow) else row.roller_diameter_m
+    return row.ball_diameter_m if isinstance(row, (BallRow, FourPointRow)) else row.roller_diameter_m
 
 
 def approach_limit_error(bearing: Bearing, rows) -> str | None:
@@ -58,7 +62,9 @@ def approach_limit_error(bearing: Bearing, rows) -> str | None:
     return None
 
 
-def _ball_row_warnings(row: BallRow, res) -> list[str]:
+def _ball_row_warnings(row: BallRow | FourPointRow, res, which: str = "") -> list[str]:
+    """Warnings of the balls of ``row`` with loads ``res``; ``which`` names the contacts (a four-point
+    row's diagonal) in the messages."""
     fixed = "outer" if row.moving_raceway == "inner" else "inner"
     out = []
     loaded = res.load_N > 0.0
@@ -73,16 +79,16 @@ def _ball_row_warnings(row: BallRow, res) -> list[str]:
             found = [pressure_warning(float(c.max_pressure_Pa(Q)), P0_STATIC_LIMIT_BALL_PA, "ball"),
                      small_contact_warning(a, row.ball_diameter_m / 2.0),
                      groove_edge_warning(a, f * row.ball_diameter_m, alpha, lo, hi)]
-            out += [f"row {row.name!r}, {raceway} groove, ball at ψ = {math.degrees(res.azimuth_rad[i]):.4g}°: {w}"
+            out += [f"row {row.name!r}, {raceway} groove{which}, ball at ψ = {math.degrees(res.azimuth_rad[i]):.4g}°: {w}"
                     for w in found if w]
         at_limit = loaded & ((res.contact_angle_rad - lo < ANGLE_LIMIT_MARGIN_RAD)
                              | (hi - res.contact_angle_rad < ANGLE_LIMIT_MARGIN_RAD))
         if at_limit.any():
-            out.append(f"row {row.name!r}: {plural(int(at_limit.sum()), 'loaded ball')} at the groove's contact-angle limit "
+            out.append(f"row {row.name!r}{which}: {plural(int(at_limit.sum()), 'loaded ball')} at the groove's contact-angle limit "
                        f"({math.degrees(lo):.3g}° / {math.degrees(hi):.3g}°)")
     off = (res.approach_m > 0.0) & ~loaded
     if off.any():
-        out.append(f"row {row.name!r}: {plural(int(off.sum()), 'ball')} pressed beyond the groove edge carry no load "
+        out.append(f"row {row.name!r}{which}: {plural(int(off.sum()), 'ball')} pressed beyond the groove edge carry no load "
                    "(the groove model ends there)")
     return out
 
@@ -112,7 +118,13 @@ def load_distribution_warnings(bearing: Bearing, rows, q: np.ndarray) -> tuple[s
     """
     out: list[str] = []
     for row, res in zip(bearing.rows, rows):
-        out += _ball_row_warnings(row, res) if isinstance(row, BallRow) else _roller_row_warnings(row, res)
+        if isinstance(row, FourPointRow):
+            for j, label in enumerate(DIAGONAL_LABELS):
+                out += _ball_row_warnings(row, res.diagonal(j), f", diagonal {label}")
+        elif isinstance(row, BallRow):
+            out += _ball_row_warnings(row, res)
+        else:
+            out += _roller_row_warnings(row, res)
     d_min = min(_element_diameter_m(r) for r in bearing.rows)
     move = max(float(np.max(np.abs(q[:3]))), float(np.max(np.abs(q[3:]))) * bearing.reference_length_m)
     if not move <= DISPLACEMENT_LIMIT_RATIO * d_min:

@@ -1,0 +1,73 @@
+"""Checks and ball-contact constants shared by the row types of :mod:`.rows` and :mod:`.rows_four_point`."""
+
+from __future__ import annotations
+
+import math
+
+from ..contact.hertz import ball_on_groove, series_stiffness
+
+__all__ = ["check_finite", "check_count", "check_sign", "settled_clearance", "ball_pair_stiffness"]
+
+
+def check_finite(owner: str, **values: float) -> None:
+    """Raise ValueError naming the first value that is not a finite number."""
+    for name, v in values.items():
+        if not (isinstance(v, (int, float)) and math.isfinite(v)):
+            raise ValueError(f"{owner}: {name} must be a finite number, got {v!r}")
+
+
+def check_count(owner: str, name: str, n: int, minimum: int = 1) -> None:
+    if isinstance(n, bool) or not isinstance(n, int) or n < minimum:
+        raise ValueError(f"{owner}: {name} must be an integer >= {minimum}, got {n!r}")
+
+
+def check_sign(owner: str, name: str, s: int) -> None:
+    if s not in (1, -1):
+        raise ValueError(f"{owner}: {name} must be +1 or -1, got {s!r}")
+
+
+def settled_clearance(who: str, diametral_m: float | None, radial_m: float | None, A_m: float,
+                      contact_angle_rad: float) -> tuple[float, float]:
+    """(P_d, P_d/2) from whichever of the diametral and radial clearance is given, m.
+
+    Both None: no clearance. Both given: they must agree (P_d = 2·radial). The radial clearance
+    must stay below A·cos α0 (more play and the ball leaves the groove before it touches), a
+    preload (negative) below A = (f_m + f_f − 1)·D; ValueError naming the field otherwise.
+    """
+    d, r = diametral_m, radial_m
+    for name, v in (("diametral_clearance_m", d), ("radial_clearance_m", r)):
+        if v is not None:
+            check_finite(who, **{name: v})
+    if d is None and r is None:
+        d = r = 0.0
+    elif d is None:
+        d = 2.0 * r
+    elif r is None:
+        r = 0.5 * d
+    elif abs(d - 2.0 * r) > 1e-12 * max(abs(d), 1e-12):
+        raise ValueError(
+            f"{who}: diametral_clearance_m ({d!r}) and radial_clearance_m ({r!r}) disagree "
+            "(P_d = 2·radial); give one of them, the other as None"
+        )
+    if r >= A_m * math.cos(contact_angle_rad) and r > 0.0:
+        raise ValueError(
+            f"{who}: radial_clearance_m = {r!r} must be below A·cos α0 = {A_m * math.cos(contact_angle_rad):.6g} m "
+            "(A = (f_m + f_f − 1)·D): with more play the ball leaves the groove before it touches"
+        )
+    if -r >= A_m:
+        raise ValueError(f"{who}: a preload (negative clearance) of {d!r} m exceeds the groove geometry "
+                         f"(A = {A_m:.6g} m)")
+    return float(d), float(r)
+
+
+def ball_pair_stiffness(row) -> float:
+    """K of Q = K·δ^1.5 of a ball between the moving and the fixed groove of ``row`` (contacts in
+    series, Hertz constants at the nominal contact angle; Harris & Kotzalas, *Rolling Bearing
+    Analysis*, 5th ed., ch. 7), N/m^1.5. ``row`` has the fields of :class:`.rows.BallRow`."""
+    fixed = "outer" if row.moving_raceway == "inner" else "inner"
+    common = (row.ball_diameter_m,)
+    k_m = ball_on_groove(*common, row.conformity_moving, row.pitch_diameter_m, row.contact_angle_rad,
+                         row.moving_raceway, row.ball_material, row.race_material)
+    k_f = ball_on_groove(*common, row.conformity_fixed, row.pitch_diameter_m, row.contact_angle_rad,
+                         fixed, row.ball_material, row.race_material)
+    return series_stiffness(k_m.stiffness_N_per_m1p5, k_f.stiffness_N_per_m1p5)
