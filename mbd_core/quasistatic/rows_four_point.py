@@ -108,9 +108,8 @@ class FourPointRow:
             raise ValueError(f"{who}: shoulder_angle must lie in (0, 90] deg, got "
                              f"{math.degrees(self.shoulder_angle_rad):.6g}")
         if not 0.0 < self.contact_angle_rad < self.shoulder_angle_rad:
-            raise ValueError(f"{who}: contact_angle must lie between 0 deg and the shoulder angle "
-                             f"({math.degrees(self.shoulder_angle_rad):.6g} deg), got "
-                             f"{math.degrees(self.contact_angle_rad):.6g}")
+            raise ValueError(f"{who}: contact_angle ({math.degrees(self.contact_angle_rad):.6g} deg) must lie "
+                             f"between 0 deg and shoulder_angle ({math.degrees(self.shoulder_angle_rad):.6g} deg)")
         for name in ("conformity_moving", "conformity_fixed"):
             f = getattr(self, name)
             if not (isinstance(f, (int, float)) and f > 0.5):
