@@ -10,7 +10,7 @@ from .flexible import (
     solve_flexible_load_distribution,
 )
 from .rows import BallRow, Bearing, FourPointRow, RollerRow
-from .solver import LoadDistribution, LoadDistributionError, RingLoad, solve_load_distribution
+from .solver import LoadDistribution, LoadDistributionError, RingLoad, solve_load_distribution, stiffness_matrix
 
 __all__ = [
     "BallRow",
@@ -21,6 +21,7 @@ __all__ = [
     "LoadDistribution",
     "LoadDistributionError",
     "solve_load_distribution",
+    "stiffness_matrix",
     "FlexibleRing",
     "GrooveOffset",
     "FlexibleBearingModel",

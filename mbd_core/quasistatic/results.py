@@ -7,11 +7,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["DOF_NAMES", "LOAD_NAMES", "RingLoad", "RowLoads", "LoadDistribution", "LoadDistributionError"]
+__all__ = ["DOF_NAMES", "LOAD_NAMES", "STIFFNESS_UNITS", "stiffness_to_dict", "RingLoad", "RowLoads", "LoadDistribution", "LoadDistributionError"]
 
 #: Names of the unknowns and of the matching load components.
 DOF_NAMES = ("x", "y", "z", "rot_x", "rot_y")
 LOAD_NAMES = ("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm")
+
+
+#: Units of the entries K[i, j] = dF_i/dq_j of a bearing's stiffness matrix.
+STIFFNESS_UNITS = tuple(tuple(f"{f}/{d}" for d in ("m", "m", "m", "rad", "rad")) for f in ("N", "N", "N", "N·m", "N·m"))
+
+
+def stiffness_to_dict(K: np.ndarray) -> dict:
+    """A (5, 5) stiffness matrix with the names of its rows (loads), columns (displacements) and units."""
+    return {"rows": list(LOAD_NAMES), "columns": list(DOF_NAMES),
+            "units": [list(u) for u in STIFFNESS_UNITS], "values": np.asarray(K).tolist()}
 
 
 class LoadDistributionError(RuntimeError):
@@ -138,6 +148,11 @@ class LoadDistribution:
         Where the result lies outside the model's validity (see :mod:`.validity`): contact
         pressure above the ISO 76 static limit, contact ellipse beyond the groove edge, contact
         angle at its limit, ring displacement too large for the small-displacement model.
+    stiffness : (5, 5) or None
+        Tangent stiffness K = dF/dq of the bearing at the equilibrium (rigid rings): the change of
+        the load (Fx, Fy, Fz, Mx, My) that holds the moving ring at q = (x, y, z, θx, θy) per
+        change of q; units N/m, N/rad, N·m/m, N·m/rad (:data:`STIFFNESS_UNITS`). See
+        :func:`.solver.stiffness_matrix`.
     """
 
     bearing_name: str
@@ -149,6 +164,7 @@ class LoadDistribution:
     equilibrium_error: float
     held_dofs: tuple[str, ...] = ()
     warnings: tuple[str, ...] = ()
+    stiffness: np.ndarray | None = None
 
     def row(self, name: str) -> RowLoads:
         for r in self.rows:
@@ -167,4 +183,5 @@ class LoadDistribution:
             "held_dofs": list(self.held_dofs),
             "warnings": list(self.warnings),
             "rows": [r.to_dict() for r in self.rows],
+            **({} if self.stiffness is None else {"stiffness_matrix": stiffness_to_dict(self.stiffness)}),
         }

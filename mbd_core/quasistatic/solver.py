@@ -36,7 +36,8 @@ from .results import DOF_NAMES, LOAD_NAMES, LoadDistribution, LoadDistributionEr
 from .rows import BallRow, Bearing, FourPointRow
 from .validity import approach_limit_error, load_distribution_warnings
 
-__all__ = ["RingLoad", "RowLoads", "LoadDistribution", "LoadDistributionError", "solve_load_distribution", "DOF_NAMES"]
+__all__ = ["RingLoad", "RowLoads", "LoadDistribution", "LoadDistributionError", "solve_load_distribution",
+           "stiffness_matrix", "DOF_NAMES"]
 
 log = logging.getLogger(__name__)
 
@@ -369,7 +370,37 @@ def _collect(prob: _Problem, bearing: Bearing, load: RingLoad, q: np.ndarray, it
     warnings = load_distribution_warnings(bearing, rows, q)
     if warnings:
         log.info("bearing %r: %d validity warnings, the first: %s", bearing.name, len(warnings), warnings[0])
-    return LoadDistribution(bearing.name, load.as_array(), q, rb + rs, rows, iterations, error, held, warnings)
+    return LoadDistribution(bearing.name, load.as_array(), q, rb + rs, rows, iterations, error, held, warnings,
+                            tangent_stiffness(prob, q))
+
+
+def tangent_stiffness(prob: _Problem, q: np.ndarray) -> np.ndarray:
+    """K = dF/dq (5, 5) at q: minus the analytic Jacobian of the element reaction (the load F that
+    holds the ring at q is −reaction(q)), balls past a groove edge or shoulder left out."""
+    return -prob.reaction(q, jacobian=True)[1]
+
+
+def stiffness_matrix(bearing: Bearing, dist: LoadDistribution) -> np.ndarray:
+    """Tangent stiffness of ``bearing`` at the equilibrium ``dist`` (rigid rings), (5, 5).
+
+    K[i, j] = dF_i/dq_j, F = (Fx, Fy, Fz, Mx, My) the load on the moving ring (N, N·m) that holds
+    it at q = (x, y, z, θx, θy) (m, rad): units N/m, N/rad, N·m/m, N·m/rad
+    (:data:`.results.STIFFNESS_UNITS`). From the analytic Jacobian of the element forces
+    (:func:`ball_forces`, :func:`slice_forces`): K = Σ Bᵀ·(dQ/dδ·n·nᵀ + Q/|s|·(I − n·nᵀ − t·tᵀ))·B
+    over the balls (the second term the geometric stiffness of the turning line of centres,
+    Harris & Kotzalas, *Advanced Concepts of Bearing Technology*, 5th ed., ch. 1) plus Σ dq/dδ·w·wᵀ
+    over the roller slices; symmetric. A held degree of freedom (:attr:`LoadDistribution.held_dofs`)
+    has a zero row and column. Also in ``dist.stiffness`` of a :func:`solve_load_distribution` result.
+    """
+    if not isinstance(dist, LoadDistribution):
+        raise TypeError(f"dist must be a LoadDistribution, got {type(dist).__name__}")
+    if not isinstance(bearing, Bearing):
+        raise TypeError(f"bearing must be a Bearing, got {type(bearing).__name__}")
+    names = [r.name for r in bearing.rows]
+    if dist.bearing_name != bearing.name or [r.name for r in dist.rows] != names:
+        raise ValueError(f"dist: the load distribution of bearing {dist.bearing_name!r} (rows "
+                         f"{[r.name for r in dist.rows]}) is not one of bearing {bearing.name!r} (rows {names})")
+    return tangent_stiffness(_Problem(bearing), np.asarray(dist.displacement, dtype=float))
 
 
 def _ball_angles(bg: BallGroup, m: np.ndarray, s: np.ndarray) -> np.ndarray:
