@@ -242,3 +242,46 @@ def test_bad_input_names_the_field(field, value):
     kw[field] = value
     with pytest.raises(ValueError, match=field.replace("_rad", "").replace("_m", "")):
         FourPointRow(**kw)
+
+
+@pytest.mark.parametrize("clearance_m", [40e-6, 120e-6])
+def test_clearance_is_the_free_play_of_the_gothic_arches(clearance_m):
+    """A radial clearance c moves the arches apart radially, both diagonals alike. Under a small
+    radial load F the balls about ψ = 0 touch on both diagonals: s = (A·cos α0 − c + x·cos ψ, ±A·sin α0)
+    (the tangential part of the motion does not press the ball), Σ 2·K·(|s| − A)^1.5·(s_r/|s|)·cos ψ = F,
+    so the ring moves by the free play c plus the elastic part. Under
+    a small axial load every ball's +α diagonal touches: s = (A·cos α0 − c, A·sin α0 + z),
+    Z·K·(|s| − A)^1.5·s_z/|s| = F; the free play is √(A² − (A·cos α0 − c)²) − A·sin α0. Both solved
+    here with brentq; agreement to 1e-9 relative (the solver's tolerance 1e-12)."""
+    row = _row(clearance_m)
+    bearing = Bearing("b", (row,))
+    A, a0, K, Z = row.curvature_centre_distance_m, row.contact_angle_rad, row.contact_stiffness(), row.n_balls
+    F = 100.0
+
+    psi = 2 * np.pi * np.arange(Z) / Z
+
+    def radial(x):
+        sr, sz = A * math.cos(a0) - clearance_m + x * np.cos(psi), A * math.sin(a0)
+        L = np.hypot(sr, sz)
+        return float(np.sum(2 * K * np.maximum(L - A, 0.0) ** 1.5 * sr / L * np.cos(psi))) - F
+
+    def axial(z):
+        sr, sz = A * math.cos(a0) - clearance_m, A * math.sin(a0) + z
+        L = math.hypot(sr, sz)
+        return Z * K * max(L - A, 0.0) ** 1.5 * sz / L - F
+
+    z_free = math.sqrt(A**2 - (A * math.cos(a0) - clearance_m) ** 2) - A * math.sin(a0)
+    x_ref = brentq(radial, clearance_m, clearance_m + 1e-4, xtol=1e-18, rtol=1e-14)
+    z_ref = brentq(axial, z_free, z_free + 1e-4, xtol=1e-18, rtol=1e-14)
+    q = solve_load_distribution(bearing, RingLoad(Fx_N=F), tolerance=1e-12).displacement
+    assert q[0] == pytest.approx(x_ref, rel=1e-9)
+    res = solve_load_distribution(bearing, RingLoad(Fz_N=F), tolerance=1e-12)
+    assert res.displacement[2] == pytest.approx(z_ref, rel=1e-9)
+    assert 0.0 < z_ref - z_free < 0.05 * z_free and np.all(res.rows[0].n_contact_points == 2)
+
+
+def test_flexible_rings_refuse_four_point_rows():
+    from mbd_core.quasistatic.flexible import build_flexible_model
+
+    with pytest.raises(ValueError, match="row 'fp' is a four-point row"):
+        build_flexible_model(Bearing("b", (_row(),)))
