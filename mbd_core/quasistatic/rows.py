@@ -23,6 +23,9 @@ run over the groove edge and is unloaded, so a single-row angular-contact ring t
 it cannot carry instead of the ball finding the opposite flank of a full torus. Ball centrifugal
 force and gyroscopic moment are neglected (slow bearings).
 
+Four-point (gothic-arch) ball rows, two such ball pairs per ball along the diagonals ±α, are in
+:mod:`.rows_four_point`.
+
 Roller rows (ISO/TS 16281 slices): a roller of effective length L is cut into n_s slices; slice
 k at distance x_k from the roller centre has approach δ_k = u(p_k)·n − gap − drop(x_k) along the
 fixed contact normal n (radial row: n = s·e_r; thrust row: n = s·e_z) and carries
@@ -43,11 +46,6 @@ from .row_common import ball_pair_stiffness, check_count, check_finite, check_si
 from .rows_four_point import FourPointRow
 
 __all__ = ["BallRow", "FourPointRow", "RollerRow", "Bearing"]
-
-
-_finite = check_finite
-_count = check_count
-_sign = check_sign
 
 
 @dataclass(frozen=True)
@@ -108,7 +106,7 @@ class BallRow:
 
     def __post_init__(self) -> None:
         who = f"ball row {self.name!r}"
-        _count(who, "n_balls", self.n_balls)
+        check_count(who, "n_balls", self.n_balls)
         check_positive(who, ball_diameter_m=self.ball_diameter_m, pitch_diameter_m=self.pitch_diameter_m)
         if self.pitch_diameter_m <= self.ball_diameter_m:
             raise ValueError(f"{who}: pitch_diameter_m must exceed ball_diameter_m")
@@ -124,9 +122,9 @@ class BallRow:
                 )
         if self.moving_raceway not in ("inner", "outer"):
             raise ValueError(f"{who}: moving_raceway must be 'inner' or 'outer', got {self.moving_raceway!r}")
-        _sign(who, "axial_sign", self.axial_sign)
+        check_sign(who, "axial_sign", self.axial_sign)
         self._settle_clearance(who)
-        _finite(who, axial_position_m=self.axial_position_m, first_azimuth_rad=self.first_azimuth_rad)
+        check_finite(who, axial_position_m=self.axial_position_m, first_azimuth_rad=self.first_azimuth_rad)
         if self.stiffness_N_per_m1p5 is not None:
             check_positive(who, stiffness_N_per_m1p5=self.stiffness_N_per_m1p5)
         if self.n_balls * self.ball_diameter_m > math.pi * self.pitch_diameter_m * (1 + 1e-9):
@@ -247,14 +245,14 @@ class RollerRow:
 
     def __post_init__(self) -> None:
         who = f"roller row {self.name!r}"
-        _count(who, "n_rollers", self.n_rollers)
-        _count(who, "n_slices", self.n_slices)
+        check_count(who, "n_rollers", self.n_rollers)
+        check_count(who, "n_slices", self.n_slices)
         check_positive(who, roller_diameter_m=self.roller_diameter_m, roller_length_m=self.roller_length_m,
                   pitch_diameter_m=self.pitch_diameter_m)
         if self.orientation not in ("radial", "thrust"):
             raise ValueError(f"{who}: orientation must be 'radial' or 'thrust', got {self.orientation!r}")
-        _sign(who, "load_sign", self.load_sign)
-        _finite(who, gap_m=self.gap_m, axial_position_m=self.axial_position_m,
+        check_sign(who, "load_sign", self.load_sign)
+        check_finite(who, gap_m=self.gap_m, axial_position_m=self.axial_position_m,
                 crown_drop_m=self.crown_drop_m, first_azimuth_rad=self.first_azimuth_rad)
         if self.crown_drop_m < 0.0:
             raise ValueError(f"{who}: crown_drop_m must be >= 0, got {self.crown_drop_m}")
