@@ -4,14 +4,15 @@ Each ring's groove is a gothic arch: two circular arcs of radius f·D whose curv
 offset to either side of the ball's mid-plane, so that a ball can touch each ring at two points.
 The contacts pair up along two diagonals through the ball centre, at +α and −α (α0 nominal,
 typically 45°). With rigid rings each diagonal behaves as an angular-contact pair whose curvature
-centres are A = (f_m + f_f − 1)·D apart when the ball touches unloaded (Amasorrain, Sagartzazu &
-Damián, "Load distribution in a four contact-point slewing bearing", Mech. Mach. Theory 38 (2003)
-479–496, § 2: the contact problem of each diagonal is that of an angular-contact ball bearing;
-Aguirrebeitia, Avilés, Fernández de Bustos & Abasolo, "Calculation of general static
-load-carrying capacity for the design of four-contact-point slewing bearings", J. Mech. Des. 132
-(2010) 064501, the same two-diagonal model). So a ball carries two entries of the solver's ball
-group, one per diagonal, each the pair of :class:`.rows.BallRow` with axial sign +1 (the
-diagonal loaded when the moving ring moves towards +z: +α) or −1 (−α).
+centres are A = (f_m + f_f − 1)·D apart when the ball touches unloaded, the model of
+Amasorrain, Sagartzazu & Damián, "Load distribution in a four contact-point slewing bearing",
+Mech. Mach. Theory 38 (2003) 479–496, and of Aguirrebeitia, Avilés, Fernández de Bustos &
+Abasolo, "Calculation of general static load-carrying capacity for the design of
+four-contact-point slewing bearings", J. Mech. Des. 132 (2010) 064501; the approach of each
+diagonal is the change of its curvature-centre distance and Q = K·δ^1.5 as for an angular-contact
+ball (Harris & Kotzalas, *Rolling Bearing Analysis*, 5th ed., ch. 2 and 7). So a ball carries
+two entries of the solver's ball group, one per diagonal, each the pair of :class:`.rows.BallRow`
+with axial sign +1 (the diagonal loaded when the moving ring moves towards +z: +α) or −1 (−α).
 
 Each diagonal carries contact angles only on its own side of the groove, from the arch apex
 (0°) up to the groove shoulder; beyond the shoulder the ball rides over it and the diagonal is
