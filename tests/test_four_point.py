@@ -285,3 +285,20 @@ def test_flexible_rings_refuse_four_point_rows():
 
     with pytest.raises(ValueError, match="row 'fp' is a four-point row"):
         build_flexible_model(Bearing("b", (_row(),)))
+
+
+def test_validity_warnings_name_the_diagonal():
+    """A heavy axial load widens the contact ellipses of the +α diagonal past the 70° shoulder: the
+    warning names the row, groove and diagonal, and agrees with the contact sets' truncation
+    (ellipse ±a/(f·D) about α on the arc, Harris & Kotzalas ch. 6); the unloaded −α diagonal has none."""
+    row = _row(0.0)
+    bearing = Bearing("b", (row,))
+    dist = solve_load_distribution(bearing, RingLoad(Fz_N=2e6))
+    sets = {s.label: s for s in contact_sets(bearing, dist)}
+    for raceway in ("inner", "outer"):
+        s = sets[f"{raceway} groove, diagonal +α"]
+        assert s.truncated.all()
+        assert any(w.startswith(f"row 'fp', {raceway} groove, diagonal +α") and "[0°, 70°]" in w
+                   for w in dist.warnings)
+        assert not sets[f"{raceway} groove, diagonal −α"].truncated.any()
+    assert not any("−α" in w for w in dist.warnings)
