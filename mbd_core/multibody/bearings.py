@@ -159,7 +159,7 @@ def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_rin
     D, L, R, ns = row.roller_diameter_m, row.roller_length_m, row.pitch_diameter_m / 2, row.n_slices
     g2 = row.gap_m / 2
     x = -0.5 * L + (np.arange(ns) + 0.5) * L / ns
-    drop = row.crown_drop_m * (2.0 * x / L) ** 2
+    drop = row.drop_m(x)
     if roller_law is None:
         law = _law(row.contact_stiffness() * 2.0**LINE_EXPONENT / ns, LINE_EXPONENT, damping_N_s_m, d_max_m, friction)
     else:

@@ -139,7 +139,7 @@ def _slice_arrays(i_row: int, row: RollerRow) -> dict[str, np.ndarray]:
     e_z = np.array([0.0, 0.0, 1.0])
     L = row.roller_length_m
     x = np.tile(-0.5 * L + (np.arange(ns) + 0.5) * L / ns, n)  # slice centres along the roller
-    drop = row.crown_drop_m * (2.0 * x / L) ** 2
+    drop = row.drop_m(x)
     R = 0.5 * row.pitch_diameter_m
     if row.orientation == "radial":
         p = R * e_r + (row.axial_position_m + x)[:, None] * e_z

@@ -29,13 +29,18 @@ Four-point (gothic-arch) ball rows, two such ball pairs per ball along the diago
 Roller rows (ISO/TS 16281 slices): a roller of effective length L is cut into n_s slices; slice
 k at distance x_k from the roller centre has approach δ_k = u(p_k)·n − gap − drop(x_k) along the
 fixed contact normal n (radial row: n = s·e_r; thrust row: n = s·e_z) and carries
-q_k = (c_L/n_s)·δ_k^(10/9), c_L the roller's constant between both raceways.
+q_k = (c_L/n_s)·δ_k^(10/9), c_L the roller's constant between both raceways. The roller profile
+drop(x) is parabolic, c·(2x/L)² with c the crown drop at the ends (0: straight roller), or
+logarithmic, p·ln(1/(1 − (2x/L)²)) (ISO/TS 16281:2008, the logarithmic roller profile; its default
+relief p = 0.00035·D_we), see :func:`roller_drop_m`.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+
+import numpy as np
 from typing import Literal
 
 from ..contact.line import LINE_EXPONENT, iso16281_stiffness, palmgren_stiffness, series_line_stiffness
@@ -45,7 +50,27 @@ from foundation.validation import check_positive
 from .row_common import ball_pair_stiffness, check_count, check_finite, check_sign, settled_clearance
 from .rows_four_point import FourPointRow
 
-__all__ = ["BallRow", "FourPointRow", "RollerRow", "Bearing"]
+__all__ = ["BallRow", "FourPointRow", "RollerRow", "Bearing", "roller_drop_m", "ISO16281_LOG_RELIEF_PER_D"]
+
+#: Default relief of the logarithmic roller profile per roller diameter, ISO/TS 16281:2008
+#: (p = 0.00035·D_we; about 3000 MPa of contact pressure for short cylindrical rollers).
+ISO16281_LOG_RELIEF_PER_D = 0.00035
+
+
+def roller_drop_m(x_m: np.ndarray, length_m: float, profile: str, crown_drop_m: float,
+                  log_relief_m: float) -> np.ndarray:
+    """Drop of the roller surface below its straight generatrix at ``x_m`` (n,) from the centre, m.
+
+    ``"parabolic"``: c·(2x/L)², c = ``crown_drop_m`` (0: straight roller).
+    ``"logarithmic"``: p·ln(1/(1 − (2x/L)²)), p = ``log_relief_m`` (ISO/TS 16281:2008, logarithmic
+    roller profile; Lundberg's profile in the form of Johns & Gohar, "Roller bearings under radial
+    and eccentric loads", Tribology International 14 (1981) 131–136). Finite for |x| < L/2, where
+    the slice centres lie.
+    """
+    u = 2.0 * x_m / length_m
+    if profile == "logarithmic":
+        return -log_relief_m * np.log1p(-u * u)
+    return crown_drop_m * u ** 2
 
 
 @dataclass(frozen=True)
@@ -216,7 +241,12 @@ class RollerRow:
     n_slices : int
         Slices per roller (ISO/TS 16281 suggests ≥ 20 for tilted rollers).
     crown_drop_m : float
-        Drop of a parabolic crown at the roller ends, m (0 = straight roller).
+        Drop of a parabolic crown at the roller ends, m (0 = straight roller); profile "parabolic".
+    profile : {"parabolic", "logarithmic"}
+        Roller profile (:func:`roller_drop_m`): a parabolic crown of ``crown_drop_m`` (default) or
+        the logarithmic profile of ISO/TS 16281:2008 with relief ``log_relief_m``.
+    log_relief_m : float or None
+        Relief p of the logarithmic profile, m; None: the ISO/TS 16281 default 0.00035·D_we.
     stiffness_law : {"iso16281", "palmgren"}
         c_L from ISO/TS 16281 (default) or two Palmgren contacts in series.
     stiffness_N_per_m10_9 : float or None
@@ -242,6 +272,8 @@ class RollerRow:
     first_azimuth_rad: float = 0.0
     roller_material: ElasticMaterial = field(default=BEARING_STEEL)
     race_material: ElasticMaterial = field(default=BEARING_STEEL)
+    profile: Literal["parabolic", "logarithmic"] = "parabolic"
+    log_relief_m: float | None = None
 
     def __post_init__(self) -> None:
         who = f"roller row {self.name!r}"
@@ -256,6 +288,7 @@ class RollerRow:
                 crown_drop_m=self.crown_drop_m, first_azimuth_rad=self.first_azimuth_rad)
         if self.crown_drop_m < 0.0:
             raise ValueError(f"{who}: crown_drop_m must be >= 0, got {self.crown_drop_m}")
+        self._check_profile(who)
         if self.stiffness_law not in ("iso16281", "palmgren"):
             raise ValueError(f"{who}: stiffness_law must be 'iso16281' or 'palmgren', got {self.stiffness_law!r}")
         if self.stiffness_N_per_m10_9 is not None:
@@ -269,6 +302,26 @@ class RollerRow:
                 f"{who}: {self.n_rollers} rollers of {self.roller_diameter_m} m do not fit on the pitch circle "
                 f"of {self.pitch_diameter_m} m"
             )
+
+    def _check_profile(self, who: str) -> None:
+        if self.profile not in ("parabolic", "logarithmic"):
+            raise ValueError(f"{who}: profile must be 'parabolic' or 'logarithmic', got {self.profile!r}")
+        if self.profile == "logarithmic" and self.crown_drop_m != 0.0:
+            raise ValueError(f"{who}: crown_drop_m must be 0 with the logarithmic profile, got {self.crown_drop_m}")
+        if self.log_relief_m is not None:
+            if self.profile != "logarithmic":
+                raise ValueError(f"{who}: log_relief_m is only used by the logarithmic profile")
+            check_positive(who, log_relief_m=self.log_relief_m)
+
+    @property
+    def log_relief_or_default_m(self) -> float:
+        """Relief p of the logarithmic profile, m (the ISO/TS 16281 default when not given)."""
+        return ISO16281_LOG_RELIEF_PER_D * self.roller_diameter_m if self.log_relief_m is None else self.log_relief_m
+
+    def drop_m(self, x_m: np.ndarray) -> np.ndarray:
+        """Profile drop at ``x_m`` (n,) from the roller centre, m (:func:`roller_drop_m`)."""
+        return roller_drop_m(x_m, self.roller_length_m, self.profile, self.crown_drop_m,
+                             self.log_relief_or_default_m)
 
     @property
     def n_elements(self) -> int:

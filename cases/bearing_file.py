@@ -1,0 +1,273 @@
+"""Bearing description files (TOML): a bearing's rows, materials and load, read into :mod:`mbd_core.quasistatic`.
+
+The format reference, every key with its unit, is ``cases/bearings/README.md``. In short::
+
+    [bearing]                  # name, description, moving_ring = "inner" | "outer"
+    [materials.NAME]           # E_Pa, nu, density_kg_m3; "bearing_steel" is built in
+    [[rows]]                   # type = one of ROW_TYPES (cases.bearing_rows), then its keys
+    [load]                     # Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm, or spectrum_csv = "file.csv"
+
+Everything is checked before any work; every error is a :class:`cases.config.CaseError` whose
+one-line message starts with the dotted key (``rows[2].conformity_inner: must be > 0.5 …``) or
+the file. A spectrum CSV (path relative to the description file) has the columns
+``Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm`` and optionally ``time_share``, one load case a line.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, fields
+from pathlib import Path
+from typing import Literal
+
+from foundation.materials import BEARING_STEEL, ElasticMaterial
+from mbd_core.quasistatic import Bearing, RingLoad
+from mbd_core.quasistatic.results import LOAD_NAMES
+
+from .bearing_rows import ROW_TYPES, RowContext, build_rows
+from .config import CaseError, from_mapping, parse_toml, read_toml
+
+__all__ = ["BearingDescription", "BUILTIN_DIR", "read_bearing_file", "loads_bearing", "bearing_from_mapping",
+           "read_spectrum_csv", "MAX_LOAD_CASES"]
+
+#: Folder of the description files shipped with the package (the built-in bearings).
+BUILTIN_DIR = Path(__file__).resolve().parent / "bearings"
+#: Name of the built-in material (:data:`foundation.materials.BEARING_STEEL`).
+BUILTIN_MATERIAL = "bearing_steel"
+#: Most load cases a spectrum file may hold.
+MAX_LOAD_CASES = 10_000
+TIME_SHARE = "time_share"
+
+
+@dataclass(frozen=True)
+class BearingKeys:
+    """``[bearing]``: ``name``; ``description`` (free text); ``moving_ring`` (the ring the load acts on)."""
+
+    name: str
+    description: str = ""
+    moving_ring: Literal["inner", "outer"] = "inner"
+
+    def __post_init__(self) -> None:
+        if not self.name.strip():
+            raise ValueError("name: must not be empty")
+
+
+@dataclass(frozen=True)
+class MaterialKeys:
+    """``[materials.NAME]``: Young's modulus Pa, Poisson's ratio, density kg/m³."""
+
+    E_Pa: float
+    nu: float
+    density_kg_m3: float = 7850.0
+
+
+@dataclass(frozen=True)
+class LoadKeys:
+    """``[load]``: the load on the moving ring at the bearing centre (N, N·m), or a spectrum file."""
+
+    Fx_N: float = 0.0
+    Fy_N: float = 0.0
+    Fz_N: float = 0.0
+    Mx_Nm: float = 0.0
+    My_Nm: float = 0.0
+    spectrum_csv: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.spectrum_csv is not None:
+            given = [n for n in LOAD_NAMES if getattr(self, n) != 0.0]
+            if given:
+                raise ValueError(f"spectrum_csv: give the load components or a spectrum file, not both ({given[0]} given)")
+            if not self.spectrum_csv.strip():
+                raise ValueError("spectrum_csv: must name a file")
+
+
+@dataclass(frozen=True)
+class BearingDescription:
+    """A bearing read from a description file.
+
+    Attributes
+    ----------
+    name, description : str
+    bearing : Bearing
+        The rows, ready for :func:`mbd_core.quasistatic.solve_load_distribution`.
+    load_cases : tuple of RingLoad
+        The file's load: one case, or one per line of its spectrum CSV.
+    time_share : tuple of float or None
+        The spectrum's time shares (None when the file has none).
+    source : str
+        The file read.
+    """
+
+    name: str
+    description: str
+    bearing: Bearing
+    load_cases: tuple[RingLoad, ...]
+    time_share: tuple[float, ...] | None = None
+    source: str = "<string>"
+
+    @property
+    def default_load(self) -> RingLoad:
+        """The first load case (the only one unless the file gives a spectrum)."""
+        return self.load_cases[0]
+
+
+def _materials(data, where: str = "materials") -> dict[str, ElasticMaterial]:
+    out = {BUILTIN_MATERIAL: BEARING_STEEL}
+    if data is None:
+        return out
+    if not isinstance(data, Mapping):
+        raise CaseError(f"{where}: expected a table of [materials.NAME] tables, got {data!r:.60}")
+    for name, table in data.items():
+        at = f"{where}.{name}"
+        if name == BUILTIN_MATERIAL:
+            raise CaseError(f"{at}: {BUILTIN_MATERIAL!r} is built in (E = 207 GPa, ν = 0.29); name yours differently")
+        keys = from_mapping(MaterialKeys, table, at)
+        try:
+            out[name] = ElasticMaterial(name, keys.E_Pa, keys.nu, keys.density_kg_m3)
+        except ValueError as exc:
+            key, _, rest = str(exc).partition(": ")[2].partition(" ")
+            raise CaseError(f"{at}.{key}: {rest}") from None
+    return out
+
+
+def _row_tables(data) -> list:
+    if data is None:
+        raise CaseError("rows: missing key (at least one [[rows]] table)")
+    if not isinstance(data, list) or not data:
+        raise CaseError(f"rows: expected one or more [[rows]] tables, got {data!r:.60}")
+    return data
+
+
+def _rows(data, ctx_of) -> tuple:
+    """All rows of the ``[[rows]]`` tables, in file order."""
+    rows, first_use = [], {}
+    for i, table in enumerate(_row_tables(data)):
+        where = f"rows[{i}]"
+        if not isinstance(table, Mapping):
+            raise CaseError(f"{where}: expected a table, got {table!r:.60}")
+        kind = table.get("type")
+        if kind is None:
+            raise CaseError(f"{where}.type: missing key; one of {', '.join(ROW_TYPES)}")
+        if not isinstance(kind, str) or kind not in ROW_TYPES:
+            raise CaseError(f"{where}.type: unknown row type {kind!r:.60}; one of {', '.join(ROW_TYPES)}")
+        row_type = ROW_TYPES[kind]
+        keys = from_mapping(row_type.keys, {k: v for k, v in table.items() if k != "type"}, where)
+        for row in build_rows(keys, row_type, ctx_of(where)):
+            if row.name in first_use:
+                raise CaseError(f"{where}.name: row name {row.name!r} is already used by {first_use[row.name]}")
+            first_use[row.name] = where
+            rows.append(row)
+    return tuple(rows)
+
+
+def _number(text: str, at: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise CaseError(f"{at}: not a number: {text.strip()!r:.40}") from None
+    if not math.isfinite(value):
+        raise CaseError(f"{at}: not a finite number: {text.strip()!r:.40}")
+    return value
+
+
+def _spectrum_header(header: list[str], at: str) -> list[str]:
+    names = [h.strip() for h in header]
+    known = (*LOAD_NAMES, TIME_SHARE)
+    for name in names:
+        if name not in known:
+            raise CaseError(f"{at}: unknown column {name!r:.40}; the columns are {', '.join(known)} (time_share optional)")
+    missing = [n for n in LOAD_NAMES if n not in names]
+    if missing:
+        raise CaseError(f"{at}: column {missing[0]} missing; the columns are {', '.join(known)} (time_share optional)")
+    if len(set(names)) != len(names):
+        raise CaseError(f"{at}: a column appears twice in {', '.join(names)}")
+    return names
+
+
+def read_spectrum_csv(path: Path, key: str = "load.spectrum_csv") -> tuple[tuple[RingLoad, ...], tuple[float, ...] | None]:
+    """Load cases (and time shares, or None) of a spectrum CSV; CaseError naming ``key``, the file, row and column."""
+    at = f"{key}: {path}"
+    try:
+        text = path.read_bytes().decode("utf-8-sig")
+    except OSError as exc:
+        raise CaseError(f"{at}: cannot read: {exc.strerror or exc}") from None
+    except UnicodeDecodeError as exc:
+        raise CaseError(f"{at}: not UTF-8 text (byte {exc.start})") from None
+    try:
+        lines = [r for r in csv.reader(io.StringIO(text)) if any(c.strip() for c in r)]
+    except csv.Error as exc:
+        raise CaseError(f"{at}: not a CSV file: {exc}") from None
+    if not lines:
+        raise CaseError(f"{at}: empty (expected a header {', '.join(LOAD_NAMES)}[, {TIME_SHARE}] and one line per case)")
+    names = _spectrum_header(lines[0], f"{at}, header")
+    if len(lines) == 1:
+        raise CaseError(f"{at}: no load cases below the header")
+    if len(lines) - 1 > MAX_LOAD_CASES:
+        raise CaseError(f"{at}: {len(lines) - 1} load cases, at most {MAX_LOAD_CASES}")
+    loads, shares = [], []
+    for n, line in enumerate(lines[1:], start=2):
+        if len(line) != len(names):
+            raise CaseError(f"{at}: row {n}: {len(line)} values for {len(names)} columns")
+        values = {name: _number(cell, f"{at}: row {n}, column {name}") for name, cell in zip(names, line)}
+        loads.append(RingLoad(**{k: values[k] for k in LOAD_NAMES}))
+        if TIME_SHARE in values:
+            if values[TIME_SHARE] < 0.0:
+                raise CaseError(f"{at}: row {n}, column {TIME_SHARE}: must be >= 0, got {values[TIME_SHARE]!r}")
+            shares.append(values[TIME_SHARE])
+    if shares and not sum(shares) > 0.0:
+        raise CaseError(f"{at}: column {TIME_SHARE}: the shares sum to 0")
+    return tuple(loads), (tuple(shares) if shares else None)
+
+
+def _load(data, base_dir: Path | None) -> tuple[tuple[RingLoad, ...], tuple[float, ...] | None]:
+    keys = from_mapping(LoadKeys, {} if data is None else data, "load")
+    if keys.spectrum_csv is None:
+        return (RingLoad(**{n: getattr(keys, n) for n in LOAD_NAMES}),), None
+    path = Path(keys.spectrum_csv)
+    if not path.is_absolute():
+        if base_dir is None:
+            raise CaseError("load.spectrum_csv: a relative path needs the description file's folder")
+        path = base_dir / path
+    return read_spectrum_csv(path)
+
+
+TOP_LEVEL = ("bearing", "materials", "rows", "load")
+
+
+def bearing_from_mapping(data: Mapping, base_dir: Path | None = None, source: str = "<string>") -> BearingDescription:
+    """A :class:`BearingDescription` from the table of a description file (``base_dir``: the file's folder)."""
+    unknown = sorted(set(data) - set(TOP_LEVEL))
+    if unknown:
+        raise CaseError(f"{unknown[0]}: unknown key (known: {', '.join(TOP_LEVEL)})")
+    if "bearing" not in data:
+        raise CaseError("bearing: missing key (a [bearing] table with at least name)")
+    head = from_mapping(BearingKeys, data["bearing"], "bearing")
+    materials = _materials(data.get("materials"))
+    rows = _rows(data.get("rows"), lambda where: RowContext(head.moving_ring, materials, where))
+    loads, shares = _load(data.get("load"), base_dir)
+    try:
+        bearing = Bearing(head.name, rows)
+    except ValueError as exc:
+        raise CaseError(f"rows: {exc}") from None
+    return BearingDescription(head.name, head.description, bearing, loads, shares, source)
+
+
+def loads_bearing(text: str, source: str = "<string>", base_dir: Path | None = None) -> BearingDescription:
+    """A :class:`BearingDescription` from TOML text."""
+    return bearing_from_mapping(parse_toml(text, source), base_dir, source)
+
+
+def read_bearing_file(path: str | Path) -> BearingDescription:
+    """A :class:`BearingDescription` from a description file; CaseError naming the file or the key."""
+    path = Path(path)
+    if path.is_dir():
+        raise CaseError(f"{path}: is a folder, not a bearing description file (.toml)")
+    return bearing_from_mapping(read_toml(path), path.resolve().parent, str(path))
+
+
+def key_fields(cls: type) -> list[str]:
+    """The keys of a table class, for the format reference and the tests."""
+    return [f.name for f in fields(cls)]
