@@ -34,7 +34,8 @@ from mbd_core.quasistatic import LoadDistributionError, RingLoad, solve_load_dis
 
 from . import signals
 from .cache_command import add_cache_parser, cache_help_line
-from .catalog import BUILTIN_BEARINGS, builtin_bearing
+from .bearing_file import BUILTIN_DIR, read_bearing_file
+from .catalog import BUILTIN_BEARINGS
 from .outdir import check_output_target
 from .parts import RING_PARTS, ring_part
 from .progress_display import terminal_progress
@@ -232,25 +233,54 @@ def _check_out(args) -> None:
     check_output_target(args.out)
 
 
+def _description(name: str):
+    """A built-in bearing by name, or a description file by path (:mod:`cases.bearing_file`)."""
+    if name in BUILTIN_BEARINGS:
+        return name, read_bearing_file(BUILTIN_DIR / f"{name}.toml")
+    if name.endswith(".toml") or os.sep in name or "/" in name or os.path.exists(name):
+        return os.path.splitext(os.path.basename(name.rstrip("/" + os.sep)))[0] or name, read_bearing_file(name)
+    raise UserError(f"bearing: unknown built-in bearing {name!r}; one of {', '.join(sorted(BUILTIN_BEARINGS))}, "
+                    "or a bearing description file (.toml)")
+
+
+def _cases_table(results, time_share) -> str:
+    """One line per load case: the load and each row's largest element load."""
+    names = [r.name for r in results[0].rows]
+    lines = []
+    for k, res in enumerate(results):
+        share = [] if time_share is None else [f"{time_share[k]:.4g}"]
+        lines.append((k + 1, *share, *(f"{v:.4g}" for v in res.load), *(f"{r.max_load_N:.0f}" for r in res.rows)))
+    head = ("case", *(["time_share"] if time_share is not None else []), "Fx N", "Fy N", "Fz N", "Mx N·m",
+            "My N·m", *(f"Q_max {n} N" for n in names))
+    warnings = [f"WARNING: case {k + 1}: {w}" for k, res in enumerate(results) for w in res.warnings]
+    return "\n".join([f"bearing: {results[0].bearing_name}", format_table(lines, head), *warnings])
+
+
 def cmd_loaddist(args) -> dict:
     _check_out(args)
-    case = builtin_bearing(args.bearing)
+    name, desc = _description(args.bearing)
     given = {k: getattr(args, k) for k in ("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm")}
     if all(v is None for v in given.values()):
-        load = case.default_load
+        loads, time_share = desc.load_cases, desc.time_share
     else:
-        load = RingLoad(**{k: (0.0 if v is None else v) for k, v in given.items()})
-    with phase(f"load distribution of {case.name}"):
-        res = solve_load_distribution(case.bearing, load)
+        loads, time_share = (RingLoad(**{k: (0.0 if v is None else v) for k, v in given.items()}),), None
+    with phase(f"load distribution of {name}"):
+        results = [solve_load_distribution(desc.bearing, load) for load in track(loads, "load cases")] \
+            if len(loads) > 1 else [solve_load_distribution(desc.bearing, loads[0])]
+    extra = {"case": name, "description": desc.description}
     if args.out:
-        path = write_load_distribution(res, args.out, {"case": case.name, "description": case.description})
+        path = write_load_distribution(results if len(results) > 1 else results[0], args.out, extra, time_share)
         logging.getLogger(__name__).info("wrote %s", path)
     if not args.json:
-        print(case.description)
-        print(load_distribution_table(res))
+        if desc.description:
+            print(desc.description)
+        print(load_distribution_table(results[0]) if len(results) == 1 else _cases_table(results, time_share))
         if args.out:
-            print(f"\nresults: {args.out}/summary.json, element_loads.csv, element_loads.png")
-    return output_units(res.to_dict())
+            angles = ", contact_angles.png" if any(r.kind == "ball" for r in results[0].rows) else ""
+            print(f"\nresults: {args.out}/summary.json, element_loads.csv, element_loads.png{angles}")
+    if len(results) == 1:
+        return output_units(results[0].to_dict())
+    return output_units({"bearing": desc.name, "load_cases": [{"case": k + 1, **r.to_dict()} for k, r in enumerate(results)]})
 
 
 def cmd_modes(args) -> dict:
@@ -342,12 +372,13 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("--json", action="store_true", help="print SI results as JSON")
 
     ld = sub.add_parser("loaddist", help="quasi-static load distribution with rigid rings")
-    ld.add_argument("bearing", nargs="?", default="slewing-ring", choices=sorted(BUILTIN_BEARINGS),
-                    help="built-in bearing (default: slewing-ring)")
+    ld.add_argument("bearing", nargs="?", default="slewing-ring",
+                    help=f"built-in bearing ({', '.join(sorted(BUILTIN_BEARINGS))}; default: slewing-ring) or a "
+                    "bearing description file .toml (format: cases/bearings/README.md)")
     for name, unit in (("Fx", "N"), ("Fy", "N"), ("Fz", "N"), ("Mx", "Nm"), ("My", "Nm")):
         ld.add_argument(f"--{name}-{unit}", dest=f"{name}_{unit}", type=float, default=None,
                         help=f"load on the moving ring ({'N' if unit == 'N' else 'N·m'}); "
-                        "all omitted = the bearing's default load")
+                        "all omitted = the load of the bearing's file (every case of its spectrum)")
     ld.add_argument("--out", default=None, help="write summary.json, element_loads.csv and a plot here")
     ld.add_argument("--json", action="store_true", help="print SI results as JSON")
     ld.set_defaults(func=cmd_loaddist)

@@ -11,6 +11,7 @@ import numpy as np
 
 from mbd_core.quasistatic import LoadDistribution
 
+from .loaddist_plots import has_ball_rows, plot_contact_angles, plot_element_loads
 from .outdir import atomic_folder
 from .results import output_units
 
@@ -60,43 +61,60 @@ def load_distribution_table(res: LoadDistribution) -> str:
     return "\n".join(out)
 
 
-def _plot(res: LoadDistribution, path: Path) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(8, 4.5), constrained_layout=True)
-    for r in res.rows:
-        psi = np.degrees(r.azimuth_rad) % 360.0
-        order = np.argsort(psi)
-        ax.plot(psi[order], r.load_N[order], marker="o", ms=3, lw=1, label=f"{r.name} ({r.kind})")
-    ax.set_xlabel("element azimuth ψ (deg)")
-    ax.set_ylabel("element load Q (N)")
-    ax.set_xlim(0, 360)
-    ax.set_ylim(bottom=0)
-    ax.grid(True, alpha=0.3)
-    ax.set_title(res.bearing_name)
-    ax.legend(loc="best", fontsize=8)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+#: columns of element_loads.csv; the four-point ones are empty for other rows
+CSV_COLUMNS = ("row", "element", "azimuth_deg", "load_N", "approach_mm", "contact_angle_deg", "unloaded",
+               "load_plus_N", "load_minus_N", "contact_angle_plus_deg", "contact_angle_minus_deg", "n_contact_points")
 
 
-def write_load_distribution(res: LoadDistribution, out_dir: str | os.PathLike, extra: dict | None = None) -> Path:
-    """Write summary.json, element_loads.csv and element_loads.png to ``out_dir`` in the output
-    units (:data:`cases.results.OUTPUT_UNITS`; elements numbered from 1 per row) (atomically,
-    :func:`cases.outdir.atomic_folder`: an existing folder is replaced only if the project wrote it)."""
-    with atomic_folder(out_dir, (extra or {}).get("case", res.bearing_name)) as tmp:
-        with open(tmp / "element_loads.csv", "w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(["row", "element", "azimuth_deg", "load_N", "approach_mm", "contact_angle_deg", "unloaded"])
+def _four_point_cells(r, i: int) -> list:
+    if r.contact_load_N is None:
+        return [""] * 5
+    Q, a = r.contact_load_N[i], np.degrees(r.contact_angles_rad[i])
+    return [f"{Q[0]:.6f}", f"{Q[1]:.6f}", f"{a[0]:.6f}", f"{a[1]:.6f}", int(r.n_contact_points[i])]
+
+
+def _write_csv(results: list[LoadDistribution], path: Path) -> None:
+    """Per element (and load case, numbered from 1, when there are several): the output units."""
+    many = len(results) > 1
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow((("case",) if many else ()) + CSV_COLUMNS)
+        for k, res in enumerate(results):
             for r in res.rows:
                 for i in range(len(r.load_N)):
-                    w.writerow([r.name, i + 1, f"{np.degrees(r.azimuth_rad[i]):.6f}", f"{r.load_N[i]:.6f}",
-                                f"{r.approach_m[i] * 1e3:.9e}", f"{np.degrees(r.contact_angle_rad[i]):.6f}",
-                                int(r.unloaded[i])])
-        _plot(res, tmp / "element_loads.png")
-        summary = res.to_dict()
+                    w.writerow(([k + 1] if many else []) + [
+                        r.name, i + 1, f"{np.degrees(r.azimuth_rad[i]):.6f}", f"{r.load_N[i]:.6f}",
+                        f"{r.approach_m[i] * 1e3:.9e}", f"{np.degrees(r.contact_angle_rad[i]):.6f}",
+                        int(r.unloaded[i])] + _four_point_cells(r, i))
+
+
+def _cases_summary(results: list[LoadDistribution], time_share) -> dict:
+    """Summary of several load cases: each case's result, numbered from 1, and each row's largest load."""
+    cases = [{"case": k + 1, **({} if time_share is None else {"time_share": time_share[k]}), **res.to_dict()}
+             for k, res in enumerate(results)]
+    worst = []
+    for i, r in enumerate(results[0].rows):
+        loads = [res.rows[i].max_load_N for res in results]
+        worst.append({"name": r.name, "max_load_N": max(loads), "case": int(np.argmax(loads)) + 1})
+    return {"bearing": results[0].bearing_name, "n_load_cases": len(results), "rows_max": worst,
+            "warnings": sorted({f"case {k + 1}: {w}" for k, res in enumerate(results) for w in res.warnings}),
+            "load_cases": cases}
+
+
+def write_load_distribution(res: LoadDistribution | list[LoadDistribution], out_dir: str | os.PathLike,
+                            extra: dict | None = None, time_share=None) -> Path:
+    """Write summary.json, element_loads.csv, element_loads.png and (ball rows) contact_angles.png to
+    ``out_dir`` in the output units (:data:`cases.results.OUTPUT_UNITS`; elements and load cases
+    numbered from 1) (atomically, :func:`cases.outdir.atomic_folder`: an existing folder is replaced
+    only if the project wrote it). ``res``: one result, or one per load case (``time_share`` their
+    shares, or None)."""
+    results = res if isinstance(res, list) else [res]
+    with atomic_folder(out_dir, (extra or {}).get("case", results[0].bearing_name)) as tmp:
+        _write_csv(results, tmp / "element_loads.csv")
+        plot_element_loads(results, tmp / "element_loads.png")
+        if has_ball_rows(results[0]):
+            plot_contact_angles(results, tmp / "contact_angles.png")
+        summary = results[0].to_dict() if len(results) == 1 else _cases_summary(results, time_share)
         if extra:
             summary.update(extra)
         (tmp / "summary.json").write_text(json.dumps(output_units(summary), indent=1))
