@@ -56,3 +56,69 @@ def test_flexible_race_dynamics(monkeypatch, tmp_path):
     assert ex.worst.time_s > 0.1
     assert (tmp_path / "flexible_race_dynamics" / "stress" / "stress.pvd").stat().st_size > 0
     assert (tmp_path / "flexible_race_dynamics" / "race_worst_0000.png").stat().st_size > 0
+
+
+def _axial_ball_load(row, F_a: float, Z: int) -> tuple[float, float]:
+    """(Q, α) of each ball of ``Z`` equally loaded ball pairs under the axial load ``F_a``, solved
+    here independently: the moving groove centre moves axially by δ_a, so the centre distance is
+    s = (A·cos α0 − P_d/2, A·sin α0 + δ_a) (radial, axial), δ = |s| − A, α = atan2(s_z, s_r),
+    Q = K·δ^1.5 and Z·Q·sin α = F_a (Harris & Kotzalas, Rolling Bearing Analysis, 5th ed., ch. 7,
+    thrust load on a ball bearing; the clearance as in ch. 2). K is the row's Hertz constant."""
+    from scipy.optimize import brentq
+
+    A, a0, c = row.curvature_centre_distance_m, row.contact_angle_rad, 0.5 * row.diametral_clearance_m
+    K = row.contact_stiffness()
+
+    def geometry(d_a):
+        s_r, s_z = A * math.cos(a0) - c, A * math.sin(a0) + d_a
+        delta = max(math.hypot(s_r, s_z) - A, 0.0)
+        return K * delta**1.5, math.atan2(s_z, s_r)
+
+    d_a = brentq(lambda d: Z * geometry(d)[0] * math.sin(geometry(d)[1]) - F_a, 0.0, A, xtol=1e-16, rtol=1e-14)
+    return geometry(d_a)
+
+
+def test_bearing_files(monkeypatch, tmp_path):
+    """The four example description files under a pure axial load F_a: every loaded ball carries
+    Q = F_a/(Z·sin α) with α the loaded contact angle of the Hertz approach (independent solve
+    above), and every loaded thrust roller F_a/Z, its slices q_k = (c_L/n_s)·(δ_a − gap − drop_k)^(10/9)
+    with drop_k of the ISO/TS 16281 logarithmic profile, evaluated here (1e-8 relative: the
+    solver's equilibrium tolerance is 1e-10)."""
+    from scipy.optimize import brentq
+
+    ex = _run("bearing_files", monkeypatch, tmp_path)
+    F = ex.AXIAL_N
+    cases = {  # name: (rows that carry the load, the diagonal of four-point rows)
+        "double-angular-contact": (["balls (1)"], None),  # back-to-back: only the row at −z, pushed +z
+        "pitch-bearing-four-point": (["balls"], 0),  # the +α diagonal of every ball
+        "double-four-point": (["balls (1)", "balls (2)"], 0),  # both rows alike
+    }
+    for name, (loaded, diagonal) in cases.items():
+        res, bearing = ex.axial[name], ex.descriptions[name].bearing
+        Z = sum(bearing.rows[[r.name for r in bearing.rows].index(n)].n_balls for n in loaded)
+        for r, row in zip(res.rows, bearing.rows):
+            Q = r.load_N if diagonal is None else r.contact_load_N[:, diagonal]
+            angle = r.contact_angle_rad if diagonal is None else r.contact_angles_rad[:, diagonal]
+            if r.name not in loaded:
+                assert r.load_N.max() == 0.0, (name, r.name)
+                continue
+            Q_ref, alpha_ref = _axial_ball_load(row, F, Z)
+            assert Q == pytest.approx(np.full(len(Q), Q_ref), rel=1e-8), (name, r.name)
+            assert angle == pytest.approx(np.full(len(Q), alpha_ref), rel=1e-8), (name, r.name)
+            assert Q_ref == pytest.approx(F / (Z * math.sin(alpha_ref)), rel=1e-12)
+    # radial + thrust roller bearing: the front thrust row alone (towards +z), each roller F_a/Z
+    res, rows = ex.axial["radial-thrust-roller"], ex.descriptions["radial-thrust-roller"].bearing.rows
+    front, ns = rows[1], rows[1].n_slices
+    L = front.roller_length_m
+    x = -0.5 * L + (np.arange(ns) + 0.5) * L / ns
+    drop = 0.00035 * front.roller_diameter_m * np.log(1.0 / (1.0 - (2.0 * x / L) ** 2))
+    q = lambda d_a: front.contact_stiffness() / ns * np.clip(d_a - front.gap_m - drop, 0.0, None) ** (10.0 / 9.0)
+    d_a = brentq(lambda d: q(d).sum() - F / front.n_rollers, front.gap_m, 1e-3, xtol=1e-18, rtol=1e-14)
+    assert res.displacement[2] == pytest.approx(d_a, rel=1e-8)
+    assert res.rows[1].load_N == pytest.approx(np.full(front.n_rollers, F / front.n_rollers), rel=1e-8)
+    assert res.rows[1].slice_load_N == pytest.approx(np.tile(q(d_a), (front.n_rollers, 1)), rel=1e-7)
+    assert res.rows[0].load_N.max() == 0.0 and res.rows[2].load_N.max() == 0.0
+    # the outputs of the files' own loads: the pitch bearing's three load cases
+    out = tmp_path / "bearing_files" / "pitch-bearing-four-point"
+    assert len(ex.results["pitch-bearing-four-point"]) == 3
+    assert (out / "contact_angles.png").stat().st_size > 10_000 and (out / "element_loads.csv").stat().st_size > 0
