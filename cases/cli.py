@@ -30,12 +30,12 @@ from foundation.materials import ElasticMaterial, effective_modulus_Pa
 from foundation.progress import phase, track
 from mbd_core.multibody import SimulationError
 from mbd_core.multibody.statics import StaticEquilibriumError
-from mbd_core.quasistatic import LoadDistributionError, RingLoad, solve_load_distribution
+from mbd_core.quasistatic import LoadDistributionError, solve_load_distribution
 
 from . import signals
 from .cache_command import add_cache_parser, cache_help_line
-from .bearing_file import BUILTIN_DIR, read_bearing_file
 from .catalog import BUILTIN_BEARINGS
+from .loaddist_command import LOAD_NAMES, bearing_description, cases_table, chosen_loads
 from .outdir import check_output_target
 from .parts import RING_PARTS, ring_part
 from .progress_display import terminal_progress
@@ -233,37 +233,10 @@ def _check_out(args) -> None:
     check_output_target(args.out)
 
 
-def _description(name: str):
-    """A built-in bearing by name, or a description file by path (:mod:`cases.bearing_file`)."""
-    if name in BUILTIN_BEARINGS:
-        return name, read_bearing_file(BUILTIN_DIR / f"{name}.toml")
-    if name.endswith(".toml") or os.sep in name or "/" in name or os.path.exists(name):
-        return os.path.splitext(os.path.basename(name.rstrip("/" + os.sep)))[0] or name, read_bearing_file(name)
-    raise UserError(f"bearing: unknown built-in bearing {name!r}; one of {', '.join(sorted(BUILTIN_BEARINGS))}, "
-                    "or a bearing description file (.toml)")
-
-
-def _cases_table(results, time_share) -> str:
-    """One line per load case: the load and each row's largest element load."""
-    names = [r.name for r in results[0].rows]
-    lines = []
-    for k, res in enumerate(results):
-        share = [] if time_share is None else [f"{time_share[k]:.4g}"]
-        lines.append((k + 1, *share, *(f"{v:.4g}" for v in res.load), *(f"{r.max_load_N:.0f}" for r in res.rows)))
-    head = ("case", *(["time_share"] if time_share is not None else []), "Fx N", "Fy N", "Fz N", "Mx N·m",
-            "My N·m", *(f"Q_max {n} N" for n in names))
-    warnings = [f"WARNING: case {k + 1}: {w}" for k, res in enumerate(results) for w in res.warnings]
-    return "\n".join([f"bearing: {results[0].bearing_name}", format_table(lines, head), *warnings])
-
-
 def cmd_loaddist(args) -> dict:
     _check_out(args)
-    name, desc = _description(args.bearing)
-    given = {k: getattr(args, k) for k in ("Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm")}
-    if all(v is None for v in given.values()):
-        loads, time_share = desc.load_cases, desc.time_share
-    else:
-        loads, time_share = (RingLoad(**{k: (0.0 if v is None else v) for k, v in given.items()}),), None
+    name, desc = bearing_description(args.bearing)
+    loads, time_share = chosen_loads(desc, {k: getattr(args, k) for k in LOAD_NAMES})
     with phase(f"load distribution of {name}"):
         results = [solve_load_distribution(desc.bearing, load) for load in track(loads, "load cases")] \
             if len(loads) > 1 else [solve_load_distribution(desc.bearing, loads[0])]
@@ -274,7 +247,7 @@ def cmd_loaddist(args) -> dict:
     if not args.json:
         if desc.description:
             print(desc.description)
-        print(load_distribution_table(results[0]) if len(results) == 1 else _cases_table(results, time_share))
+        print(load_distribution_table(results[0]) if len(results) == 1 else cases_table(results, time_share))
         if args.out:
             angles = ", contact_angles.png" if any(r.kind == "ball" for r in results[0].rows) else ""
             print(f"\nresults: {args.out}/summary.json, element_loads.csv, element_loads.png{angles}")
