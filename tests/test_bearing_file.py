@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
 
 from cases.bearing_file import loads_bearing, read_bearing_file
