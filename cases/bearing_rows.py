@@ -140,15 +140,17 @@ class AngularContactKeys(_BallKeys):
     """An angular-contact ball row, single or double (two rows ``row_spacing_m`` apart about
     ``axial_position_m``)."""
 
-    contact_angle_deg: float = math.nan
+    contact_angle_deg: float | None = None
     loaded_direction: Direction | None = None
     arrangement: Literal["single", "back_to_back", "face_to_face", "tandem"] = "single"
     row_spacing_m: float | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        if self.contact_angle_deg is None:
+            raise ValueError("contact_angle_deg: missing key (the nominal contact angle, in (0, 90) deg)")
         if not 0.0 < self.contact_angle_deg < 90.0:
-            raise ValueError(f"contact_angle_deg: must lie in (0, 90) (required), got {self.contact_angle_deg!r}")
+            raise ValueError(f"contact_angle_deg: must lie in (0, 90), got {self.contact_angle_deg!r}")
         double = self.arrangement != "single"
         if double and not (self.row_spacing_m is not None and self.row_spacing_m > 0.0):
             raise ValueError(f"row_spacing_m: arrangement {self.arrangement!r} needs the axial distance of its "
@@ -226,11 +228,11 @@ def _four_point(keys: FourPointKeys, ctx: RowContext) -> tuple:
 class DoubleFourPointKeys(FourPointKeys):
     """Two equal four-point rows ``row_spacing_m`` apart about ``axial_position_m``."""
 
-    row_spacing_m: float = math.nan
+    row_spacing_m: float | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if not self.row_spacing_m > 0.0:
+        if self.row_spacing_m is None or not self.row_spacing_m > 0.0:
             raise ValueError(f"row_spacing_m: the axial distance of the two rows must be > 0 (required), "
                              f"got {self.row_spacing_m!r}")
 

@@ -49,3 +49,16 @@ def test_log_profile_unloads_the_roller_ends_under_a_central_load():
     assert np.all(np.diff(log[:15]) >= 0.0) and np.all(np.diff(log[15:]) <= 0.0)
     # the same roller load is carried on a shorter length: the middle slices carry more
     assert mid > straight.mean()
+
+
+def test_log_profile_moves_the_tilted_rollers_peak_off_the_edge():
+    # a tilting moment misaligns the rollers: a straight roller then carries its largest slice load
+    # at one end (the edge load of ISO/TS 16281's slice model); the logarithmic profile relieves
+    # both ends, so the peak lies inside the roller and the end carries less than the straight one's
+    load = RingLoad(Fx_N=2.0e5, My_Nm=1.0e3)
+    straight = _slices(ROW, load)
+    log = _slices(replace(ROW, profile="logarithmic"), load)
+    assert int(np.argmax(straight)) in (0, 29)
+    end = int(np.argmax(straight))
+    assert 0 < int(np.argmax(log)) < 29
+    assert log[end] < 0.5 * straight[end]
