@@ -74,7 +74,27 @@ def _check_fits(where: str, count: int, diameter_m: float, pitch_diameter_m: flo
 
 @dataclass(frozen=True)
 class _BallKeys:
-    """Keys every ball row has (see ``cases/bearings/README.md``)."""
+    """Keys every ball row has (format reference: ``cases/bearings/README.md``).
+
+    Attributes
+    ----------
+    name : str
+        Row name, unique in the bearing.
+    count : int
+        Balls Z; Z·D ≤ π·d_m.
+    ball_diameter_m, pitch_diameter_m : float
+        D and d_m, m.
+    conformity_inner, conformity_outer : float
+        Groove radius / D of the inner and the outer ring, > 0.5.
+    diametral_clearance_m : float
+        P_d of the unloaded concentric bearing, m; negative = preload (|P_d|/2 < (f_i + f_o − 1)·D).
+    axial_position_m : float
+        z of the ball centres (of the pair's middle for double rows), m.
+    first_azimuth_deg : float
+        Azimuth of ball 1, deg.
+    ball_material, ring_material : str
+        Material names (``[materials.NAME]`` or ``"bearing_steel"``).
+    """
 
     name: str
     count: int
@@ -138,7 +158,18 @@ def _deep_groove(keys: DeepGrooveKeys, ctx: RowContext) -> tuple:
 @dataclass(frozen=True)
 class AngularContactKeys(_BallKeys):
     """An angular-contact ball row, single or double (two rows ``row_spacing_m`` apart about
-    ``axial_position_m``)."""
+    ``axial_position_m``).
+
+    Attributes
+    ----------
+    contact_angle_deg : float
+        Nominal contact angle α0, deg, in (0, 90); required.
+    loaded_direction : {"+z", "-z"} or None
+        Push of the moving ring that loads the row (single, tandem); not with back_to_back/face_to_face.
+    arrangement : {"single", "back_to_back", "face_to_face", "tandem"}
+    row_spacing_m : float or None
+        Axial distance of the two rows of a double arrangement, m.
+    """
 
     contact_angle_deg: float | None = None
     loaded_direction: Direction | None = None
@@ -184,7 +215,8 @@ def _angular_contact(keys: AngularContactKeys, ctx: RowContext) -> tuple:
 
 @dataclass(frozen=True)
 class ThrustBallKeys(_BallKeys):
-    """A thrust ball row: nominal contact angle 90°; the clearance must be zero or a preload."""
+    """A thrust ball row: nominal contact angle 90°; the clearance must be zero or a preload.
+    ``loaded_direction`` ("+z" or "-z"): the push of the moving ring that loads it."""
 
     loaded_direction: Direction = "+z"
 
@@ -201,7 +233,8 @@ def _thrust_ball(keys: ThrustBallKeys, ctx: RowContext) -> tuple:
 
 @dataclass(frozen=True)
 class FourPointKeys(_BallKeys):
-    """A four-point contact (gothic-arch) ball row: both diagonals at ±``contact_angle_deg``."""
+    """A four-point contact (gothic-arch) ball row: both diagonals at ±``contact_angle_deg`` (deg,
+    default 45), carried up to the groove shoulder at ``shoulder_angle_deg`` (deg, default 70)."""
 
     contact_angle_deg: float = 45.0
     shoulder_angle_deg: float = 70.0
@@ -226,7 +259,7 @@ def _four_point(keys: FourPointKeys, ctx: RowContext) -> tuple:
 
 @dataclass(frozen=True)
 class DoubleFourPointKeys(FourPointKeys):
-    """Two equal four-point rows ``row_spacing_m`` apart about ``axial_position_m``."""
+    """Two equal four-point rows ``row_spacing_m`` (m, required) apart about ``axial_position_m``."""
 
     row_spacing_m: float | None = None
 
@@ -249,7 +282,28 @@ def _double_four_point(keys: DoubleFourPointKeys, ctx: RowContext) -> tuple:
 
 @dataclass(frozen=True)
 class _RollerKeys:
-    """Keys every roller row has."""
+    """Keys every roller row has.
+
+    Attributes
+    ----------
+    name : str
+    count : int
+        Rollers Z; Z·D_we ≤ π·d_m.
+    roller_diameter_m, roller_length_m, pitch_diameter_m : float
+        D_we, effective length L_we and d_m, m.
+    axial_position_m : float
+        z of the roller centres, m.
+    first_azimuth_deg : float
+        Azimuth of roller 1, deg.
+    profile : {"straight", "crowned", "logarithmic"}
+        Roller profile: none, a parabolic crown of ``crown_drop_m`` (m, at the ends), or the
+        ISO/TS 16281 logarithmic profile of relief ``log_relief_m`` (m, default 0.00035·D_we).
+    n_slices : int
+        Slices per roller, 1 to 200.
+    stiffness_law : {"iso16281", "palmgren"}
+    roller_material, ring_material : str
+        Material names.
+    """
 
     name: str
     count: int
@@ -298,7 +352,8 @@ def _roller_common(keys: _RollerKeys, ctx: RowContext) -> dict:
 
 @dataclass(frozen=True)
 class RadialRollerKeys(_RollerKeys):
-    """A cylindrical roller row carrying radial load (roller axes parallel to the bearing axis)."""
+    """A cylindrical roller row carrying radial load (roller axes parallel to the bearing axis);
+    ``diametral_clearance_m`` (m, negative = preload): each roller has half of it."""
 
     diametral_clearance_m: float = 0.0
 
@@ -310,7 +365,8 @@ def _radial_roller(keys: RadialRollerKeys, ctx: RowContext) -> tuple:
 
 @dataclass(frozen=True)
 class ThrustRollerKeys(_RollerKeys):
-    """A cylindrical roller row carrying axial load (roller axes radial)."""
+    """A cylindrical roller row carrying axial load (roller axes radial); ``loaded_direction`` the
+    push of the moving ring that loads it, ``axial_gap_m`` (m, negative = preload) each roller's gap."""
 
     loaded_direction: Direction = "+z"
     axial_gap_m: float = 0.0
