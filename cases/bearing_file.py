@@ -19,7 +19,7 @@ import csv
 import io
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
 
@@ -267,7 +267,3 @@ def read_bearing_file(path: str | Path) -> BearingDescription:
         raise CaseError(f"{path}: is a folder, not a bearing description file (.toml)")
     return bearing_from_mapping(read_toml(path), path.resolve().parent, str(path))
 
-
-def key_fields(cls: type) -> list[str]:
-    """The keys of a table class, for the format reference and the tests."""
-    return [f.name for f in fields(cls)]
