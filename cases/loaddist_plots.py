@@ -81,7 +81,8 @@ def plot_contact_angles(results: list[LoadDistribution], path: Path) -> None:
                     lines += line
         ax.set_ylabel("α (deg)")
         ax.grid(True, alpha=0.3)
-        ax.set_title(first.rows[i].name, fontsize=9)
+        four_point = first.rows[i].contact_load_N is not None
+        ax.set_title(first.rows[i].name + (" (diagonals: +α solid, −α dashed)" if four_point else ""), fontsize=9)
         if len(results) > 1:
             label_lines(ax, lines, range(1, len(results) + 1), "load case")
         elif ax.get_legend_handles_labels()[0]:
