@@ -145,3 +145,17 @@ def test_bad_input_names_the_key(kw, key):
     row = BallRow("acbb", 40, 20e-3, 0.5, math.radians(60.0), 0.53, 0.53)
     with pytest.raises(ValueError, match=key):
         limiting_load_curve(Bearing("acbb", (row,)), **kw)
+
+
+def test_plot_shows_the_curve_in_kn_and_knm(tmp_path):
+    from cases.bearing_plots import limiting_load_curve_xy, plot_limiting_load_curve
+
+    row = FourPointRow("fp", 60, 25e-3, 1.0)
+    curve = limiting_load_curve(Bearing("fp", (row,)), n_rays=6)
+    M, F = limiting_load_curve_xy(curve)
+    # closed all round: the first point repeated, values in kN·m and kN (exact unit conversion)
+    np.testing.assert_allclose(M[:-1], curve.moment_Nm / 1e3, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(F[:-1], curve.axial_N / 1e3, rtol=0, atol=1e-12)
+    assert (M[-1], F[-1]) == (M[0], F[0])
+    out = plot_limiting_load_curve(curve, tmp_path / "llc.png", "fp")
+    assert out.stat().st_size > 10_000

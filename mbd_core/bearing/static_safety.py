@@ -35,6 +35,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..contact.hertz import ball_on_groove
+from ..contact.limits import P0_STATIC_LIMIT_BALL_PA
 from ..quasistatic.contacts import ContactSet, contact_sets
 from ..quasistatic.results import LoadDistribution
 from ..quasistatic.rows import BallRow, Bearing
@@ -110,8 +112,7 @@ def contact_load_at_pressure_N(contact, pressure_Pa: float) -> float:
 
 
 def _ball_contacts(row: BallRow):
-    from ..contact.hertz import ball_on_groove
-
+    """The Hertz contacts of a ball with the moving and the fixed groove (nominal angle)."""
     fixed = "outer" if row.moving_raceway == "inner" else "inner"
     return [ball_on_groove(row.ball_diameter_m, f, row.pitch_diameter_m, row.contact_angle_rad, rw,
                            row.ball_material, row.race_material)
@@ -122,8 +123,6 @@ def ball_row_static_rating_N(row: BallRow, pressure_limit_Pa: float | None = Non
     """ISO 76 basic static load rating of a ball row from its Hertz constants, N (module docstring):
     C0r = Z·Q_lim·cos α0/5 for α0 ≤ 45°, C0a = Z·Q_lim·sin α0 above; Q_lim the ball load at which
     the more curved raceway reaches ``pressure_limit_Pa`` (default 4.2 GPa, ISO 76 3.2–3.3)."""
-    from ..contact.limits import P0_STATIC_LIMIT_BALL_PA
-
     if not isinstance(row, BallRow):
         raise ValueError(f"row: ISO 76 ratings are given here for BallRow only, got {type(row).__name__}")
     p = P0_STATIC_LIMIT_BALL_PA if pressure_limit_Pa is None else pressure_limit_Pa
