@@ -6,7 +6,10 @@ bearing is the Lundberg–Palmgren ring lives of a bearing without clearance und
 J_r = (1/2π)∫cos^2.5 ψ, J_1 = ((1/2π)∫cos^4.5 ψ)^(1/3), J_2 = ((1/2π)∫cos^5 ψ)^(3/10) over the load
 zone, rounded in ISO 281 to C_r = 0.407·Z·Q_ci·(1 + (1.04·Q_ci/Q_ce)^(10/3))^(−0.3); L10 = (C/P)^3.
 A thrust row under a centric load loads every ball alike: C_a = Z·(Q_ci^(−10/3) + Q_ce^(−10/3))^(−0.3)
-for α = 90°. Spectra: Palmgren–Miner, L = 1/Σ(t_i/L_i) (ISO 281:2007, 9.5).
+for α = 90°. A thrust roller row likewise loads every lamina with q = F_a/(Z·n_s); ISO/TS 16281's
+laminae (q_c = Q_c·n_s^(−7/9), L_k = (q_c/q)^4, e = 9/8, two raceways of n_s laminae) then give
+L = (2·n_s·(q_c/q)^(−9/2))^(−8/9) = 2^(−8/9)·(Z·Q_c/F_a)^4 whatever n_s. Spectra: Palmgren–Miner,
+L = 1/Σ(t_i/L_i) (ISO 281:2007, 9.5).
 """
 
 import math
@@ -17,6 +20,7 @@ from scipy.integrate import quad
 
 from mbd_core.bearing.distribution_life import (
     ball_contact_rating_N,
+    roller_contact_rating_N,
     combined_life,
     equivalent_contact_load_N,
     rating_life,
@@ -104,7 +108,38 @@ def test_a_iso_scales_and_bad_input_names_the_key():
         rating_life(bearing, dist, rotating_ring="inner")
     with pytest.raises(ValueError, match="time_shares"):
         spectrum_rating_life(bearing, [RingLoad(Fx_N=1.0)], [1.0, 2.0])
-    rollers = Bearing("crb", (RollerRow("crb", 16, 10e-3, 10e-3, 70e-3),))
-    with pytest.raises(ValueError, match="crb"):
-        rating_life(rollers, solve_load_distribution(rollers, RingLoad(Fx_N=1e3)))
+    with pytest.raises(ValueError, match="a_iso"):
+        rating_life(bearing, dist, a_iso=0.0)
     assert equivalent_contact_load_N(np.zeros(4), True) == 0.0
+
+
+@pytest.mark.parametrize("n_slices", [10, 25])
+def test_thrust_roller_row_laminae_give_the_closed_form(n_slices):
+    row = RollerRow("trb", 30, 20e-3, 30e-3, 0.5, "thrust", n_slices=n_slices)
+    bearing = Bearing("trb", (row,))
+    Fa = 4e5
+    dist = solve_load_distribution(bearing, RingLoad(Fz_N=Fa))
+    np.testing.assert_allclose(dist.rows[0].slice_load_N, Fa / (30 * n_slices), rtol=1e-8)
+    life = rating_life(bearing, dist)
+    # Q_c of a thrust line contact (γ = 0): 552·b_m·(D/d_m)^(2/9)·D^(29/27)·L^(7/9)·Z^(−1/4), N and mm, b_m = 1.0
+    Qc = 552.0 * 1.0 * (20 / 500) ** (2 / 9) * 20 ** (29 / 27) * 30 ** (7 / 9) * 30**-0.25
+    assert roller_contact_rating_N(20e-3, 30e-3, 0.5, math.pi / 2, 30, "inner", 1.0) == pytest.approx(Qc, rel=1e-12)
+    # closed form above; laminae equal to the solver's tolerance: 1e-6
+    assert life.life_Mrev == pytest.approx(2 ** (-8 / 9) * (30 * Qc / Fa) ** 4, rel=1e-6)
+
+
+def test_radial_roller_row_rotating_ring_and_spectrum():
+    row = RollerRow("crb", 16, 10e-3, 10e-3, 70e-3, n_slices=10)
+    bearing = Bearing("crb", (row,))
+    d1, d2 = (solve_load_distribution(bearing, RingLoad(Fx_N=F)) for F in (5e3, 1e4))
+    moving, fixed = rating_life(bearing, d1, "moving"), rating_life(bearing, d1, "fixed")
+    # the inner raceway turning relative to the load (w = 4) outlives it standing (w = 9/2)
+    assert moving.rows[0].set_life_Mrev[0] > fixed.rows[0].set_life_Mrev[0]
+    # the rows' laminae in series: the row is shorter-lived than either raceway, e = 9/8
+    L_in, L_out = moving.rows[0].set_life_Mrev
+    assert moving.life_Mrev == pytest.approx((L_in ** (-9 / 8) + L_out ** (-9 / 8)) ** (-8 / 9), rel=1e-12)
+    # a spectrum of one load is that load; of two, Miner per lamina lies between the two lives
+    one = spectrum_rating_life(bearing, [RingLoad(Fx_N=5e3)], [1.0])
+    assert one.life_Mrev == pytest.approx(moving.life_Mrev, rel=1e-12)
+    two = spectrum_rating_life(bearing, [RingLoad(Fx_N=5e3), RingLoad(Fx_N=1e4)], [0.5, 0.5])
+    assert rating_life(bearing, d2).life_Mrev < two.life_Mrev < moving.life_Mrev
