@@ -97,3 +97,23 @@ def test_bad_static_load_input_names_the_field():
         ball_row_equivalent_static_load_N(row, 1.0, 1.0, X0=-1.0)
     with pytest.raises(ValueError, match="row"):
         ball_row_static_rating_N(FourPointRow("fp", 60, 25e-3, 1.0))
+
+
+def test_roller_rows_agree_with_iso76_printed_constants():
+    from mbd_core.bearing.static_safety import classical_static_safety, roller_row_static_rating_N
+    from mbd_core.quasistatic import RollerRow
+
+    # ISO 76: C0a = 220·Z·L·D (thrust, α = 90°), C0r = 44·(1 − D/d_m)·Z·L·D (radial, α = 0), N and mm;
+    # the constants are 16e18·π/E' rounded for E = 207 GPa, ν = 0.3; ν = 0.29 here gives 222.4: 1.5 %
+    thrust = RollerRow("trb", 30, 20e-3, 30e-3, 0.5, "thrust", n_slices=10)
+    assert roller_row_static_rating_N(thrust) == pytest.approx(220 * 30 * 30 * 20, rel=1.5e-2)
+    radial = RollerRow("crb", 16, 10e-3, 10e-3, 70e-3, n_slices=10)
+    assert roller_row_static_rating_N(radial) == pytest.approx(44 * (1 - 10 / 70) * 16 * 10 * 10, rel=1.5e-2)
+    # a thrust row under a centric load: every slice alike, s0 = (4 GPa/p0)^2 is exactly C0a/F_a
+    bearing = Bearing("trb", (thrust,))
+    dist = solve_load_distribution(bearing, RingLoad(Fz_N=4e5))
+    (res,) = static_safety(bearing, dist)
+    fr, fa = row_forces_N(dist, "trb")
+    assert res.s0 == pytest.approx(classical_static_safety(thrust, fr, fa), rel=1e-7)  # solver tolerance
+    with pytest.raises(ValueError, match="fp"):
+        classical_static_safety(FourPointRow("fp", 60, 25e-3, 1.0), 1.0, 1.0)

@@ -26,6 +26,12 @@ load zone of a bearing with normal clearance); with zero clearance the exact fac
 (Harris & Kotzalas, ch. 7), so for a radial row the two s0 differ by about 5/4.37. For a thrust
 row under a centric axial load every ball carries F_a/(Z sin α): the two agree up to the change
 of the contact angle under load (α instead of α0).
+
+Roller rows (ISO 76 6.1 and 8.1; :func:`roller_row_static_rating_N`): C0r = Z·Q_lim/5 (α = 0) and
+C0a = Z·Q_lim (α = 90°), Q_lim the roller load at p0 = 4.0 GPa on the more curved raceway
+(line contact, p0² = Q·E'/(2π·R·L), Johnson, *Contact Mechanics*, 1985, eq. 4.45); with
+R = (D/2)(1 − γ) this is ISO 76's C0r = 44·(1 − γ)·Z·L_we·D_we and C0a = 220·Z·L_we·D_we
+(the constants rounded for E = 207 GPa, ν = 0.3). P0r = F_r, P0a = F_a.
 """
 
 from __future__ import annotations
@@ -36,13 +42,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..contact.hertz import ball_on_groove
-from ..contact.limits import P0_STATIC_LIMIT_BALL_PA
+from ..contact.limits import P0_STATIC_LIMIT_BALL_PA, P0_STATIC_LIMIT_ROLLER_PA
+from ..contact.line import line_contact
 from ..quasistatic.contacts import ContactSet, contact_sets
 from ..quasistatic.results import LoadDistribution
-from ..quasistatic.rows import BallRow, Bearing
+from ..quasistatic.rows import BallRow, Bearing, RollerRow
 
 __all__ = ["RowStaticSafety", "static_safety", "contact_load_at_pressure_N", "ball_row_static_rating_N",
-           "ball_row_equivalent_static_load_N", "row_forces_N", "STRIBECK_ISO76"]
+           "ball_row_equivalent_static_load_N", "roller_row_static_rating_N", "classical_static_safety",
+           "row_forces_N", "STRIBECK_ISO76"]
 
 #: Stribeck's factor of ISO 76's radial ball rating: Q_max = 5·F_r/(Z·cos α).
 STRIBECK_ISO76 = 5.0
@@ -158,3 +166,46 @@ def ball_row_equivalent_static_load_N(row: BallRow, radial_N: float, axial_N: fl
     if a0 >= math.pi / 2 - 1e-12:
         return axial_N
     return axial_N + 2.3 * radial_N * math.tan(a0)
+
+
+def roller_row_static_rating_N(row: RollerRow, pressure_limit_Pa: float | None = None) -> float:
+    """ISO 76 basic static load rating of a roller row from the line-contact Hertz relation, N
+    (module docstring): C0r = Z·Q_lim/5 (radial), C0a = Z·Q_lim (thrust); Q_lim the whole roller's
+    load at p0 = ``pressure_limit_Pa`` (default 4.0 GPa) on the more curved raceway."""
+    if not isinstance(row, RollerRow):
+        raise ValueError(f"row: expected a RollerRow, got {type(row).__name__}")
+    p = P0_STATIC_LIMIT_ROLLER_PA if pressure_limit_Pa is None else pressure_limit_Pa
+    if not (math.isfinite(p) and p > 0.0):
+        raise ValueError(f"pressure_limit_Pa must be a finite number > 0, got {pressure_limit_Pa!r}")
+    if row.orientation == "thrust":
+        raceways = [(math.inf, False)]
+    else:
+        raceways = [(row.pitch_diameter_m - row.roller_diameter_m, False),
+                    (row.pitch_diameter_m + row.roller_diameter_m, True)]
+    q1 = 1.0
+    q_lim = min(q1 * (p / float(line_contact(row.roller_diameter_m, d, row.roller_length_m, row.roller_material,
+                                             row.race_material, concave=c).max_pressure_Pa(q1))) ** 2
+                for d, c in raceways)
+    return row.n_rollers * q_lim / (1.0 if row.orientation == "thrust" else STRIBECK_ISO76)
+
+
+def classical_static_safety(row, radial_N: float, axial_N: float, X0: float = 0.6, Y0: float = 0.5) -> float:
+    """s0 = C0/P0 of ISO 76 for a ball or roller row under the row forces (F_r, F_a), N.
+
+    Ball rows: :func:`ball_row_static_rating_N`, :func:`ball_row_equivalent_static_load_N` (X0, Y0 of
+    radial rows). Roller rows: :func:`roller_row_static_rating_N` with P0r = F_r, P0a = F_a. ISO 76
+    gives no rating for four-point rows: ValueError.
+    """
+    if isinstance(row, BallRow):
+        P0 = ball_row_equivalent_static_load_N(row, radial_N, axial_N, X0, Y0)
+        C0 = ball_row_static_rating_N(row)
+    elif isinstance(row, RollerRow):
+        for name, v in (("radial_N", radial_N), ("axial_N", axial_N)):
+            if not (math.isfinite(v) and v >= 0.0):
+                raise ValueError(f"{name} must be a finite number >= 0, got {v!r}")
+        P0 = axial_N if row.orientation == "thrust" else radial_N
+        C0 = roller_row_static_rating_N(row)
+    else:
+        raise ValueError(f"row {getattr(row, 'name', row)!r}: ISO 76 defines C0 and P0 for ball and roller rows, "
+                         f"not {type(row).__name__}")
+    return math.inf if P0 == 0.0 else C0 / P0
