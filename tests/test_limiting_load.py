@@ -143,6 +143,23 @@ def test_fixed_radial_force_matches_the_independent_model():
     assert curve.axial_N[0] < limiting_load_curve(bearing, n_rays=6).axial_N[0]
 
 
+def test_ray_ends_where_the_balls_reach_the_groove_shoulder():
+    from mbd_core.bearing.limiting_load import Criterion, ray_limit
+
+    row = FourPointRow("fp", 60, 25e-3, 1.0, shoulder_angle_rad=math.radians(50.0))
+    bearing = Bearing("fp", (row,))
+    # a pressure limit never reached: the axial ray ends where α reaches the shoulder, cos α_sh =
+    # A·cos α0/(A + δ), F_a = Z·K·δ^1.5·sin α_sh (rigid rings, all balls alike); the end of equilibrium
+    # is located to 1e-4 of the scale
+    lam, who, by_equilibrium = ray_limit(bearing, np.zeros(5), np.array([0, 0, 1e5, 0, 0.0]),
+                                         Criterion(pressure_limit_Pa=20e9))
+    A, K, a0, a_sh = row.curvature_centre_distance_m, row.contact_stiffness(), row.contact_angle_rad, math.radians(50)
+    d = A * (math.cos(a0) / math.cos(a_sh) - 1)
+    assert by_equilibrium and who[1] == "inner groove, diagonal +α"
+    assert lam * 1e5 == pytest.approx(60 * K * d**1.5 * math.sin(a_sh), rel=2e-4)
+    assert lam * 1e5 <= 60 * K * d**1.5 * math.sin(a_sh)
+
+
 def test_pressure_limit_criterion_and_s0_scale_the_allowed_pressure():
     row = BallRow("acbb", 40, 20e-3, 0.5, math.radians(60.0), 0.53, 0.53)
     bearing = Bearing("acbb", (row,))

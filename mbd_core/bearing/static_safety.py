@@ -194,7 +194,7 @@ def classical_static_safety(row, radial_N: float, axial_N: float, X0: float = 0.
 
     Ball rows: :func:`ball_row_static_rating_N`, :func:`ball_row_equivalent_static_load_N` (X0, Y0 of
     radial rows). Roller rows: :func:`roller_row_static_rating_N` with P0r = F_r, P0a = F_a. ISO 76
-    gives no rating for four-point rows: ValueError.
+    has no C0 here for four-point rows (rated by their contact pressure, :func:`static_safety`): ValueError.
     """
     if isinstance(row, BallRow):
         P0 = ball_row_equivalent_static_load_N(row, radial_N, axial_N, X0, Y0)
