@@ -129,48 +129,51 @@ def ray_limit(bearing: Bearing, base: np.ndarray, direction: np.ndarray, criteri
     ``base``, ``direction``: (5,) (Fx, Fy, Fz, Mx, My), N and N·m. Returns (λ, who, limited_by_equilibrium)
     with ``who`` = (row, contact, element) of the deciding contact; λ = NaN where even λ → 0 is over.
     """
-    def load(lam: float) -> RingLoad:
-        return RingLoad(*(float(v) for v in base + lam * direction))
+    def u_of(lam: float) -> float:
+        return utilisation(bearing, RingLoad(*(float(v) for v in base + lam * direction)), criterion)[0]
 
-    def f(lam: float) -> float:
-        u, _ = utilisation(bearing, load(lam), criterion)
-        return u - 1.0 if math.isfinite(u) else _NO_EQUILIBRIUM
+    def who_at(lam: float):
+        return utilisation(bearing, RingLoad(*(float(v) for v in base + lam * direction)), criterion)[1]
 
-    u0, who0 = utilisation(bearing, load(0.0), criterion) if np.any(base) else (0.0, None)
-    if not u0 < 1.0:
-        return math.nan, who0, not math.isfinite(u0)
+    if np.any(base) and not u_of(0.0) < 1.0:
+        return math.nan, who_at(0.0), False
+    lo, hi, u = _bracket(u_of, start)
+    if not math.isfinite(u):
+        if lo == 0.0 and not math.isfinite(u_of(_SMALLEST_SCALE * start)):
+            return math.nan, None, True
+        lo, hi, over = _close_in_on_equilibrium_end(u_of, lo, hi, start)
+        if not over:
+            return (math.nan, None, True) if lo == 0.0 else (lo, who_at(lo), True)
+    lam = brentq(lambda x: min(u_of(x) - 1.0, _NO_EQUILIBRIUM), lo, hi, xtol=1e-12 * hi, rtol=rtol)
+    return lam, who_at(lam), False
+
+
+def _bracket(u_of, start: float) -> tuple[float, float, float]:
+    """(lo, hi, u(hi)) with u(lo) < 1 ≤ u(hi) (u = inf: no equilibrium at hi), lo = 0 or a tried scale."""
     lo, hi = 0.0, start
     for _ in range(200):
-        u, _ = utilisation(bearing, load(hi), criterion)
+        u = u_of(hi)
         if not u < 1.0:
-            break
+            return lo, hi, u
         lo = hi
         # p0 ∝ Q^(1/3) ∝ λ^(1/3) roughly: jump towards the limit, at least ×1.5
-        hi = hi * max(1.5, min(1.2 * u ** -3.0 if u > 0 else 10.0, 1e3))
-    else:
-        raise RuntimeError("no limit found along the ray: the load never reaches the criterion")
-    if not math.isfinite(u) and lo == 0.0:
-        u_small, _ = utilisation(bearing, load(_SMALLEST_SCALE * start), criterion)
-        if not math.isfinite(u_small):
-            return math.nan, None, True
-    if not math.isfinite(u):
-        # shrink hi until it has an equilibrium over the limit, or close in on the end of equilibrium
-        while hi - lo > _EQUILIBRIUM_RTOL * hi and not (lo == 0.0 and hi < _SMALLEST_SCALE * start):
-            mid = 0.5 * (lo + hi)
-            um, _ = utilisation(bearing, load(mid), criterion)
-            if not math.isfinite(um):
-                hi = mid
-            elif um < 1.0:
-                lo = mid
-            else:
-                hi = mid
-                break
+        hi = hi * max(1.5, min(1.2 * u**-3.0 if u > 0 else 10.0, 1e3))
+    raise RuntimeError("no limit found along the ray: the load never reaches the criterion")
+
+
+def _close_in_on_equilibrium_end(u_of, lo: float, hi: float, start: float) -> tuple[float, float, bool]:
+    """Bisect [lo, hi] (no equilibrium at hi) until hi has an equilibrium over the limit (True), or
+    the end of equilibrium is located to :data:`_EQUILIBRIUM_RTOL` below the limit (False)."""
+    while hi - lo > _EQUILIBRIUM_RTOL * hi and not (lo == 0.0 and hi < _SMALLEST_SCALE * start):
+        mid = 0.5 * (lo + hi)
+        um = u_of(mid)
+        if math.isfinite(um) and um >= 1.0:
+            return lo, mid, True
+        if math.isfinite(um):
+            lo = mid
         else:
-            if lo == 0.0:
-                return math.nan, None, True
-            return lo, utilisation(bearing, load(lo), criterion)[1], True
-    lam = brentq(f, lo, hi, xtol=1e-12 * hi, rtol=rtol)
-    return lam, utilisation(bearing, load(lam), criterion)[1], False
+            hi = mid
+    return lo, hi, False
 
 
 def _pitch_diameter_m(bearing: Bearing) -> float:
