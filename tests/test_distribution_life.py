@@ -98,6 +98,9 @@ def test_rotating_ring_choice_and_four_point_sets():
     assert len(life.rows[0].set_labels) == 4
     assert life.life_Mrev == pytest.approx(combined_life(life.rows[0].set_life_Mrev), rel=1e-12)
     assert life.life_Mrev < min(life.rows[0].set_life_Mrev)
+    d = life.to_dict()
+    assert d["life_Mrev"] == life.life_Mrev
+    assert [c["life_Mrev"] for c in d["rows"][0]["contact_sets"]] == list(life.rows[0].set_life_Mrev)
 
 
 def test_a_iso_scales_and_bad_input_names_the_key():

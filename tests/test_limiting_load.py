@@ -130,6 +130,8 @@ def test_four_point_pitch_bearing_curve_is_closed_and_matches_the_independent_mo
     _check_points(bearing, model, curve, 5)
     # symmetric arches: +F_a and −F_a limits alike (Brent's rtol)
     assert curve.axial_N[0] == pytest.approx(-curve.axial_N[4], rel=1e-6)
+    d = curve.to_dict()
+    assert d["axial_N"] == curve.axial_N.tolist() and d["ray_angle_deg"][2] == pytest.approx(90.0, rel=1e-12)
 
 
 def test_fixed_radial_force_matches_the_independent_model():

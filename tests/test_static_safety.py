@@ -81,6 +81,7 @@ def test_four_point_row_names_the_deciding_diagonal():
     # symmetric gothic arches: the same s0 either way (solver tolerance)
     assert down.s0 == pytest.approx(up.s0, rel=1e-6)
     assert down.max_pressure_Pa == pytest.approx(P_LIM * down.s0 ** (-1 / 3), rel=1e-12)
+    assert down.to_dict()["s0"] == down.s0 and down.to_dict()["contact"] == down.contact
 
 
 def test_contact_load_at_pressure_is_hertz_cube_law():

@@ -91,6 +91,11 @@ class RowLife:
     life_Mrev: float
     deciding: str
 
+    def to_dict(self) -> dict:
+        sets = [{"label": lab, "rating_N": qc, "equivalent_load_N": qe, "life_Mrev": L} for lab, qc, qe, L in
+                zip(self.set_labels, self.set_rating_N, self.set_equivalent_load_N, self.set_life_Mrev)]
+        return {"row": self.row, "life_Mrev": self.life_Mrev, "deciding": self.deciding, "contact_sets": sets}
+
 
 @dataclass(frozen=True)
 class BearingLife:
@@ -100,6 +105,10 @@ class BearingLife:
     life_Mrev: float
     rotating_ring: str
     a_iso: float
+
+    def to_dict(self) -> dict:
+        return {"life_Mrev": self.life_Mrev, "rotating_ring": self.rotating_ring, "a_iso": self.a_iso,
+                "rows": [r.to_dict() for r in self.rows]}
 
 
 def ball_contact_rating_N(ball_diameter_m: float, conformity: float, pitch_diameter_m: float,

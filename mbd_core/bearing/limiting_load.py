@@ -103,6 +103,17 @@ class LimitingLoadCurve:
     carried: np.ndarray
     equilibrium_limited: np.ndarray
 
+    def to_dict(self) -> dict:
+        """Plain lists; points of rays not carried are None."""
+        def values(a):
+            return [float(v) if np.isfinite(v) else None for v in a]
+
+        return {"criterion": self.criterion, "radial_N": self.radial_N,
+                "ray_angle_deg": np.degrees(self.ray_angle_rad).tolist(), "axial_N": values(self.axial_N),
+                "moment_Nm": values(self.moment_Nm), "row": list(self.row), "contact": list(self.contact),
+                "element": self.element.tolist(), "carried": self.carried.tolist(),
+                "equilibrium_limited": self.equilibrium_limited.tolist()}
+
 
 def utilisation(bearing: Bearing, load: RingLoad, criterion: Criterion):
     """(max p0/p_allow, (row, contact, element)) of the load; (inf, None) without equilibrium."""

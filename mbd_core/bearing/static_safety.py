@@ -82,6 +82,10 @@ class RowStaticSafety:
     max_pressure_Pa: float
     static_limit_Pa: float
 
+    def to_dict(self) -> dict:
+        return {"row": self.row, "s0": self.s0, "contact": self.contact, "element": self.element,
+                "max_pressure_Pa": self.max_pressure_Pa, "static_limit_Pa": self.static_limit_Pa}
+
 
 def set_safety(s: ContactSet) -> tuple[float, int]:
     """(s0, element) of one contact set: min of (p_lim/p0)^n over its elements."""
