@@ -190,7 +190,8 @@ def _rotating_raceways(row, rotating_ring: str) -> str:
 _Part = tuple[str, float, float, np.ndarray]
 
 
-def _ball_parts(row, dist: LoadDistribution, sets, rotating_ring: str, bm: float, ratings) -> list[_Part]:
+def _ball_parts(row, sets, rotating_ring: str, bm: float, ratings) -> list[_Part]:
+    """One part per contact set of a ball row: Q_c, Q_e and its life (Q_c/Q_e)^3."""
     out = []
     for s in sets:
         f = row.conformity_moving if s.raceway == row.moving_raceway else row.conformity_fixed
@@ -202,6 +203,7 @@ def _ball_parts(row, dist: LoadDistribution, sets, rotating_ring: str, bm: float
 
 
 def _roller_parts(row: RollerRow, dist: LoadDistribution, rotating_ring: str, bm: float, ratings) -> list[_Part]:
+    """One part per raceway of a roller row, with the lives (q_c/q_e,k)^4 of its n_s laminae."""
     q = np.asarray(dist.row(row.name).slice_load_N, dtype=float)  # (Z, n_s) lamina loads, N
     alpha = math.pi / 2 if row.orientation == "thrust" else 0.0
     out = []
@@ -227,7 +229,7 @@ def _row_parts(bearing: Bearing, dist: LoadDistribution, rotating_ring: str, bm,
         if isinstance(row, RollerRow):
             out[row.name] = _roller_parts(row, dist, rotating_ring, b, ratings)
         else:
-            out[row.name] = _ball_parts(row, dist, [s for s in sets if s.row == row.name], rotating_ring, b, ratings)
+            out[row.name] = _ball_parts(row, [s for s in sets if s.row == row.name], rotating_ring, b, ratings)
     return out
 
 
