@@ -1,8 +1,12 @@
 """Bearing-level relations: rolling kinematics, defect frequencies, ISO 281 rating and life,
-case-depth life factor."""
+case-depth life factor; from a load distribution: static safety (ISO 76), rating life per row
+(ISO/TS 16281) and the static limiting load curve."""
 
 from .kinematics import RollingKinematics, rad_s_to_rpm, rolling_kinematics, rpm_to_rad_s
 from .case_depth import case_depth_life_factor, required_case_depth_m
+from .distribution_life import BearingLife, RowLife, rating_life, spectrum_rating_life
+from .limiting_load import LimitingLoadCurve, limiting_load_curve
+from .static_safety import RowStaticSafety, static_safety
 from .rating import (
     basic_rating_life_Mrev,
     radial_ball_rating_N,
@@ -23,4 +27,12 @@ __all__ = [
     "basic_rating_life_Mrev",
     "case_depth_life_factor",
     "required_case_depth_m",
+    "RowStaticSafety",
+    "static_safety",
+    "RowLife",
+    "BearingLife",
+    "rating_life",
+    "spectrum_rating_life",
+    "LimitingLoadCurve",
+    "limiting_load_curve",
 ]
