@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import math
 
+from foundation.validation import check_positive
+
 from ..contact.hertz import ball_on_groove, series_stiffness
 
-__all__ = ["check_finite", "check_count", "check_sign", "settled_clearance", "ball_pair_stiffness"]
+__all__ = ["check_finite", "check_count", "check_sign", "check_ball_row", "settled_clearance", "ball_pair_stiffness"]
 
 
 def check_finite(owner: str, **values: float) -> None:
@@ -24,6 +26,28 @@ def check_count(owner: str, name: str, n: int, minimum: int = 1) -> None:
 def check_sign(owner: str, name: str, s: int) -> None:
     if s not in (1, -1):
         raise ValueError(f"{owner}: {name} must be +1 or -1, got {s!r}")
+
+
+def check_ball_row(who: str, row) -> None:
+    """The checks every ball row shares (``row`` has the fields of :class:`.rows.BallRow`): ball count,
+    sizes, conformities, which raceway moves, positions, stiffness override and that the balls fit
+    on the pitch circle; ValueError naming the field otherwise."""
+    check_count(who, "n_balls", row.n_balls)
+    check_positive(who, ball_diameter_m=row.ball_diameter_m, pitch_diameter_m=row.pitch_diameter_m)
+    if row.pitch_diameter_m <= row.ball_diameter_m:
+        raise ValueError(f"{who}: pitch_diameter_m must exceed ball_diameter_m")
+    for name in ("conformity_moving", "conformity_fixed"):
+        f = getattr(row, name)
+        if not (isinstance(f, (int, float)) and f > 0.5):
+            raise ValueError(f"{who}: {name} must be > 0.5 (the ball must be smaller than its groove), got {f!r}")
+    if row.moving_raceway not in ("inner", "outer"):
+        raise ValueError(f"{who}: moving_raceway must be 'inner' or 'outer', got {row.moving_raceway!r}")
+    check_finite(who, axial_position_m=row.axial_position_m, first_azimuth_rad=row.first_azimuth_rad)
+    if row.stiffness_N_per_m1p5 is not None:
+        check_positive(who, stiffness_N_per_m1p5=row.stiffness_N_per_m1p5)
+    if row.n_balls * row.ball_diameter_m > math.pi * row.pitch_diameter_m * (1 + 1e-9):
+        raise ValueError(f"{who}: {row.n_balls} balls of {row.ball_diameter_m} m do not fit on the pitch "
+                         f"circle of {row.pitch_diameter_m} m")
 
 
 def settled_clearance(who: str, diametral_m: float | None, radial_m: float | None, A_m: float,

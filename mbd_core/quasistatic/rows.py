@@ -47,7 +47,7 @@ from ..contact.line import LINE_EXPONENT, iso16281_stiffness, palmgren_stiffness
 from foundation.materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
 from foundation.validation import check_positive
 
-from .row_common import ball_pair_stiffness, check_count, check_finite, check_sign, settled_clearance
+from .row_common import ball_pair_stiffness, check_ball_row, check_count, check_finite, check_sign, settled_clearance
 from .rows_four_point import FourPointRow
 
 __all__ = ["BallRow", "FourPointRow", "RollerRow", "Bearing", "roller_drop_m", "ISO16281_LOG_RELIEF_PER_D"]
@@ -131,32 +131,13 @@ class BallRow:
 
     def __post_init__(self) -> None:
         who = f"ball row {self.name!r}"
-        check_count(who, "n_balls", self.n_balls)
-        check_positive(who, ball_diameter_m=self.ball_diameter_m, pitch_diameter_m=self.pitch_diameter_m)
-        if self.pitch_diameter_m <= self.ball_diameter_m:
-            raise ValueError(f"{who}: pitch_diameter_m must exceed ball_diameter_m")
+        check_ball_row(who, self)
         if not 0.0 <= self.contact_angle_rad <= math.pi / 2 + 1e-12:
             raise ValueError(
                 f"{who}: contact_angle must lie in [0, 90] deg, got {math.degrees(self.contact_angle_rad):.6g}"
             )
-        for name in ("conformity_moving", "conformity_fixed"):
-            f = getattr(self, name)
-            if not (isinstance(f, (int, float)) and f > 0.5):
-                raise ValueError(
-                    f"{who}: {name} must be > 0.5 (the ball must be smaller than its groove), got {f!r}"
-                )
-        if self.moving_raceway not in ("inner", "outer"):
-            raise ValueError(f"{who}: moving_raceway must be 'inner' or 'outer', got {self.moving_raceway!r}")
         check_sign(who, "axial_sign", self.axial_sign)
         self._settle_clearance(who)
-        check_finite(who, axial_position_m=self.axial_position_m, first_azimuth_rad=self.first_azimuth_rad)
-        if self.stiffness_N_per_m1p5 is not None:
-            check_positive(who, stiffness_N_per_m1p5=self.stiffness_N_per_m1p5)
-        if self.n_balls * self.ball_diameter_m > math.pi * self.pitch_diameter_m * (1 + 1e-9):
-            raise ValueError(
-                f"{who}: {self.n_balls} balls of {self.ball_diameter_m} m do not fit on the pitch "
-                f"circle of {self.pitch_diameter_m} m"
-            )
 
     def _settle_clearance(self, who: str) -> None:
         """Fill in the clearance not given from the one given (P_d = 2·radial)."""

@@ -34,9 +34,8 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 from foundation.materials import BEARING_STEEL, ElasticMaterial
-from foundation.validation import check_positive
 
-from .row_common import ball_pair_stiffness, check_count, check_finite, settled_clearance
+from .row_common import ball_pair_stiffness, check_ball_row, check_finite, settled_clearance
 
 __all__ = ["FourPointRow", "DEFAULT_SHOULDER_ANGLE_RAD"]
 
@@ -100,10 +99,7 @@ class FourPointRow:
 
     def __post_init__(self) -> None:
         who = f"four-point row {self.name!r}"
-        check_count(who, "n_balls", self.n_balls)
-        check_positive(who, ball_diameter_m=self.ball_diameter_m, pitch_diameter_m=self.pitch_diameter_m)
-        if self.pitch_diameter_m <= self.ball_diameter_m:
-            raise ValueError(f"{who}: pitch_diameter_m must exceed ball_diameter_m")
+        check_ball_row(who, self)
         check_finite(who, contact_angle_rad=self.contact_angle_rad, shoulder_angle_rad=self.shoulder_angle_rad)
         if not 0.0 < self.shoulder_angle_rad <= math.pi / 2 + 1e-12:
             raise ValueError(f"{who}: shoulder_angle must lie in (0, 90] deg, got "
@@ -111,23 +107,10 @@ class FourPointRow:
         if not 0.0 < self.contact_angle_rad < self.shoulder_angle_rad:
             raise ValueError(f"{who}: contact_angle ({math.degrees(self.contact_angle_rad):.6g} deg) must lie "
                              f"between 0 deg and shoulder_angle ({math.degrees(self.shoulder_angle_rad):.6g} deg)")
-        for name in ("conformity_moving", "conformity_fixed"):
-            f = getattr(self, name)
-            if not (isinstance(f, (int, float)) and f > 0.5):
-                raise ValueError(f"{who}: {name} must be > 0.5 (the ball must be smaller than its arc), got {f!r}")
-        if self.moving_raceway not in ("inner", "outer"):
-            raise ValueError(f"{who}: moving_raceway must be 'inner' or 'outer', got {self.moving_raceway!r}")
         d, r = settled_clearance(who, self.diametral_clearance_m, self.radial_clearance_m,
                                  self.curvature_centre_distance_m, self.contact_angle_rad)
         object.__setattr__(self, "diametral_clearance_m", d)
         object.__setattr__(self, "radial_clearance_m", r)
-        check_finite(who, axial_position_m=self.axial_position_m, first_azimuth_rad=self.first_azimuth_rad)
-        if self.stiffness_N_per_m1p5 is not None:
-            check_positive(who, stiffness_N_per_m1p5=self.stiffness_N_per_m1p5)
-        if self.n_balls * self.ball_diameter_m > math.pi * self.pitch_diameter_m * (1 + 1e-9):
-            raise ValueError(f"{who}: {self.n_balls} balls of {self.ball_diameter_m} m do not fit on the pitch "
-                             f"circle of {self.pitch_diameter_m} m")
-
     #: Axial sign of the two diagonals (+α, −α), in the order of the per-contact result arrays.
     DIAGONAL_SIGNS = (1, -1)
 
