@@ -25,8 +25,8 @@ from mbd_core.multibody.bearings import add_ball_row
 from mbd_core.multibody.builder import Driven, Fixed
 from mbd_core.multibody.explicit import simulate
 from mbd_core.quasistatic import BallRow, Bearing, RingLoad
-from mbd_core.quasistatic.flexible import (FlexibleRing, GrooveOffset, build_flexible_model,
-                                          solve_flexible_load_distribution)
+from mbd_core.quasistatic.flexible import FlexibleRing, GrooveOffset, build_flexible_model
+from mbd_core.quasistatic.flexible_solve import solve_flexible_load_distribution
 
 STEEL = ElasticMaterial("steel", 200e9, 0.3, 7850.0)
 PITCH_M, LOAD_N = 2.0, 140e3 * 9.81

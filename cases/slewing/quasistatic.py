@@ -5,7 +5,7 @@ centrifugal force on a load ball at the 2 m ring's orbit speed is 0.3 N against 
 load on the balls at each position of the top race is the equilibrium of that position: the
 bottom race fixed, the top race turned by φ with its thermal sector, the balls at ψ_i0 + r·φ
 (r the orbit ratio, :func:`.scene.orbit_ratio`), each solved by
-:func:`mbd_core.quasistatic.flexible.solve_flexible_load_distribution`, starting from the top
+:func:`mbd_core.quasistatic.flexible_solve.solve_flexible_load_distribution`, starting from the top
 race's displacement at the previous position.
 The balls are held at their azimuths (spacer balls and cage carry the circumferential forces).
 """
@@ -21,7 +21,8 @@ from scipy.optimize import brentq
 from mbd_core.contact import ball_on_groove
 
 from mbd_core.quasistatic import Bearing, RingLoad
-from mbd_core.quasistatic.flexible import build_flexible_model, solve_flexible_load_distribution
+from mbd_core.quasistatic.flexible import build_flexible_model
+from mbd_core.quasistatic.flexible_solve import solve_flexible_load_distribution
 
 from . import scene
 from .case import SlewingCase

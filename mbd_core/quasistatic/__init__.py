@@ -1,14 +1,7 @@
 """Quasi-static load distribution of bearings with rigid or flexible (modal) rings (Newton, analytic Jacobian)."""
 
-from .flexible import (
-    FlexibleBearingModel,
-    FlexibleLoadDistribution,
-    FlexibleRing,
-    GrooveOffset,
-    RacewayDeflection,
-    build_flexible_model,
-    solve_flexible_load_distribution,
-)
+from .flexible import FlexibleBearingModel, FlexibleRing, GrooveOffset, build_flexible_model
+from .flexible_solve import FlexibleLoadDistribution, RacewayDeflection, solve_flexible_load_distribution
 from .rows import BallRow, Bearing, FourPointRow, RollerRow
 from .solver import LoadDistribution, LoadDistributionError, RingLoad, solve_load_distribution, stiffness_matrix
 
