@@ -1,4 +1,10 @@
-"""The examples run as scripts and are checked here (each example computes at module level)."""
+"""The examples run as scripts and are checked here (each example computes at module level).
+
+The two heavy ones run at their ``--quick`` size (FLEXBEARING_EXAMPLE_QUICK=1: a mesh twice as
+coarse, the same loads, supports, modes and run); the checks below hold at any mesh (load sums,
+equilibrium, load carried after the ramp), and benchmarks/bench_examples.py makes them at the
+full size.
+"""
 
 import importlib.util
 import math
@@ -12,7 +18,11 @@ EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 def _run(name, monkeypatch, tmp_path):
     monkeypatch.setenv("FLEXBEARING_EXAMPLE_OUT", str(tmp_path / name))
+    # the heavy examples at their quick size (coarser race mesh, same loads, supports and history);
+    # their full size is run and checked by benchmarks/bench_examples.py
+    monkeypatch.setenv("FLEXBEARING_EXAMPLE_QUICK", "1")
     monkeypatch.setenv("FLEXBEARING_CACHE", str(tmp_path / "cache"))
+    monkeypatch.setenv("FLEXBEARING_EXAMPLE_QUICK", "1")
     spec = importlib.util.spec_from_file_location(name, EXAMPLES / f"{name}.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
