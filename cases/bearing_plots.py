@@ -21,13 +21,20 @@ def limiting_load_curve_xy(curve: LimitingLoadCurve) -> tuple[np.ndarray, np.nda
     return M, F
 
 
-def plot_limiting_load_curve(curve: LimitingLoadCurve, path, bearing_name: str = "") -> Path:
+def plot_limiting_load_curve(curve: LimitingLoadCurve, path, bearing_name: str = "",
+                             operating_points=()) -> Path:
     """PNG of the limiting load curve: axial force F_a (kN) against tilting moment M (kN·m), the
-    criterion in the title; rays with no point (not carried) are left out and counted in the title."""
+    criterion in the title; rays with no point (not carried) are left out and counted in the title.
+    ``operating_points``: (M N·m, F_a N) pairs marked on the plot (the load cases)."""
     pyplot = plt()
     M, F = limiting_load_curve_xy(curve)
     fig, ax = pyplot.subplots(figsize=(7.0, 5.5), constrained_layout=True)
     ax.plot(M, F, "o-", color="C0", ms=3, lw=1.5, label="limiting load")
+    if len(operating_points):
+        pts = np.asarray(operating_points, dtype=float) / 1e3
+        ax.plot(pts[:, 0], pts[:, 1], "x", color="C3", ms=8, mew=2,
+                label="load case" if len(pts) == 1 else "load cases")
+        ax.legend(loc="best")
     ax.axhline(0.0, color="k", lw=0.6)
     ax.axvline(0.0, color="k", lw=0.6)
     ax.set_xlabel("tilting moment M (kN·m)")

@@ -34,12 +34,12 @@ from mbd_core.quasistatic import LoadDistributionError, solve_load_distribution
 
 from . import signals
 from .cache_command import add_cache_parser, cache_help_line
-from .catalog import BUILTIN_BEARINGS
-from .loaddist_command import LOAD_NAMES, bearing_description, cases_table, chosen_loads
+from .loaddist_command import (LOAD_NAMES, add_loaddist_parser, bearing_description, check_loaddist_options,
+                               chosen_loads, loaddist_outputs)
 from .outdir import check_output_target
 from .parts import RING_PARTS, ring_part
 from .progress_display import terminal_progress
-from .report import format_table, load_distribution_table, write_load_distribution
+from .report import format_table
 from .results import output_units
 
 __all__ = ["main"]
@@ -235,25 +235,13 @@ def _check_out(args) -> None:
 
 def cmd_loaddist(args) -> dict:
     _check_out(args)
+    check_loaddist_options(args)
     name, desc = bearing_description(args.bearing)
     loads, time_share = chosen_loads(desc, {k: getattr(args, k) for k in LOAD_NAMES})
     with phase(f"load distribution of {name}"):
         results = [solve_load_distribution(desc.bearing, load) for load in track(loads, "load cases")] \
             if len(loads) > 1 else [solve_load_distribution(desc.bearing, loads[0])]
-    extra = {"case": name, "description": desc.description}
-    if args.out:
-        path = write_load_distribution(results if len(results) > 1 else results[0], args.out, extra, time_share)
-        logging.getLogger(__name__).info("wrote %s", path)
-    if not args.json:
-        if desc.description:
-            print(desc.description)
-        print(load_distribution_table(results[0]) if len(results) == 1 else cases_table(results, time_share))
-        if args.out:
-            angles = ", contact_angles.png" if any(r.kind == "ball" for r in results[0].rows) else ""
-            print(f"\nresults: {args.out}/summary.json, element_loads.csv, element_loads.png{angles}")
-    if len(results) == 1:
-        return output_units(results[0].to_dict())
-    return output_units({"bearing": desc.name, "load_cases": [{"case": k + 1, **r.to_dict()} for k, r in enumerate(results)]})
+    return loaddist_outputs(args, name, desc, results, time_share)
 
 
 def cmd_modes(args) -> dict:
@@ -344,17 +332,7 @@ def build_parser() -> argparse.ArgumentParser:
     for p in (b, s, ln):
         p.add_argument("--json", action="store_true", help="print SI results as JSON")
 
-    ld = sub.add_parser("loaddist", help="quasi-static load distribution with rigid rings")
-    ld.add_argument("bearing", nargs="?", default="slewing-ring",
-                    help=f"built-in bearing ({', '.join(sorted(BUILTIN_BEARINGS))}; default: slewing-ring) or a "
-                    "bearing description file .toml (format: cases/bearings/README.md)")
-    for name, unit in (("Fx", "N"), ("Fy", "N"), ("Fz", "N"), ("Mx", "Nm"), ("My", "Nm")):
-        ld.add_argument(f"--{name}-{unit}", dest=f"{name}_{unit}", type=float, default=None,
-                        help=f"load on the moving ring ({'N' if unit == 'N' else 'N·m'}); "
-                        "all omitted = the load of the bearing's file (every case of its spectrum)")
-    ld.add_argument("--out", default=None, help="write summary.json, element_loads.csv and a plot here")
-    ld.add_argument("--json", action="store_true", help="print SI results as JSON")
-    ld.set_defaults(func=cmd_loaddist)
+    add_loaddist_parser(sub, cmd_loaddist)
 
     rn = sub.add_parser("run", help="run a case (named study or TOML file) into a results folder")
     rn.add_argument("case", nargs="?", default=None, help="case name (see --list) or a case .toml file")

@@ -1,17 +1,96 @@
-"""``flexbearing loaddist``: which bearing the argument names, and the table of a load spectrum's results."""
+"""``flexbearing loaddist``: its options, which bearing the argument names, and what it prints and writes."""
 
 from __future__ import annotations
 
+import logging
+import math
 import os
 
 from mbd_core.quasistatic import RingLoad
 from mbd_core.quasistatic.results import LOAD_NAMES
 
 from .bearing_file import BUILTIN_DIR, BearingDescription, read_bearing_file
+from .bearing_report import bearing_checks, bearing_checks_lines, stiffness_lines, write_contacts_csv, write_limiting_curve
 from .catalog import BUILTIN_BEARINGS
-from .report import format_table
+from .report import format_table, load_distribution_table, write_load_distribution
+from .results import output_units
 
-__all__ = ["LOAD_NAMES", "bearing_description", "cases_table", "chosen_loads"]
+__all__ = ["LOAD_NAMES", "add_loaddist_parser", "bearing_description", "cases_table", "check_loaddist_options",
+           "chosen_loads", "loaddist_outputs"]
+
+
+def add_loaddist_parser(sub, func) -> None:
+    """The ``loaddist`` sub-command and its options."""
+    ld = sub.add_parser("loaddist", help="quasi-static load distribution with rigid rings")
+    ld.add_argument("bearing", nargs="?", default="slewing-ring",
+                    help=f"built-in bearing ({', '.join(sorted(BUILTIN_BEARINGS))}; default: slewing-ring) or a "
+                    "bearing description file .toml (format: cases/bearings/README.md)")
+    for name, unit in (("Fx", "N"), ("Fy", "N"), ("Fz", "N"), ("Mx", "Nm"), ("My", "Nm")):
+        ld.add_argument(f"--{name}-{unit}", dest=f"{name}_{unit}", type=float, default=None,
+                        help=f"load on the moving ring ({'N' if unit == 'N' else 'N·m'}); "
+                        "all omitted = the load of the bearing's file (every case of its spectrum)")
+    ld.add_argument("--limiting-curve", action="store_true",
+                    help="also compute the limiting load curve (axial force vs tilting moment at the static "
+                    "criterion; needs --out; takes seconds)")
+    ld.add_argument("--s0", type=float, default=1.0,
+                    help="static safety factor of the limiting load curve's criterion (default 1: p0 at the ISO 76 limit)")
+    ld.add_argument("--p0-limit-MPa", dest="p0_limit_MPa", type=float, default=None,
+                    help="allowed contact pressure p0 of the limiting load curve instead of ISO 76 over --s0 (MPa)")
+    ld.add_argument("--out", default=None,
+                    help="write summary.json, element_loads.csv, contacts.csv and plots here")
+    ld.add_argument("--json", action="store_true", help="print SI results as JSON")
+    ld.set_defaults(func=func)
+
+
+def check_loaddist_options(args) -> None:
+    """ValueError naming the option for an unusable limiting-curve option (before any work)."""
+    if not (math.isfinite(args.s0) and args.s0 > 0.0):
+        raise ValueError(f"--s0 must be a positive number, got {args.s0}")
+    if args.p0_limit_MPa is not None and not (math.isfinite(args.p0_limit_MPa) and args.p0_limit_MPa > 0.0):
+        raise ValueError(f"--p0-limit-MPa must be a positive number, got {args.p0_limit_MPa}")
+    if args.limiting_curve and not args.out:
+        raise ValueError("--limiting-curve writes limiting_load_curve.csv and .png: give --out")
+    if not args.limiting_curve and (args.s0 != 1.0 or args.p0_limit_MPa is not None):
+        raise ValueError("--s0 and --p0-limit-MPa set the limiting load curve's criterion: give --limiting-curve")
+
+
+def loaddist_outputs(args, name: str, desc: BearingDescription, results, time_share) -> dict:
+    """Print and (with ``--out``) write the results of ``loaddist``; the summary in output units."""
+    checks = [bearing_checks(desc.bearing, r) for r in results]
+    extra = {"case": name, "description": desc.description}
+    written = ["summary.json", "element_loads.csv", "contacts.csv", "element_loads.png"]
+    if any(r.kind == "ball" for r in results[0].rows):
+        written.append("contact_angles.png")
+    if args.out:
+        def more(folder):
+            write_contacts_csv(desc.bearing, results, folder / "contacts.csv")
+            if args.limiting_curve:
+                p0 = None if args.p0_limit_MPa is None else args.p0_limit_MPa * 1e6
+                curve = write_limiting_curve(desc.bearing, folder, results, s0=args.s0, pressure_limit_Pa=p0)
+                extra["limiting_load_curve"] = curve.to_dict()
+                written.extend(["limiting_load_curve.csv", "limiting_load_curve.png"])
+
+        path = write_load_distribution(results if len(results) > 1 else results[0], args.out, extra, time_share,
+                                       case_extra=checks, more=more)
+        logging.getLogger(__name__).info("wrote %s", path)
+    if not args.json:
+        if desc.description:
+            print(desc.description)
+        if len(results) == 1:
+            print("\n".join([load_distribution_table(results[0]), *bearing_checks_lines(checks[0]),
+                             *stiffness_lines(results[0])]))
+        else:
+            print(cases_table(results, time_share, checks))
+        if args.out:
+            print(f"\nresults: {args.out}/{', '.join(written)}")
+    if len(results) == 1:
+        d = results[0].to_dict()
+        d.update({k: v for k, v in checks[0].items() if k != "warnings"})
+        d["warnings"] = d["warnings"] + checks[0]["warnings"]
+        return output_units(d)
+    return output_units({"bearing": desc.name, "load_cases": [
+        {"case": k + 1, **r.to_dict(), **{k2: v for k2, v in c.items() if k2 != "warnings"},
+         "warnings": r.to_dict()["warnings"] + c["warnings"]} for k, (r, c) in enumerate(zip(results, checks))]})
 
 
 def chosen_loads(desc: BearingDescription, given: dict) -> tuple[tuple[RingLoad, ...], tuple[float, ...] | None]:
@@ -34,14 +113,21 @@ def bearing_description(name: str) -> tuple[str, BearingDescription]:
                     "or a bearing description file (.toml)")
 
 
-def cases_table(results, time_share) -> str:
-    """One line per load case: the load and each row's largest element load."""
+def cases_table(results, time_share, checks=None) -> str:
+    """One line per load case: the load, each row's largest element load and the bearing's s0."""
     names = [r.name for r in results[0].rows]
     lines = []
     for k, res in enumerate(results):
         share = [] if time_share is None else [f"{time_share[k]:.4g}"]
-        lines.append((k + 1, *share, *(f"{v:.4g}" for v in res.load), *(f"{r.max_load_N:.0f}" for r in res.rows)))
+        s0 = [] if checks is None else [_s0_text(checks[k]["static_safety"]["s0"])]
+        lines.append((k + 1, *share, *(f"{v:.4g}" for v in res.load), *(f"{r.max_load_N:.0f}" for r in res.rows), *s0))
     head = ("case", *(["time_share"] if time_share is not None else []), "Fx N", "Fy N", "Fz N", "Mx N·m",
-            "My N·m", *(f"Q_max {n} N" for n in names))
+            "My N·m", *(f"Q_max {n} N" for n in names), *([] if checks is None else ["s0"]))
     warnings = [f"WARNING: case {k + 1}: {w}" for k, res in enumerate(results) for w in res.warnings]
+    if checks is not None:
+        warnings += [f"WARNING: case {k + 1}: {w}" for k, c in enumerate(checks) for w in c["warnings"]]
     return "\n".join([f"bearing: {results[0].bearing_name}", format_table(lines, head), *warnings])
+
+
+def _s0_text(s0) -> str:
+    return "unloaded" if s0 is None else f"{s0:.3g}"

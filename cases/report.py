@@ -88,33 +88,49 @@ def _write_csv(results: list[LoadDistribution], path: Path) -> None:
                         int(r.unloaded[i])] + _four_point_cells(r, i))
 
 
-def _cases_summary(results: list[LoadDistribution], time_share) -> dict:
+def _case_dict(res: LoadDistribution, extra: dict | None) -> dict:
+    """A result's summary with ``extra`` (e.g. static safety) added; its warnings join the result's."""
+    d = res.to_dict()
+    if extra:
+        d.update({k: v for k, v in extra.items() if k != "warnings"})
+        d["warnings"] = list(d.get("warnings", [])) + list(extra.get("warnings", []))
+    return d
+
+
+def _cases_summary(results: list[LoadDistribution], time_share, case_extra) -> dict:
     """Summary of several load cases: each case's result, numbered from 1, and each row's largest load."""
-    cases = [{"case": k + 1, **({} if time_share is None else {"time_share": time_share[k]}), **res.to_dict()}
-             for k, res in enumerate(results)]
+    cases = [{"case": k + 1, **({} if time_share is None else {"time_share": time_share[k]}), **_case_dict(res, x)}
+             for k, (res, x) in enumerate(zip(results, case_extra))]
     worst = []
     for i, r in enumerate(results[0].rows):
         loads = [res.rows[i].max_load_N for res in results]
         worst.append({"name": r.name, "max_load_N": max(loads), "case": int(np.argmax(loads)) + 1})
     return {"bearing": results[0].bearing_name, "n_load_cases": len(results), "rows_max": worst,
-            "warnings": sorted({f"case {k + 1}: {w}" for k, res in enumerate(results) for w in res.warnings}),
+            "warnings": sorted({f"case {k + 1}: {w}" for k, c in enumerate(cases) for w in c["warnings"]}),
             "load_cases": cases}
 
 
 def write_load_distribution(res: LoadDistribution | list[LoadDistribution], out_dir: str | os.PathLike,
-                            extra: dict | None = None, time_share=None) -> Path:
+                            extra: dict | None = None, time_share=None, case_extra: list[dict] | None = None,
+                            more=None) -> Path:
     """Write summary.json, element_loads.csv, element_loads.png and (ball rows) contact_angles.png to
     ``out_dir`` in the output units (:data:`cases.results.OUTPUT_UNITS`; elements and load cases
     numbered from 1) (atomically, :func:`cases.outdir.atomic_folder`: an existing folder is replaced
     only if the project wrote it). ``res``: one result, or one per load case (``time_share`` their
-    shares, or None)."""
+    shares, or None). ``case_extra``: per load case, entries added to its summary (its
+    ``warnings`` joined to the result's); ``more``: a function writing further files into the new
+    folder (given its path) before it replaces the old one."""
     results = res if isinstance(res, list) else [res]
     with atomic_folder(out_dir, (extra or {}).get("case", results[0].bearing_name)) as tmp:
         _write_csv(results, tmp / "element_loads.csv")
         plot_element_loads(results, tmp / "element_loads.png")
         if has_ball_rows(results[0]):
             plot_contact_angles(results, tmp / "contact_angles.png")
-        summary = results[0].to_dict() if len(results) == 1 else _cases_summary(results, time_share)
+        case_extra = case_extra or [None] * len(results)
+        if more is not None:
+            more(tmp)
+        summary = _case_dict(results[0], case_extra[0]) if len(results) == 1 else \
+            _cases_summary(results, time_share, case_extra)
         if extra:
             summary.update(extra)
         (tmp / "summary.json").write_text(json.dumps(output_units(summary), indent=1))

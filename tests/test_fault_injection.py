@@ -21,7 +21,7 @@ from pathlib import Path
 from cases.outdir import MARKER, recover
 
 ROOT = Path(__file__).resolve().parents[1]
-FILES = {"summary.json", "element_loads.csv", "element_loads.png", "contact_angles.png", MARKER}
+FILES = {"summary.json", "element_loads.csv", "contacts.csv", "element_loads.png", "contact_angles.png", MARKER}
 
 
 def _start(out: Path, Fz_N: float, cache: Path) -> subprocess.Popen:
