@@ -8,7 +8,7 @@ from foundation.validation import check_positive
 
 from ..contact.hertz import ball_on_groove, series_stiffness
 
-__all__ = ["check_finite", "check_count", "check_sign", "check_ball_row", "settled_clearance", "ball_pair_stiffness"]
+__all__ = ["BallRowGeometry", "check_finite", "check_count", "check_sign", "check_ball_row", "settled_clearance", "ball_pair_stiffness"]
 
 
 def check_finite(owner: str, **values: float) -> None:
@@ -95,3 +95,45 @@ def ball_pair_stiffness(row) -> float:
     k_f = ball_on_groove(*common, row.conformity_fixed, row.pitch_diameter_m, row.contact_angle_rad,
                          fixed, row.ball_material, row.race_material)
     return series_stiffness(k_m.stiffness_N_per_m1p5, k_f.stiffness_N_per_m1p5)
+
+
+class BallRowGeometry:
+    """Groove geometry every ball row derives from its fields (those of :class:`.rows.BallRow`):
+    a base of the ball row dataclasses."""
+
+    @property
+    def radial_sign(self) -> int:
+        """+1 if moving the moving ring outwards loads the row (it carries the inner raceway)."""
+        return 1 if self.moving_raceway == "inner" else -1
+
+    @property
+    def curvature_centre_distance_m(self) -> float:
+        """A = (f_m + f_f − 1)·D, m (of each diagonal of a four-point row)."""
+        return (self.conformity_moving + self.conformity_fixed - 1.0) * self.ball_diameter_m
+
+    @property
+    def gap_m(self) -> float:
+        """Radial clearance P_d/2, m."""
+        return self.radial_clearance_m
+
+    @property
+    def free_contact_angle_rad(self) -> float:
+        """Contact angle of the unloaded ball pushed axially until it touches, rad.
+
+        From the curvature-centre geometry: the radial and axial components of s0 with |s| = A
+        (Harris & Kotzalas ch. 2 for α0 = 0: cos α_f = 1 − P_d/(2A)). Without clearance α0.
+        """
+        A = self.curvature_centre_distance_m
+        s_r = A * math.cos(self.contact_angle_rad) - self.radial_clearance_m
+        return math.acos(max(-1.0, min(1.0, s_r / A)))
+
+    @property
+    def n_elements(self) -> int:
+        return self.n_balls
+
+    def contact_stiffness(self) -> float:
+        """K of Q = K·δ^1.5 of one ball (of one diagonal of a four-point ball): moving and fixed
+        contacts in series, N/m^1.5; the row's override if given."""
+        if self.stiffness_N_per_m1p5 is not None:
+            return self.stiffness_N_per_m1p5
+        return ball_pair_stiffness(self)

@@ -47,7 +47,7 @@ from ..contact.line import LINE_EXPONENT, iso16281_stiffness, palmgren_stiffness
 from foundation.materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
 from foundation.validation import check_positive
 
-from .row_common import ball_pair_stiffness, check_ball_row, check_count, check_finite, check_sign, settled_clearance
+from .row_common import BallRowGeometry, check_ball_row, check_count, check_finite, check_sign, settled_clearance
 from .rows_four_point import FourPointRow
 
 __all__ = ["BallRow", "FourPointRow", "RollerRow", "Bearing", "roller_drop_m", "ISO16281_LOG_RELIEF_PER_D"]
@@ -74,7 +74,7 @@ def roller_drop_m(x_m: np.ndarray, length_m: float, profile: str, crown_drop_m: 
 
 
 @dataclass(frozen=True)
-class BallRow:
+class BallRow(BallRowGeometry):
     """A row of balls in grooves.
 
     Parameters
@@ -147,27 +147,6 @@ class BallRow:
         object.__setattr__(self, "radial_clearance_m", r)
 
     @property
-    def gap_m(self) -> float:
-        """Radial clearance P_d/2, m (the name of the former gap field, kept for its readers)."""
-        return self.radial_clearance_m
-
-    @property
-    def free_contact_angle_rad(self) -> float:
-        """Contact angle of the unloaded ball pushed axially until it touches, rad.
-
-        From the curvature-centre geometry: the radial and axial components of s0 with |s| = A
-        (Harris & Kotzalas ch. 2 for α0 = 0: cos α_f = 1 − P_d/(2A)). Without clearance α0.
-        """
-        A = self.curvature_centre_distance_m
-        s_r = A * math.cos(self.contact_angle_rad) - 0.5 * self.diametral_clearance_m
-        return math.acos(max(-1.0, min(1.0, s_r / A)))
-
-    @property
-    def radial_sign(self) -> int:
-        """+1 if moving the moving ring outwards loads the row (it carries the inner raceway)."""
-        return 1 if self.moving_raceway == "inner" else -1
-
-    @property
     def groove_angle_range_rad(self) -> tuple[float, float]:
         """Loaded contact angles the grooves can carry, rad.
 
@@ -176,21 +155,6 @@ class BallRow:
         contact would leave this range has run over the groove edge and carries no load.
         """
         return (-math.pi / 2, math.pi / 2) if self.contact_angle_rad == 0.0 else (0.0, math.pi / 2)
-
-    @property
-    def curvature_centre_distance_m(self) -> float:
-        """A = (f_m + f_f − 1)·D, m."""
-        return (self.conformity_moving + self.conformity_fixed - 1.0) * self.ball_diameter_m
-
-    @property
-    def n_elements(self) -> int:
-        return self.n_balls
-
-    def contact_stiffness(self) -> float:
-        """K of Q = K·δ^1.5 for one ball (moving and fixed contacts in series), N/m^1.5."""
-        if self.stiffness_N_per_m1p5 is not None:
-            return self.stiffness_N_per_m1p5
-        return ball_pair_stiffness(self)
 
 
 @dataclass(frozen=True)

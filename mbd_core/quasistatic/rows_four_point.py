@@ -35,7 +35,7 @@ from typing import Literal
 
 from foundation.materials import BEARING_STEEL, ElasticMaterial
 
-from .row_common import ball_pair_stiffness, check_ball_row, check_finite, settled_clearance
+from .row_common import BallRowGeometry, check_ball_row, check_finite, settled_clearance
 
 __all__ = ["FourPointRow", "DEFAULT_SHOULDER_ANGLE_RAD"]
 
@@ -48,7 +48,7 @@ DEFAULT_SHOULDER_ANGLE_RAD = math.radians(70.0)
 
 
 @dataclass(frozen=True)
-class FourPointRow:
+class FourPointRow(BallRowGeometry):
     """A row of balls in two gothic-arch grooves (four-point contact).
 
     Parameters
@@ -111,43 +111,11 @@ class FourPointRow:
                                  self.curvature_centre_distance_m, self.contact_angle_rad)
         object.__setattr__(self, "diametral_clearance_m", d)
         object.__setattr__(self, "radial_clearance_m", r)
+
     #: Axial sign of the two diagonals (+α, −α), in the order of the per-contact result arrays.
     DIAGONAL_SIGNS = (1, -1)
-
-    @property
-    def radial_sign(self) -> int:
-        """+1 if the moving ring carries the inner groove."""
-        return 1 if self.moving_raceway == "inner" else -1
-
-    @property
-    def curvature_centre_distance_m(self) -> float:
-        """A = (f_m + f_f − 1)·D of each diagonal, m."""
-        return (self.conformity_moving + self.conformity_fixed - 1.0) * self.ball_diameter_m
 
     @property
     def groove_angle_range_rad(self) -> tuple[float, float]:
         """Loaded contact angles each diagonal can carry: from the arch apex to the shoulder, rad."""
         return (0.0, self.shoulder_angle_rad)
-
-    @property
-    def free_contact_angle_rad(self) -> float:
-        """Contact angle of a diagonal of the unloaded ball pushed axially until it touches, rad
-        (the geometry of :attr:`.rows.BallRow.free_contact_angle_rad`)."""
-        A = self.curvature_centre_distance_m
-        s_r = A * math.cos(self.contact_angle_rad) - self.radial_clearance_m
-        return math.acos(max(-1.0, min(1.0, s_r / A)))
-
-    @property
-    def gap_m(self) -> float:
-        """Radial clearance P_d/2, m."""
-        return self.radial_clearance_m
-
-    @property
-    def n_elements(self) -> int:
-        return self.n_balls
-
-    def contact_stiffness(self) -> float:
-        """K of Q = K·δ^1.5 of one diagonal (moving and fixed contact in series), N/m^1.5."""
-        if self.stiffness_N_per_m1p5 is not None:
-            return self.stiffness_N_per_m1p5
-        return ball_pair_stiffness(self)
