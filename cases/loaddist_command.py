@@ -6,6 +6,7 @@ import logging
 import math
 import os
 
+from mbd_core.bearing.distribution_life import rating_life, spectrum_rating_life
 from mbd_core.quasistatic import RingLoad
 from mbd_core.quasistatic.results import LOAD_NAMES
 
@@ -36,6 +37,10 @@ def add_loaddist_parser(sub, func) -> None:
                     help="static safety factor of the limiting load curve's criterion (default 1: p0 at the ISO 76 limit)")
     ld.add_argument("--p0-limit-MPa", dest="p0_limit_MPa", type=float, default=None,
                     help="allowed contact pressure p0 of the limiting load curve instead of ISO 76 over --s0 (MPa)")
+    ld.add_argument("--rotating-ring", dest="rotating_ring", choices=("moving", "fixed"), default=None,
+                    help="ring that turns relative to the load; with --speed-rpm gives the L10 rating life")
+    ld.add_argument("--speed-rpm", dest="speed_rpm", type=float, default=None,
+                    help="relative speed of the rings, rev/min (with --rotating-ring: L10 in hours)")
     ld.add_argument("--out", default=None,
                     help="write summary.json, element_loads.csv, contacts.csv and plots here")
     ld.add_argument("--json", action="store_true", help="print SI results as JSON")
@@ -48,6 +53,10 @@ def check_loaddist_options(args) -> None:
         raise ValueError(f"--s0 must be a positive number, got {args.s0}")
     if args.p0_limit_MPa is not None and not (math.isfinite(args.p0_limit_MPa) and args.p0_limit_MPa > 0.0):
         raise ValueError(f"--p0-limit-MPa must be a positive number, got {args.p0_limit_MPa}")
+    if args.speed_rpm is not None and not (math.isfinite(args.speed_rpm) and args.speed_rpm > 0.0):
+        raise ValueError(f"--speed-rpm must be a positive number, got {args.speed_rpm}")
+    if (args.rotating_ring is None) != (args.speed_rpm is None):
+        raise ValueError("--rotating-ring and --speed-rpm give the rating life together: give both")
     if args.limiting_curve and not args.out:
         raise ValueError("--limiting-curve writes limiting_load_curve.csv and .png: give --out")
     if not args.limiting_curve and (args.s0 != 1.0 or args.p0_limit_MPa is not None):
@@ -57,7 +66,7 @@ def check_loaddist_options(args) -> None:
 def loaddist_outputs(args, name: str, desc: BearingDescription, results, time_share) -> dict:
     """Print and (with ``--out``) write the results of ``loaddist``; the summary in output units."""
     checks = [bearing_checks(desc.bearing, r) for r in results]
-    extra = {"case": name, "description": desc.description}
+    extra = {"case": name, "description": desc.description, "rating_life": life_summary(args, desc, results, time_share)}
     written = ["summary.json", "element_loads.csv", "contacts.csv", "element_loads.png"]
     if any(r.kind == "ball" for r in results[0].rows):
         written.append("contact_angles.png")
@@ -81,14 +90,16 @@ def loaddist_outputs(args, name: str, desc: BearingDescription, results, time_sh
                              *stiffness_lines(results[0])]))
         else:
             print(cases_table(results, time_share, checks))
+        print("\n".join(life_lines(extra["rating_life"])))
         if args.out:
             print(f"\nresults: {args.out}/{', '.join(written)}")
     if len(results) == 1:
         d = results[0].to_dict()
         d.update({k: v for k, v in checks[0].items() if k != "warnings"})
         d["warnings"] = d["warnings"] + checks[0]["warnings"]
+        d["rating_life"] = extra["rating_life"]
         return output_units(d)
-    return output_units({"bearing": desc.name, "load_cases": [
+    return output_units({"bearing": desc.name, "rating_life": extra["rating_life"], "load_cases": [
         {"case": k + 1, **r.to_dict(), **{k2: v for k2, v in c.items() if k2 != "warnings"},
          "warnings": r.to_dict()["warnings"] + c["warnings"]} for k, (r, c) in enumerate(zip(results, checks))]})
 
@@ -131,3 +142,35 @@ def cases_table(results, time_share, checks=None) -> str:
 
 def _s0_text(s0) -> str:
     return "unloaded" if s0 is None else f"{s0:.3g}"
+
+
+def life_summary(args, desc: BearingDescription, results, time_share) -> dict:
+    """L10 per row and of the bearing (:mod:`mbd_core.bearing.distribution_life`, ISO 281 / ISO/TS 16281
+    lamina method), in 10^6 rev and hours: L10h = L10·10^6/(60·n) (ISO 281:2007, eq. 4 note: hours at
+    constant speed n in rev/min). A spectrum is combined by Palmgren–Miner with its time shares.
+    Without --rotating-ring and --speed-rpm: ``computed`` False and the reason."""
+    if args.rotating_ring is None:
+        return {"computed": False, "reason": "give --rotating-ring and --speed-rpm to compute the L10 rating life"}
+    if len(results) == 1:
+        life = rating_life(desc.bearing, results[0], rotating_ring=args.rotating_ring)
+    else:
+        shares = time_share if time_share is not None else [1.0] * len(results)
+        life = spectrum_rating_life(desc.bearing, [RingLoad(*r.load) for r in results], shares,
+                                    rotating_ring=args.rotating_ring)
+    hours = 1e6 / (60.0 * args.speed_rpm)
+    d = life.to_dict()
+    d.update({"computed": True, "speed_rpm": args.speed_rpm, "life_h": life.life_Mrev * hours,
+              "time_share": None if len(results) == 1 else list(shares)})
+    for r in d["rows"]:
+        r["life_h"] = r["life_Mrev"] * hours
+    return d
+
+
+def life_lines(life: dict) -> list[str]:
+    """Screen lines of :func:`life_summary`."""
+    if not life["computed"]:
+        return [f"rating life: not computed ({life['reason']})"]
+    rows = [f"  {r['row']}: L10 = {r['life_Mrev']:.4g} Mrev = {r['life_h']:.4g} h (deciding: {r['deciding']})"
+            for r in life["rows"]]
+    return [f"rating life L10 ({life['rotating_ring']} ring rotating, {life['speed_rpm']:g} rpm):", *rows,
+            f"  bearing: L10 = {life['life_Mrev']:.4g} Mrev = {life['life_h']:.4g} h"]
