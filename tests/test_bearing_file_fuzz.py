@@ -24,6 +24,7 @@ from cases.bearing_file import BUILTIN_DIR, TOP_LEVEL, BearingKeys, LoadKeys, Ma
 from cases.bearing_rows import ROW_TYPES
 from cases.config import CaseError
 
+from tests.fuzz_values import random_value
 from tests.test_bearing_file import EVERY_TYPE
 
 SEED = 20261126
@@ -42,19 +43,8 @@ CSVS = ["Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm\n0,0,-1e5,0,0\n", "Fx_N,Fy_N\n1,2\n", "Fx_N,
         "Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,Fz_N\n0,0,0,0,0,0\n"]
 
 
-def _value(rng: random.Random, depth: int = 0):
-    r = rng.random()
-    if r < 0.5:
-        return rng.choice(NUMBERS) if rng.random() < 0.7 else rng.uniform(-1e3, 1e3) * 10.0 ** rng.randint(-9, 9)
-    if r < 0.72:
-        return rng.choice(WORDS)
-    if r < 0.8:
-        return rng.random() < 0.5
-    if r < 0.9 and depth < 2:
-        return [_value(rng, depth + 1) for _ in range(rng.randint(0, 3))]
-    if depth < 2:
-        return {rng.choice(["a", "name", "count"]): _value(rng, depth + 1) for _ in range(rng.randint(0, 2))}
-    return 0
+def _value(rng: random.Random):
+    return random_value(rng, NUMBERS, WORDS, ["a", "name", "count"], max_depth=2, max_items=3, exponent=9)
 
 
 def _mutate(rng: random.Random, data: dict) -> dict:

@@ -23,6 +23,8 @@ from typing import get_type_hints
 import pytest
 import tomli_w
 
+from tests.fuzz_values import random_value
+
 import cases.run
 from cases.cli import main
 from cases.config import FAMILY_KEY, CaseError, to_mapping
@@ -58,21 +60,10 @@ WORDS = ["", "x", "rigid", "modal", "hertz", "thesis", "adams", "csv", "constant
          "single", "life", "quasi_static", "dynamic_explicit", "Ünïcødé ✓", "two\nlines", "a" * 500, "nan", "inf"]
 
 
-def _value(rng: random.Random, depth: int = 0):
+def _value(rng: random.Random):
     """A random TOML value: numbers of every kind, strings, booleans, lists and tables."""
-    kind = rng.random()
-    if kind < 0.45:
-        return rng.choice(NUMBERS) if rng.random() < 0.7 else rng.uniform(-1e3, 1e3) * 10.0 ** rng.randint(-12, 12)
-    if kind < 0.6:
-        return rng.choice(WORDS)
-    if kind < 0.68:
-        return rng.random() < 0.5
-    if kind < 0.88 and depth < 3:
-        return [_value(rng, depth + 1) for _ in range(rng.randint(0, 5))]
-    if depth < 3:
-        keys = ["a", "kind", "n_modes", "x y", "scale"]
-        return {rng.choice(keys): _value(rng, depth + 1) for _ in range(rng.randint(0, 3))}
-    return rng.choice(NUMBERS)
+    return random_value(rng, NUMBERS, WORDS, ["a", "kind", "n_modes", "x y", "scale"], max_depth=3, max_items=5,
+                        exponent=12)
 
 
 def _toml_text(value) -> str:
