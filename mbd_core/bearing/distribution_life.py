@@ -115,32 +115,29 @@ def ball_contact_rating_N(ball_diameter_m: float, conformity: float, pitch_diame
                           contact_angle_rad: float, n_balls: int, raceway: Literal["inner", "outer"],
                           bm: float = 1.3) -> float:
     """Basic dynamic load rating Q_c of a ball–raceway contact, N (module docstring)."""
-    if raceway not in ("inner", "outer"):
-        raise ValueError(f"raceway must be 'inner' or 'outer', got {raceway!r}")
-    gamma, ratio = _gamma(ball_diameter_m, pitch_diameter_m, contact_angle_rad)
-    s = 1.0 if raceway == "inner" else -1.0
+    gamma, ratio, s = _geometry(ball_diameter_m, pitch_diameter_m, contact_angle_rad, raceway)
     D_mm = 1e3 * ball_diameter_m
     size = D_mm**1.8 if D_mm <= _DW_LIMIT_MM else _LARGE_BALL_CONST * D_mm**1.4
     return (98.1 * bm * (2 * conformity / (2 * conformity - 1)) ** 0.41
             * (1 - s * gamma) ** 1.39 / (1 + s * gamma) ** (1 / 3) * ratio**0.3 * size * n_balls ** (-1 / 3))
 
 
-def _gamma(diameter_m: float, pitch_diameter_m: float, contact_angle_rad: float) -> tuple[float, float]:
-    """(γ, γ/cos α) = (D cos α/d_m, D/d_m); thrust (α = 90°): γ = 0, ratio D/d_m (Harris & Kotzalas,
-    vol. 2, ch. 8)."""
+def _geometry(diameter_m: float, pitch_diameter_m: float, contact_angle_rad: float,
+              raceway: str) -> tuple[float, float, float]:
+    """(γ, γ/cos α, s) = (D cos α/d_m, D/d_m, +1 inner / −1 outer raceway); thrust (α = 90°): γ = 0,
+    ratio D/d_m (Harris & Kotzalas, vol. 2, ch. 8). ValueError for another raceway name."""
+    if raceway not in ("inner", "outer"):
+        raise ValueError(f"raceway must be 'inner' or 'outer', got {raceway!r}")
     cos_a = math.cos(contact_angle_rad)
     gamma = 0.0 if cos_a < 1e-9 else diameter_m * cos_a / pitch_diameter_m
-    return gamma, diameter_m / pitch_diameter_m
+    return gamma, diameter_m / pitch_diameter_m, 1.0 if raceway == "inner" else -1.0
 
 
 def roller_contact_rating_N(roller_diameter_m: float, roller_length_m: float, pitch_diameter_m: float,
                             contact_angle_rad: float, n_rollers: int, raceway: Literal["inner", "outer"],
                             bm: float = 1.1) -> float:
     """Basic dynamic load rating Q_c of a whole roller–raceway line contact, N (module docstring)."""
-    if raceway not in ("inner", "outer"):
-        raise ValueError(f"raceway must be 'inner' or 'outer', got {raceway!r}")
-    gamma, ratio = _gamma(roller_diameter_m, pitch_diameter_m, contact_angle_rad)
-    s = 1.0 if raceway == "inner" else -1.0
+    gamma, ratio, s = _geometry(roller_diameter_m, pitch_diameter_m, contact_angle_rad, raceway)
     D_mm, L_mm = 1e3 * roller_diameter_m, 1e3 * roller_length_m
     return (552.0 * bm * (1 - s * gamma) ** (29 / 27) / (1 + s * gamma) ** 0.25 * ratio ** (2 / 9)
             * D_mm ** (29 / 27) * L_mm ** (7 / 9) * n_rollers**-0.25)
