@@ -155,7 +155,7 @@ def life_summary(args, desc: BearingDescription, results, time_share) -> dict:
         life = rating_life(desc.bearing, results[0], rotating_ring=args.rotating_ring)
     else:
         shares = time_share if time_share is not None else [1.0] * len(results)
-        life = spectrum_rating_life(desc.bearing, [RingLoad(*r.load) for r in results], shares,
+        life = spectrum_rating_life(desc.bearing, list(results), shares,
                                     rotating_ring=args.rotating_ring)
     hours = 1e6 / (60.0 * args.speed_rpm)
     d = life.to_dict()

@@ -275,13 +275,14 @@ def rating_life(bearing: Bearing, dist: LoadDistribution, rotating_ring: Literal
     return _assemble(bearing, _row_parts(bearing, dist, rotating_ring, bm, contact_ratings_N), rotating_ring, a_iso)
 
 
-def spectrum_rating_life(bearing: Bearing, loads: Sequence[RingLoad], time_shares: Sequence[float],
+def spectrum_rating_life(bearing: Bearing, loads: Sequence[RingLoad | LoadDistribution], time_shares: Sequence[float],
                          rotating_ring: Literal["moving", "fixed"] = "moving", bm: float | None = None,
                          a_iso: float = 1.0,
                          contact_ratings_N: dict[tuple[str, str], float] | None = None) -> BearingLife:
     """L10 under a load spectrum: Palmgren–Miner per contact set (lamina), L = 1/Σ(t_i/L_i), then
-    combined as for one load (module docstring). ``time_shares`` (≥ 0, one per load) are normalised
-    to sum to 1; the other parameters as :func:`rating_life`.
+    combined as for one load (module docstring). ``loads``: a RingLoad per case, or its already
+    solved LoadDistribution; ``time_shares`` (≥ 0, one per load) are normalised to sum to 1; the
+    other parameters as :func:`rating_life`.
     """
     _check_common(rotating_ring, bm, a_iso)
     loads, t = list(loads), np.asarray(time_shares, dtype=float)
@@ -293,7 +294,8 @@ def spectrum_rating_life(bearing: Bearing, loads: Sequence[RingLoad], time_share
     damage: dict[tuple[str, str], np.ndarray] = {}
     template = None
     for load, share in zip(loads, t):
-        per_row = _row_parts(bearing, solve_load_distribution(bearing, load), rotating_ring, bm, contact_ratings_N)
+        dist = load if isinstance(load, LoadDistribution) else solve_load_distribution(bearing, load)
+        per_row = _row_parts(bearing, dist, rotating_ring, bm, contact_ratings_N)
         template = template or per_row
         for name, parts in per_row.items():
             for label, _, _, L in parts:
