@@ -6,6 +6,7 @@ The format reference, every key with its unit, is ``cases/bearings/README.md``. 
     [materials.NAME]           # E_Pa, nu, density_kg_m3; "bearing_steel" is built in
     [[rows]]                   # type = one of ROW_TYPES (cases.bearing_rows), then its keys
     [load]                     # Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm, or spectrum_csv = "file.csv"
+    [rings.inner], [rings.outer]  # optional: the ring bends (section, support, modes; cases.bearing_rings)
 
 Everything is checked before any work; every error is a :class:`cases.config.CaseError` whose
 one-line message starts with the dotted key (``rows[2].conformity_inner: must be > 0.5 …``) or
@@ -19,7 +20,7 @@ import csv
 import io
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
 
@@ -27,6 +28,7 @@ from foundation.materials import BEARING_STEEL, ElasticMaterial
 from mbd_core.quasistatic import Bearing, RingLoad
 from mbd_core.quasistatic.results import LOAD_NAMES
 
+from .bearing_rings import ring_models
 from .bearing_rows import ROW_TYPES, RowContext, build_rows
 from .config import CaseError, from_mapping, parse_toml, read_toml
 
@@ -99,6 +101,9 @@ class BearingDescription:
         The spectrum's time shares (None when the file has none).
     source : str
         The file read.
+    rings : dict of str → cases.bearing_rings.RingModel
+        The rings given a ``[rings.X]`` table (they bend), validated but not meshed yet; the
+        others are rigid.
     """
 
     name: str
@@ -107,6 +112,7 @@ class BearingDescription:
     load_cases: tuple[RingLoad, ...]
     time_share: tuple[float, ...] | None = None
     source: str = "<string>"
+    rings: Mapping = field(default_factory=dict)
 
     @property
     def default_load(self) -> RingLoad:
@@ -234,7 +240,7 @@ def _load(data, base_dir: Path | None) -> tuple[tuple[RingLoad, ...], tuple[floa
     return read_spectrum_csv(path)
 
 
-TOP_LEVEL = ("bearing", "materials", "rows", "load")
+TOP_LEVEL = ("bearing", "materials", "rows", "load", "rings")
 
 
 def bearing_from_mapping(data: Mapping, base_dir: Path | None = None, source: str = "<string>") -> BearingDescription:
@@ -252,7 +258,11 @@ def bearing_from_mapping(data: Mapping, base_dir: Path | None = None, source: st
         bearing = Bearing(head.name, rows)
     except ValueError as exc:
         raise CaseError(f"rows: {exc}") from None
-    return BearingDescription(head.name, head.description, bearing, loads, shares, source)
+    rings = data.get("rings", {})
+    if not isinstance(rings, Mapping):
+        raise CaseError(f"rings: expected [rings.inner] and/or [rings.outer] tables, got {rings!r:.60}")
+    rings = ring_models(bearing, head.moving_ring, rings, materials)
+    return BearingDescription(head.name, head.description, bearing, loads, shares, source, rings)
 
 
 def loads_bearing(text: str, source: str = "<string>", base_dir: Path | None = None) -> BearingDescription:

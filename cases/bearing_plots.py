@@ -22,14 +22,21 @@ def limiting_load_curve_xy(curve: LimitingLoadCurve) -> tuple[np.ndarray, np.nda
 
 
 def plot_limiting_load_curve(curve: LimitingLoadCurve, path, bearing_name: str = "",
-                             operating_points=()) -> Path:
+                             operating_points=(), reference: LimitingLoadCurve | None = None,
+                             labels: tuple[str, str] = ("limiting load", "")) -> Path:
     """PNG of the limiting load curve: axial force F_a (kN) against tilting moment M (kN·m), the
     criterion in the title; rays with no point (not carried) are left out and counted in the title.
-    ``operating_points``: (M N·m, F_a N) pairs marked on the plot (the load cases)."""
+    ``operating_points``: (M N·m, F_a N) pairs marked on the plot (the load cases); ``reference``:
+    a second curve drawn dashed (e.g. rigid rings), ``labels`` the two curves' legend entries."""
     pyplot = plt()
     M, F = limiting_load_curve_xy(curve)
     fig, ax = pyplot.subplots(figsize=(7.0, 5.5), constrained_layout=True)
-    ax.plot(M, F, "o-", color="C0", ms=3, lw=1.5, label="limiting load")
+    ax.plot(M, F, "o-", color="C0", ms=3, lw=1.5, label=labels[0])
+    if reference is not None:
+        Mr, Fr = limiting_load_curve_xy(reference)
+        ax.plot(Mr, Fr, "--", color="C7", lw=1.2, label=labels[1])
+    if len(operating_points) or reference is not None:
+        ax.legend(loc="best")
     if len(operating_points):
         pts = np.asarray(operating_points, dtype=float) / 1e3
         ax.plot(pts[:, 0], pts[:, 1], "x", color="C3", ms=8, mew=2,

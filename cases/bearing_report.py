@@ -5,7 +5,7 @@ loaded contact: :mod:`mbd_core.bearing.static_safety`), every contact's load, an
 pressure p0, ellipse semi-axes and groove-edge truncation (:mod:`mbd_core.quasistatic.contacts`),
 and the bearing's 5×5 tangent stiffness matrix (:func:`mbd_core.quasistatic.solver.stiffness_matrix`).
 On request, the limiting load curve of axial force against tilting moment
-(:mod:`mbd_core.bearing.limiting_load`).
+(:mod:`mbd_core.bearing.limiting_load`); with modal rings, beside the rigid-ring curve.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mbd_core.bearing.limiting_load import LimitingLoadCurve, limiting_load_curve
+from mbd_core.bearing.limiting_load import LimitingLoadCurve, limiting_load_curve, ray_ratios
 from mbd_core.bearing.static_safety import static_safety
 from mbd_core.quasistatic import Bearing, LoadDistribution
 from mbd_core.quasistatic.contacts import contact_sets
@@ -25,7 +25,7 @@ from .bearing_plots import plot_limiting_load_curve
 from .report import format_table
 
 __all__ = ["CONTACT_COLUMNS", "bearing_checks", "bearing_checks_lines", "stiffness_lines", "write_contacts_csv",
-           "write_limiting_curve"]
+           "write_limiting_curve", "curve_comparison"]
 
 #: columns of contacts.csv (output units: N, deg, MPa, mm)
 CONTACT_COLUMNS = ("row", "element", "contact", "load_N", "contact_angle_deg", "p0_MPa", "a_mm", "b_mm",
@@ -97,13 +97,8 @@ def write_contacts_csv(bearing: Bearing, results: list[LoadDistribution], path: 
                         f"{s.semi_minor_m[i] * 1e3:.6f}", int(s.truncated[i])])
 
 
-def write_limiting_curve(bearing: Bearing, folder: Path, results: list[LoadDistribution], s0: float = 1.0,
-                         pressure_limit_Pa: float | None = None, n_rays: int = 36) -> LimitingLoadCurve:
-    """limiting_load_curve.csv and .png in ``folder``, at the largest radial force of the load cases
-    (conservative for the others), the load cases' (M, Fz) marked on the plot."""
-    radial_N = max(math.hypot(r.load[0], r.load[1]) for r in results)
-    curve = limiting_load_curve(bearing, n_rays=n_rays, s0=s0, pressure_limit_Pa=pressure_limit_Pa, radial_N=radial_N)
-    with open(folder / "limiting_load_curve.csv", "w", newline="") as fh:
+def _write_curve_csv(curve: LimitingLoadCurve, path: Path) -> None:
+    with open(path, "w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(("ray", "axial_force_N", "tilting_moment_Nm", "row", "contact", "element", "carried",
                     "equilibrium_limited"))
@@ -111,8 +106,43 @@ def write_limiting_curve(bearing: Bearing, folder: Path, results: list[LoadDistr
             w.writerow((i + 1, f"{curve.axial_N[i]:.6g}", f"{curve.moment_Nm[i]:.6g}", curve.row[i], curve.contact[i],
                         int(curve.element[i]) + 1 if curve.element[i] >= 0 else "", int(curve.carried[i]),
                         int(curve.equilibrium_limited[i])))
+
+
+def write_limiting_curve(bearing: Bearing, folder: Path, results: list[LoadDistribution], s0: float = 1.0,
+                         pressure_limit_Pa: float | None = None, n_rays: int = 36, solve=None):
+    """limiting_load_curve.csv and .png in ``folder``, at the largest radial force of the load cases
+    (conservative for the others), the load cases' (M, Fz) marked on the plot.
+
+    With ``solve`` (a flexible-ring model's load → distribution) the curve is that model's, on the
+    rays of the rigid-ring curve, which is written beside it (limiting_load_curve_rigid.csv) and drawn
+    dashed. Returns (curve, rigid curve or None).
+    """
+    radial_N = max(math.hypot(r.load[0], r.load[1]) for r in results)
+    rigid = limiting_load_curve(bearing, n_rays=n_rays, s0=s0, pressure_limit_Pa=pressure_limit_Pa, radial_N=radial_N)
+    curve = rigid
+    if solve is not None:
+        curve = limiting_load_curve(bearing, n_rays=n_rays, s0=s0, pressure_limit_Pa=pressure_limit_Pa,
+                                    radial_N=radial_N, axial_ref_N=rigid.axial_ref_N,
+                                    moment_ref_Nm=rigid.moment_ref_Nm, solve=solve)
+        _write_curve_csv(rigid, folder / "limiting_load_curve_rigid.csv")
+    _write_curve_csv(curve, folder / "limiting_load_curve.csv")
     # the curve is the same for a moment about any diametral axis: each case at its moment's size
     points = [(math.copysign(math.hypot(r.load[3], r.load[4]), r.load[4] or r.load[3] or 1.0), float(r.load[2]))
               for r in results]
-    plot_limiting_load_curve(curve, folder / "limiting_load_curve.png", bearing.name, operating_points=points)
-    return curve
+    labels = ("modal rings", "rigid rings") if solve is not None else ("limiting load", "")
+    plot_limiting_load_curve(curve, folder / "limiting_load_curve.png", bearing.name, operating_points=points,
+                             reference=rigid if solve is not None else None, labels=labels)
+    return curve, (rigid if solve is not None else None)
+
+
+def curve_comparison(curve: LimitingLoadCurve, rigid: LimitingLoadCurve) -> dict:
+    """How far the modal-ring curve lies inside the rigid one: load scale ratios along the rays."""
+    ratio = ray_ratios(curve, rigid)
+    ok = np.isfinite(ratio)
+    if not ok.any():
+        return {"rays_compared": 0}
+    k = int(np.nanargmin(ratio))
+    return {"rays_compared": int(ok.sum()), "min_ratio": float(ratio[k]), "mean_ratio": float(np.nanmean(ratio)),
+            "max_ratio": float(np.nanmax(ratio)),
+            "min_ratio_at": {"axial_force_N": float(rigid.axial_N[k]), "tilting_moment_Nm": float(rigid.moment_Nm[k])},
+            "ratio_per_ray": [None if not np.isfinite(v) else float(v) for v in ratio]}

@@ -30,10 +30,11 @@ from foundation.materials import ElasticMaterial, effective_modulus_Pa
 from foundation.progress import phase, track
 from mbd_core.multibody import SimulationError
 from mbd_core.multibody.statics import StaticEquilibriumError
-from mbd_core.quasistatic import LoadDistributionError, solve_load_distribution
+from mbd_core.quasistatic import LoadDistributionError
 
 from . import signals
 from .cache_command import add_cache_parser, cache_help_line
+from .bearing_solver import bearing_solver
 from .loaddist_command import (LOAD_NAMES, add_loaddist_parser, bearing_description, check_loaddist_options,
                                chosen_loads, loaddist_outputs)
 from .outdir import check_output_target
@@ -238,10 +239,11 @@ def cmd_loaddist(args) -> dict:
     check_loaddist_options(args)
     name, desc = bearing_description(args.bearing)
     loads, time_share = chosen_loads(desc, {k: getattr(args, k) for k in LOAD_NAMES})
+    solver = bearing_solver(desc, rigid=args.rigid_rings)
     with phase(f"load distribution of {name}"):
-        results = [solve_load_distribution(desc.bearing, load) for load in track(loads, "load cases")] \
-            if len(loads) > 1 else [solve_load_distribution(desc.bearing, loads[0])]
-    return loaddist_outputs(args, name, desc, results, time_share)
+        results = [solver.solve(load) for load in track(loads, "load cases")] \
+            if len(loads) > 1 else [solver.solve(loads[0])]
+    return loaddist_outputs(args, name, desc, results, time_share, solver)
 
 
 def cmd_modes(args) -> dict:

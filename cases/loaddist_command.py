@@ -11,7 +11,9 @@ from mbd_core.quasistatic import RingLoad
 from mbd_core.quasistatic.results import LOAD_NAMES
 
 from .bearing_file import BUILTIN_DIR, BearingDescription, read_bearing_file
-from .bearing_report import bearing_checks, bearing_checks_lines, stiffness_lines, write_contacts_csv, write_limiting_curve
+from .bearing_report import (bearing_checks, bearing_checks_lines, curve_comparison, stiffness_lines, write_contacts_csv,
+                             write_limiting_curve)
+from .bearing_solver import BearingSolver
 from .catalog import BUILTIN_BEARINGS
 from .report import format_table, load_distribution_table, write_load_distribution
 from .results import output_units
@@ -22,7 +24,8 @@ __all__ = ["LOAD_NAMES", "add_loaddist_parser", "bearing_description", "cases_ta
 
 def add_loaddist_parser(sub, func) -> None:
     """The ``loaddist`` sub-command and its options."""
-    ld = sub.add_parser("loaddist", help="quasi-static load distribution with rigid rings")
+    ld = sub.add_parser("loaddist", help="quasi-static load distribution with rigid rings, or with the modal rings "
+                        "of a description file's [rings] tables")
     ld.add_argument("bearing", nargs="?", default="slewing-ring",
                     help=f"built-in bearing ({', '.join(sorted(BUILTIN_BEARINGS))}; default: slewing-ring) or a "
                     "bearing description file .toml (format: cases/bearings/README.md)")
@@ -41,6 +44,8 @@ def add_loaddist_parser(sub, func) -> None:
                     help="ring that turns relative to the load; with --speed-rpm gives the L10 rating life")
     ld.add_argument("--speed-rpm", dest="speed_rpm", type=float, default=None,
                     help="relative speed of the rings, rev/min (with --rotating-ring: L10 in hours)")
+    ld.add_argument("--rigid-rings", dest="rigid_rings", action="store_true",
+                    help="solve with rigid rings even where the description file makes rings modal ([rings.X])")
     ld.add_argument("--out", default=None,
                     help="write summary.json, element_loads.csv, contacts.csv and plots here")
     ld.add_argument("--json", action="store_true", help="print SI results as JSON")
@@ -63,10 +68,11 @@ def check_loaddist_options(args) -> None:
         raise ValueError("--s0 and --p0-limit-MPa set the limiting load curve's criterion: give --limiting-curve")
 
 
-def loaddist_outputs(args, name: str, desc: BearingDescription, results, time_share) -> dict:
+def loaddist_outputs(args, name: str, desc: BearingDescription, results, time_share, solver: BearingSolver) -> dict:
     """Print and (with ``--out``) write the results of ``loaddist``; the summary in output units."""
     checks = [bearing_checks(desc.bearing, r) for r in results]
-    extra = {"case": name, "description": desc.description, "rating_life": life_summary(args, desc, results, time_share)}
+    extra = {"case": name, "description": desc.description, **solver.summary(),
+             "rating_life": life_summary(args, desc, results, time_share)}
     written = ["summary.json", "element_loads.csv", "contacts.csv", "element_loads.png"]
     if any(r.kind == "ball" for r in results[0].rows):
         written.append("contact_angles.png")
@@ -75,9 +81,14 @@ def loaddist_outputs(args, name: str, desc: BearingDescription, results, time_sh
             write_contacts_csv(desc.bearing, results, folder / "contacts.csv")
             if args.limiting_curve:
                 p0 = None if args.p0_limit_MPa is None else args.p0_limit_MPa * 1e6
-                curve = write_limiting_curve(desc.bearing, folder, results, s0=args.s0, pressure_limit_Pa=p0)
+                curve, rigid = write_limiting_curve(desc.bearing, folder, results, s0=args.s0, pressure_limit_Pa=p0,
+                                                    solve=solver.solve if solver.flexible else None)
                 extra["limiting_load_curve"] = curve.to_dict()
                 written.extend(["limiting_load_curve.csv", "limiting_load_curve.png"])
+                if rigid is not None:
+                    extra["limiting_load_curve_rigid"] = rigid.to_dict()
+                    extra["limiting_load_curve_modal_over_rigid"] = curve_comparison(curve, rigid)
+                    written.append("limiting_load_curve_rigid.csv")
 
         path = write_load_distribution(results if len(results) > 1 else results[0], args.out, extra, time_share,
                                        case_extra=checks, more=more)
@@ -85,6 +96,7 @@ def loaddist_outputs(args, name: str, desc: BearingDescription, results, time_sh
     if not args.json:
         if desc.description:
             print(desc.description)
+        print(solver.label)
         if len(results) == 1:
             print("\n".join([load_distribution_table(results[0]), *bearing_checks_lines(checks[0]),
                              *stiffness_lines(results[0])]))

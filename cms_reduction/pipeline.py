@@ -48,11 +48,14 @@ class InterfaceSpec:
     angles_deg : tuple of float
         Patch centres round the ring, degrees.
     half_width_m : float
-        Patch half-length along the circumference, m.
+        Patch half-length along the circumference, m; with ``pitch_radius_m`` the radius of a disc.
     grounded : bool
         Held (bolted to a rigid housing) or kept as boundary DOFs.
     kind : {"rigid", "averaging"}
         RBE2-like or RBE3-like condensation (:class:`cms_reduction.craig_bampton.Interface`).
+    pitch_radius_m : float or None
+        None: each patch is a strip across the surface. Else each patch is a disc (a bolt's
+        washer) of radius ``half_width_m`` centred at this radius (bolt pitch circle), m.
     """
 
     facet_set: str
@@ -60,6 +63,7 @@ class InterfaceSpec:
     half_width_m: float
     grounded: bool = True
     kind: str = "rigid"
+    pitch_radius_m: float | None = None
 
 
 @dataclass(frozen=True)
@@ -111,7 +115,8 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
 
     def _build() -> ReducedBody:
         model = build_model(profile, mesh_spec, material, pockets, use_cache=use_cache)
-        interfaces = [Interface(f"{i.facet_set}@{a:g}°", patch_nodes(model.ring, i.facet_set, a, i.half_width_m),
+        interfaces = [Interface(f"{i.facet_set}@{a:g}°", patch_nodes(model.ring, i.facet_set, a, i.half_width_m,
+                                                                       at_radius_m=i.pitch_radius_m),
                                 grounded=i.grounded, kind=i.kind)
                       for i in spec.interfaces for a in i.angles_deg]
         curves = [raceway_curve(model.ring, r.segment, r.n_theta, r.at_rz_m) for r in spec.raceways]

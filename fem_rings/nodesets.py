@@ -131,15 +131,23 @@ def facets_where(ring, facet_set: str, predicate, name: str = "selection") -> np
     return _require(f[ok], name)
 
 
-def patch_nodes(ring, facet_set: str, theta_deg: float, half_width_m: float, name: str | None = None) -> np.ndarray:
-    """Nodes of a named surface within an arc length ``half_width_m`` of the angle ``theta_deg``.
+def patch_nodes(ring, facet_set: str, theta_deg: float, half_width_m: float, name: str | None = None,
+                at_radius_m: float | None = None) -> np.ndarray:
+    """Nodes of a named surface near the angle ``theta_deg``: a support pad or a bolt-head footprint.
 
-    A support pad or bolt-head footprint; arc length is measured at each node's own radius.
+    Without ``at_radius_m``: a strip across the surface, within an arc length ``half_width_m`` of the
+    angle (measured at each node's own radius). With ``at_radius_m``: a disc of radius
+    ``half_width_m`` about the point at that radius and angle, distances measured across the axis
+    (for a flat face: the washer under a bolt on its pitch circle).
     """
     nodes = ring.node_sets[facet_set]
     r, th, _ = cylindrical(ring.mesh.doflocs[:, nodes])
     dth = np.angle(np.exp(1j * (th - math.radians(theta_deg))))
-    sel = nodes[np.abs(dth) * r <= half_width_m + REL_TOL * ring.size_m]
+    if at_radius_m is None:
+        dist = np.abs(dth) * r
+    else:
+        dist = np.hypot(r * np.cos(dth) - at_radius_m, r * np.sin(dth))
+    sel = nodes[dist <= half_width_m + REL_TOL * ring.size_m]
     return _require(sel, name or f"{facet_set}@{theta_deg:g}°")
 
 

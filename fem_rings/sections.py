@@ -57,6 +57,7 @@ import numpy as np
 
 from foundation.validation import check_positive
 
+from .arc_grooves import FACE_AXES as _FACES
 from .profile import Arc, Line, Profile, polygon, rectangle
 
 __all__ = [
@@ -66,11 +67,6 @@ __all__ = [
 ]
 
 Point = tuple[float, float]
-
-#: face → (index of the coordinate that is constant on it, unit vector into the material)
-_FACES = {"bottom": (1, (0.0, 1.0)), "top": (1, (0.0, -1.0)),
-          "inner": (0, (1.0, 0.0)), "outer": (0, (-1.0, 0.0))}
-
 
 def _positive(value: float, what: str) -> float:
     """The shared positive-number check (:func:`foundation.validation.check_positive`), returning the value."""
@@ -195,6 +191,11 @@ class BallGroove:
         cos_psi = float(np.dot(self.direction(contact_angle_deg), _FACES[self.face][1]))
         return math.degrees(self.half_angle_rad - math.acos(min(1.0, max(-1.0, cos_psi))))
 
+    def segments(self) -> tuple[list[Arc], tuple[Point, Point]]:
+        """The groove arc as profile segments from the lower to the higher edge point, and the edge points."""
+        arc, edges = ball_groove_arc(self)
+        return [arc], edges
+
 
 def ball_groove_arc(groove: BallGroove, name: str | None = None) -> tuple[Arc, tuple[Point, Point]]:
     """The groove arc and its two edge points on the face.
@@ -224,7 +225,7 @@ def grooved_ring(name: str, r_in_m: float, r_out_m: float, z_min_m: float, z_max
         Profile name.
     r_in_m, r_out_m, z_min_m, z_max_m : float
         The rectangle, m. Each groove's ``face_position_m`` must equal the coordinate of its face.
-    grooves : sequence of BallGroove
+    grooves : sequence of BallGroove or :class:`fem_rings.arc_grooves.ArcGroove`
         Any number per face, not overlapping each other or the corners.
     face_names : dict, optional
         Names of the face pieces beside the grooves, keyed ``"top"``, ``"bottom"``, ``"inner"``,
@@ -244,17 +245,17 @@ def grooved_ring(name: str, r_in_m: float, r_out_m: float, z_min_m: float, z_max
         j = 1 - _FACES[face][0]
         sgn = 1.0 if end[j] > start[j] else -1.0
         pos = start
-        for g in sorted((g for g in grooves if g.face == face), key=lambda g: sgn * g.curvature_center_m[j]):
+        for g in sorted((g for g in grooves if g.face == face), key=lambda g: sgn * sum(p[j] for p in g.edge_points_m)):
             if abs(g.face_position_m - coord) > tol:
                 raise ValueError(f"groove {g.name!r} lies on the plane {'rz'[1 - j]} = {g.face_position_m:.9g} m "
-                                 f"(from ball_center_m and groove_depth_m) but {param} = {coord:.9g} m")
-            arc, (lo, hi) = ball_groove_arc(g)
+                                 f"(from its centre and depth) but {param} = {coord:.9g} m")
+            arcs, (lo, hi) = g.segments()
             if sgn < 0.0:
-                arc, lo, hi = arc.reversed(), hi, lo
+                arcs, lo, hi = [a.reversed() for a in reversed(arcs)], hi, lo
             if not sgn * (lo[j] - pos[j]) > tol:
                 raise ValueError(f"groove {g.name!r} runs past a corner or into another groove on the {face} "
                                  f"face of {name!r}: widen the face or move ball_center_m")
-            segs += [Line(pos, lo, names[face]), arc]
+            segs += [Line(pos, lo, names[face]), *arcs]
             pos = hi
         if not sgn * (end[j] - pos[j]) > tol:
             raise ValueError(f"a groove runs past the end of the {face} face of {name!r}: widen the face "

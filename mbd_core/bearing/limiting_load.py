@@ -36,7 +36,7 @@ from ..quasistatic.results import LoadDistributionError, RingLoad
 from ..quasistatic.rows import Bearing
 from ..quasistatic.solver import solve_load_distribution
 
-__all__ = ["LimitingLoadCurve", "limiting_load_curve", "ray_limit", "Criterion"]
+__all__ = ["LimitingLoadCurve", "limiting_load_curve", "ray_limit", "ray_ratios", "Criterion"]
 
 log = logging.getLogger(__name__)
 
@@ -90,6 +90,8 @@ class LimitingLoadCurve:
     element : (n,) int, deciding element in its row (−1 where none)
     carried : (n,) bool, False where the bearing carries no load along the ray
     equilibrium_limited : (n,) bool, True where the limit is the end of equilibrium, not p0
+    axial_ref_N, moment_ref_Nm : float, F_ref and M_ref of the rays (pass them to another curve to
+        put its points on the same rays, :func:`ray_ratios`)
     """
 
     criterion: str
@@ -102,6 +104,8 @@ class LimitingLoadCurve:
     element: np.ndarray
     carried: np.ndarray
     equilibrium_limited: np.ndarray
+    axial_ref_N: float = math.nan
+    moment_ref_Nm: float = math.nan
 
     def to_dict(self) -> dict:
         """Plain lists; points of rays not carried are None."""
@@ -115,10 +119,14 @@ class LimitingLoadCurve:
                 "equilibrium_limited": self.equilibrium_limited.tolist()}
 
 
-def utilisation(bearing: Bearing, load: RingLoad, criterion: Criterion):
-    """(max p0/p_allow, (row, contact, element)) of the load; (inf, None) without equilibrium."""
+def utilisation(bearing: Bearing, load: RingLoad, criterion: Criterion, solve=None):
+    """(max p0/p_allow, (row, contact, element)) of the load; (inf, None) without equilibrium.
+
+    ``solve``: load → load distribution of ``bearing`` (default: rigid rings,
+    :func:`~mbd_core.quasistatic.solve_load_distribution`; e.g. a flexible-ring model's solve).
+    """
     try:
-        dist = solve_load_distribution(bearing, load)
+        dist = solve_load_distribution(bearing, load) if solve is None else solve(load)
     except LoadDistributionError:
         return math.inf, None
     u, who = 0.0, None
@@ -134,17 +142,18 @@ def utilisation(bearing: Bearing, load: RingLoad, criterion: Criterion):
 
 
 def ray_limit(bearing: Bearing, base: np.ndarray, direction: np.ndarray, criterion: Criterion,
-              start: float = 1.0, rtol: float = 1e-7):
+              start: float = 1.0, rtol: float = 1e-7, solve=None):
     """Largest λ with load base + λ·direction within the criterion.
 
     ``base``, ``direction``: (5,) (Fx, Fy, Fz, Mx, My), N and N·m. Returns (λ, who, limited_by_equilibrium)
     with ``who`` = (row, contact, element) of the deciding contact; λ = NaN where even λ → 0 is over.
+    ``solve`` as in :func:`utilisation`.
     """
     def u_of(lam: float) -> float:
-        return utilisation(bearing, RingLoad(*(float(v) for v in base + lam * direction)), criterion)[0]
+        return utilisation(bearing, RingLoad(*(float(v) for v in base + lam * direction)), criterion, solve)[0]
 
     def who_at(lam: float):
-        return utilisation(bearing, RingLoad(*(float(v) for v in base + lam * direction)), criterion)[1]
+        return utilisation(bearing, RingLoad(*(float(v) for v in base + lam * direction)), criterion, solve)[1]
 
     if np.any(base) and not u_of(0.0) < 1.0:
         return math.nan, who_at(0.0), False
@@ -193,7 +202,7 @@ def _pitch_diameter_m(bearing: Bearing) -> float:
 
 def limiting_load_curve(bearing: Bearing, n_rays: int = 36, s0: float = 1.0, pressure_limit_Pa: float | None = None,
                         radial_N: float = 0.0, axial_ref_N: float | None = None,
-                        moment_ref_Nm: float | None = None) -> LimitingLoadCurve:
+                        moment_ref_Nm: float | None = None, solve=None) -> LimitingLoadCurve:
     """The (F_a, M) envelope at the static criterion (module docstring).
 
     Parameters
@@ -211,6 +220,9 @@ def limiting_load_curve(bearing: Bearing, n_rays: int = 36, s0: float = 1.0, pre
         Fixed radial force Fx, N.
     axial_ref_N, moment_ref_Nm : float, optional
         F_ref and M_ref of the rays (default: the pure-axial limit and F_ref·d_m/4).
+    solve : callable RingLoad → LoadDistribution, optional
+        The bearing's load distribution (default: rigid rings); a flexible-ring model's solve gives
+        the curve with ring flexibility.
     """
     if not isinstance(bearing, Bearing):
         raise TypeError(f"bearing must be a Bearing, got {type(bearing).__name__}")
@@ -223,7 +235,7 @@ def limiting_load_curve(bearing: Bearing, n_rays: int = 36, s0: float = 1.0, pre
             raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
     crit = Criterion(s0, pressure_limit_Pa)
     base = np.array([radial_N, 0.0, 0.0, 0.0, 0.0])
-    axial_limits = _axial_limits_N(bearing, base, crit)
+    axial_limits = _axial_limits_N(bearing, base, crit, solve)
     if axial_ref_N is None:
         axial_ref_N = float(np.nanmax(np.abs(axial_limits)))
     if moment_ref_Nm is None:
@@ -236,7 +248,7 @@ def limiting_load_curve(bearing: Bearing, n_rays: int = 36, s0: float = 1.0, pre
     start = 1.0
     for i, t in enumerate(theta):
         direction = np.array([0.0, 0.0, axial_ref_N * math.cos(t), 0.0, moment_ref_Nm * math.sin(t)])
-        lam[i], who, eq_limited[i] = ray_limit(bearing, base, direction, crit, start=start)
+        lam[i], who, eq_limited[i] = ray_limit(bearing, base, direction, crit, start=start, solve=solve)
         if who is not None and math.isfinite(lam[i]):
             rows[i], contacts[i], element[i] = who
             start = 0.7 * lam[i]
@@ -247,15 +259,31 @@ def limiting_load_curve(bearing: Bearing, n_rays: int = 36, s0: float = 1.0, pre
     carried = np.isfinite(lam)
     return LimitingLoadCurve(crit.label, float(radial_N), theta, lam * axial_ref_N * np.cos(theta),
                              lam * moment_ref_Nm * np.sin(theta), tuple(rows), tuple(contacts), element,
-                             carried, eq_limited & carried)
+                             carried, eq_limited & carried, float(axial_ref_N), float(moment_ref_Nm))
 
 
-def _axial_limits_N(bearing: Bearing, base: np.ndarray, crit: Criterion) -> np.ndarray:
+def ray_ratios(curve: LimitingLoadCurve, reference: LimitingLoadCurve) -> np.ndarray:
+    """Load scale of ``curve`` over that of ``reference`` along each ray (NaN where either is not
+    carried): < 1 where ``curve`` carries less. Both must share rays and references (give the
+    second curve the first one's ``axial_ref_N`` and ``moment_ref_Nm``)."""
+    same = (np.allclose(curve.ray_angle_rad, reference.ray_angle_rad, rtol=0.0, atol=1e-12)
+            and math.isclose(curve.axial_ref_N, reference.axial_ref_N)
+            and math.isclose(curve.moment_ref_Nm, reference.moment_ref_Nm) and curve.radial_N == reference.radial_N)
+    if not same:
+        raise ValueError("the curves do not share their rays (ray angles, F_ref, M_ref and radial force)")
+    c, s = np.cos(curve.ray_angle_rad), np.sin(curve.ray_angle_rad)
+    use_axial = np.abs(c) >= np.abs(s)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.where(use_axial, curve.axial_N / reference.axial_N, curve.moment_Nm / reference.moment_Nm)
+    return np.where(curve.carried & reference.carried, ratio, math.nan)
+
+
+def _axial_limits_N(bearing: Bearing, base: np.ndarray, crit: Criterion, solve=None) -> np.ndarray:
     """Pure-axial limits towards +z and −z, N (NaN where not carried); ValueError if neither is."""
     guess = 1e3 * sum(r.n_elements for r in bearing.rows)
     out = np.full(2, math.nan)
     for j, sign in enumerate((1.0, -1.0)):
-        lam, _, _ = ray_limit(bearing, base, np.array([0.0, 0.0, sign * guess, 0.0, 0.0]), crit)
+        lam, _, _ = ray_limit(bearing, base, np.array([0.0, 0.0, sign * guess, 0.0, 0.0]), crit, solve=solve)
         out[j] = sign * lam * guess
     if not np.any(np.isfinite(out)):
         raise ValueError(f"bearing {bearing.name!r} carries no axial load in either direction: its limiting "

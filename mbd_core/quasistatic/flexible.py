@@ -68,6 +68,9 @@ from .solver import RingLoad, _scaling, ball_forces, slice_forces
 __all__ = ["FlexibleRing", "GrooveOffset", "FlexibleBearingModel", "build_flexible_model"]
 
 RING_SIDES = ("fixed", "moving")
+#: Rows whose elements are balls (a four-point ball: two entries, one per diagonal, each with its own
+#: pair of groove curvature centres that move with the ring's section like any ball row's).
+BALL_ROWS = (BallRow, FourPointRow)
 #: Relative tolerance on where the raceway samples lie: f·D from the ring's groove curvature centre
 #: (balls), half a roller diameter from the roller axis (rollers).
 GEOMETRY_RTOL = 0.02
@@ -375,7 +378,7 @@ def _offsets(bearing: Bearing, balls: BallGroup, slices: SliceGroup, offsets) ->
     delta = {side: (np.zeros_like(balls.s0_m), np.zeros_like(slices.p_m)) for side in RING_SIDES}
     for o in offsets:
         i = _row_index(bearing, o.row, f"groove offset of row {o.row!r}")
-        k, group = (0, balls) if isinstance(bearing.rows[i], BallRow) else (1, slices)
+        k, group = (0, balls) if isinstance(bearing.rows[i], BALL_ROWS) else (1, slices)
         mask = group.row == i
         delta[o.ring][k][mask] += o.centre_offset_m(_azimuths(bearing, group, mask))
     return delta
@@ -420,10 +423,6 @@ def build_flexible_model(bearing: Bearing, rings=(), offsets=()) -> FlexibleBear
     Raises ValueError naming the field for a ring or offset that does not fit the bearing.
     """
     rings, offsets = _checked_inputs(bearing, rings, offsets)
-    for r in bearing.rows:
-        if isinstance(r, FourPointRow):
-            raise ValueError(f"bearing {bearing.name!r}: row {r.name!r} is a four-point row, which the flexible-ring "
-                             "model does not take (solve it with rigid rings: solve_load_distribution)")
     balls, slices = build_groups(bearing)
     delta = _offsets(bearing, balls, slices, offsets)
     starts = 5 + np.concatenate(([0], np.cumsum([r.body.n_modes for r in rings]))).astype(int)
@@ -442,7 +441,7 @@ def build_flexible_model(bearing: Bearing, rings=(), offsets=()) -> FlexibleBear
         amplitude = np.zeros(ring.body.n_modes)
         for row_name, sample_name in ring.raceways:
             i_row = _row_index(bearing, row_name, f"flexible ring {ring.name!r}")
-            if isinstance(bearing.rows[i_row], BallRow):
+            if isinstance(bearing.rows[i_row], BALL_ROWS):
                 c, idx, T = _ball_coupling(bearing, balls, ring, i_row, sample_name, delta[ring.ring][0])
                 G[idx, :, cols] += sign * T
             else:

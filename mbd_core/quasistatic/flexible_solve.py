@@ -27,14 +27,15 @@ from .solver import (
     slice_forces,
     supported_dofs,
 )
-from .validity import load_distribution_warnings
+from .validity import approach_limit_error, load_distribution_warnings
 
-__all__ = ["RacewayDeflection", "FlexibleLoadDistribution", "solve_flexible_load_distribution"]
+__all__ = ["RacewayDeflection", "FlexibleLoadDistribution", "solve_flexible_load_distribution", "condensed_stiffness"]
 
 
 @dataclass(frozen=True)
 class RacewayDeflection:
-    """Elastic deflection of a flexible ring's raceway at the elements of one row (Z balls or rollers).
+    """Elastic deflection of a flexible ring's raceway at the elements of one row (Z balls or rollers;
+    a four-point row has 2Z entries, one per ball and diagonal, interleaved ball by ball).
 
     Attributes
     ----------
@@ -70,7 +71,8 @@ class FlexibleLoadDistribution(LoadDistribution):
     modal_coordinates : tuple of (m_k,) arrays, √kg, in the order of ``ring_names``
     deflections : tuple of RacewayDeflection, one per (ring, row)
 
-    ``equilibrium_error`` covers the modal equations too (scaled residual of all unknowns).
+    ``equilibrium_error`` covers the modal equations too (scaled residual of all unknowns);
+    ``stiffness`` is the bearing's with the rings bending (:func:`condensed_stiffness`).
     """
 
     ring_names: tuple[str, ...] = ()
@@ -166,7 +168,7 @@ def solve_flexible_load_distribution(
     free = np.concatenate((free_q, np.arange(5, N)))
     y, R, norm, it2 = damped_newton(residual, y, free, tolerance * scale, max_iterations, fallback)
     if not norm <= tolerance * scale:
-        raise no_equilibrium_error(bearing.name, it1 + it2, R, S, f_ext)
+        raise no_equilibrium_error(bearing.name, it1 + it2, R[:5], S[:5], f_ext)
     return _collect(model, load, y / S, it1 + it2, norm / scale if scale > 0.0 else 0.0, held)
 
 
@@ -182,7 +184,24 @@ def _collect(model: FlexibleBearingModel, load: RingLoad, x: np.ndarray, iterati
         eta = etas[names.index(c.ring)]
         deflections.append(RacewayDeflection(c.ring, c.row, c.azimuth_rad, c.points_m, c.D @ eta, c.Omega @ eta,
                                              None if c.T is None else c.T @ eta))
+    err = approach_limit_error(model.bearing, rows)
+    if err:
+        raise LoadDistributionError(f"no converged equilibrium within the model for bearing {model.bearing.name!r}: {err}")
     warnings = load_distribution_warnings(model.bearing, rows, x[:5])
     return FlexibleLoadDistribution(model.bearing.name, load.as_array(), x[:5].copy(), (rb + rs)[:5], rows,
-                                    iterations, float(error), held, warnings, ring_names=names,
-                                    modal_coordinates=etas, deflections=tuple(deflections))
+                                    iterations, float(error), held, warnings, condensed_stiffness(model, x, load),
+                                    ring_names=names, modal_coordinates=etas, deflections=tuple(deflections))
+
+
+def condensed_stiffness(model: FlexibleBearingModel, x: np.ndarray, load: RingLoad) -> np.ndarray:
+    """Tangent stiffness K = dF/dq (5, 5) of the bearing with its rings free to bend, at x.
+
+    With S = −dR/dx (the element stiffness plus the rings' modal stiffness, symmetric) split into
+    the ring displacement q and the modal coordinates η, the load F that holds the moving ring at q
+    with the rings in equilibrium (R_η = 0) changes by dF = (S_qq − S_qη S_ηη⁻¹ S_ηq)·dq: the static
+    condensation of η (Guyan, AIAA J. 3(2), 380, 1965). Units as :func:`.solver.stiffness_matrix`.
+    """
+    S = -model.residual(x, load, jacobian=True)[1]
+    if S.shape[0] == 5:
+        return S
+    return S[:5, :5] - S[:5, 5:] @ np.linalg.solve(S[5:, 5:], S[5:, :5])

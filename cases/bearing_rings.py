@@ -1,0 +1,259 @@
+"""Modal rings of a described bearing: the ``[rings.inner]`` / ``[rings.outer]`` tables.
+
+A ring given a table bends: its section (a box around the rows' raceways, or a profile of lines
+and arcs, :mod:`.ring_sections`) is revolved, meshed with quadratic hexahedra, held at its support
+(bolts on a pitch circle, or a whole face) and reduced by Craig–Bampton with raceway load shapes
+(:func:`cms_reduction.reduced_body`, cached on disk by its inputs). The fixed ring is held against
+the ground; the moving ring's support rides on the moving ring's rigid displacement q (the
+structure bolted to it is taken as rigid). The reduced rings enter the quasi-static load
+distribution of :mod:`mbd_core.quasistatic.flexible`.
+
+Support of a ring (one of):
+
+- ``[rings.X.bolts]``: ``count`` bolts on ``pitch_diameter_m`` through ``face`` (``"top"`` or
+  ``"bottom"`` of a box section, a segment name of a profile), each held over a washer disc of
+  ``washer_diameter_m`` (default: half the bolt spacing, an assumption for a bolted joint whose
+  clamped area is not known);
+- ``clamped_face = NAME``: the whole face held (a ring on a stiff, continuous seat).
+
+The format reference is ``cases/bearings/README.md``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Literal
+
+from cms_reduction.pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, reduced_body
+from fem_rings.mesh import MeshSpec
+from fem_rings.profile import Arc, Line, Profile, ProfileError
+from foundation.materials import ElasticMaterial
+from mbd_core.quasistatic import Bearing
+from mbd_core.quasistatic.flexible import FlexibleRing
+from mbd_core.quasistatic.rows import RollerRow
+
+from .config import CaseError, from_mapping
+from .ring_sections import box_section, match_raceways, raceway_places
+
+__all__ = ["RingKeys", "BoltKeys", "RingModel", "ring_models", "ring_profile", "reduce_ring", "flexible_rings",
+           "RING_NAMES"]
+
+RING_NAMES = ("inner", "outer")
+#: Raceway samples round a ring: at least this many, and at least four per rolling element.
+MIN_RACEWAY_SAMPLES = 360
+
+
+@dataclass(frozen=True)
+class BoltKeys:
+    """``[rings.X.bolts]``: bolts through a face on a pitch circle."""
+
+    count: int
+    pitch_diameter_m: float
+    face: str
+    washer_diameter_m: float | None = None
+
+    def __post_init__(self) -> None:
+        if not 3 <= self.count <= 2000:
+            raise ValueError(f"count: must lie in 3 … 2000, got {self.count}")
+        if not (math.isfinite(self.pitch_diameter_m) and self.pitch_diameter_m > 0.0):
+            raise ValueError(f"pitch_diameter_m: must be > 0, got {self.pitch_diameter_m!r}")
+        w = self.washer_diameter_m
+        if w is not None and not (math.isfinite(w) and w > 0.0):
+            raise ValueError(f"washer_diameter_m: must be > 0, got {w!r}")
+
+    @property
+    def washer_radius_m(self) -> float:
+        if self.washer_diameter_m is not None:
+            return 0.5 * self.washer_diameter_m
+        return 0.25 * math.pi * self.pitch_diameter_m / self.count
+
+
+@dataclass(frozen=True)
+class RingKeys:
+    """``[rings.inner]`` / ``[rings.outer]`` (format reference: cases/bearings/README.md)."""
+
+    section: Literal["box", "profile"] = "box"
+    inner_diameter_m: float | None = None
+    outer_diameter_m: float | None = None
+    z_min_m: float | None = None
+    z_max_m: float | None = None
+    segments: tuple[Any, ...] = ()
+    material: str = "bearing_steel"
+    bolts: BoltKeys | None = None
+    clamped_face: str | None = None
+    n_modes: int = 20
+    raceway_harmonics: int = 8
+    element_size_m: float | None = None
+
+    def __post_init__(self) -> None:
+        for key in ("inner_diameter_m", "outer_diameter_m", "z_min_m", "z_max_m", "element_size_m"):
+            v = getattr(self, key)
+            if v is not None and not math.isfinite(v):
+                raise ValueError(f"{key}: must be a finite number, got {v!r}")
+        for key in ("inner_diameter_m", "outer_diameter_m", "element_size_m"):
+            v = getattr(self, key)
+            if v is not None and not v > 0.0:
+                raise ValueError(f"{key}: must be > 0, got {v!r}")
+        if (self.bolts is None) == (self.clamped_face is None):
+            raise ValueError("bolts: give the ring's support: a [bolts] table or clamped_face (one of them)")
+        if not 1 <= self.n_modes <= 400:
+            raise ValueError(f"n_modes: must lie in 1 … 400, got {self.n_modes}")
+        if not 0 <= self.raceway_harmonics <= 60:
+            raise ValueError(f"raceway_harmonics: must lie in 0 … 60, got {self.raceway_harmonics}")
+        if self.section == "box" and self.segments:
+            raise ValueError("segments: only for section = \"profile\"")
+        if self.section == "profile":
+            if not self.segments:
+                raise ValueError("segments: missing key (a profile section needs its [[segments]])")
+            given = [k for k in ("inner_diameter_m", "outer_diameter_m", "z_min_m", "z_max_m") if getattr(self, k) is not None]
+            if given:
+                raise ValueError(f"{given[0]}: only for section = \"box\" (a profile gives its own outline)")
+
+    @property
+    def support_face(self) -> str:
+        return self.bolts.face if self.bolts is not None else self.clamped_face
+
+
+@dataclass(frozen=True)
+class RingModel:
+    """A ring ready to reduce: which side it is, its section, where its raceways lie, its support."""
+
+    name: str
+    side: str  # "moving" or "fixed"
+    profile: Profile
+    raceways: dict  # row name → segment (sample) name
+    places: dict  # row name → RacewayPlace
+    keys: RingKeys
+    material: ElasticMaterial
+
+
+def _point(value, at: str) -> tuple[float, float]:
+    if not (isinstance(value, (list, tuple)) and len(value) == 2
+            and all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value)):
+        raise CaseError(f"{at}: expected [r, z] in metres, got {value!r:.60}")
+    return (float(value[0]), float(value[1]))
+
+
+_SEGMENT_KEYS = {"line": {"start_m", "end_m", "name"}, "arc": {"start_m", "end_m", "centre_m", "direction", "name"}}
+
+
+def _segment(table, at: str):
+    if not isinstance(table, dict):
+        raise CaseError(f"{at}: expected a table, got {table!r:.60}")
+    kind = table.get("kind")
+    if kind not in _SEGMENT_KEYS:
+        raise CaseError(f"{at}.kind: must be \"line\" or \"arc\", got {kind!r:.40}")
+    unknown = sorted(set(table) - _SEGMENT_KEYS[kind] - {"kind"})
+    if unknown:
+        raise CaseError(f"{at}.{unknown[0]}: unknown key (known: kind, {', '.join(sorted(_SEGMENT_KEYS[kind]))})")
+    for key in sorted(_SEGMENT_KEYS[kind] - {"name", "direction"}):
+        if key not in table:
+            raise CaseError(f"{at}.{key}: missing key")
+    name = table.get("name", "face")
+    if not isinstance(name, str) or not name.strip():
+        raise CaseError(f"{at}.name: must be a non-empty string, got {name!r:.40}")
+    start, end = _point(table["start_m"], f"{at}.start_m"), _point(table["end_m"], f"{at}.end_m")
+    try:
+        if kind == "line":
+            return Line(start, end, name)
+        direction = table.get("direction", "ccw")
+        if direction not in ("ccw", "cw"):
+            raise CaseError(f"{at}.direction: must be \"ccw\" or \"cw\", got {direction!r:.40}")
+        return Arc(start, end, _point(table["centre_m"], f"{at}.centre_m"), direction == "ccw", name)
+    except ProfileError as exc:
+        raise CaseError(f"{at}: {exc}") from None
+
+
+def _profile(keys: RingKeys, name: str, places: dict, where: str) -> Profile:
+    if keys.section == "profile":
+        segs = tuple(_segment(t, f"{where}.segments[{i}]") for i, t in enumerate(keys.segments))
+        try:
+            return Profile(name, segs)
+        except ProfileError as exc:
+            raise CaseError(f"{where}.segments: {exc}") from None
+    r = lambda d: None if d is None else 0.5 * d  # noqa: E731
+    sides = {"r_in_m": r(keys.inner_diameter_m), "r_out_m": r(keys.outer_diameter_m),
+             "z_min_m": keys.z_min_m, "z_max_m": keys.z_max_m}
+    key_of = {"r_in_m": "inner_diameter_m", "r_out_m": "outer_diameter_m", "z_min_m": "z_min_m", "z_max_m": "z_max_m"}
+    try:
+        return box_section(name, places, sides)
+    except (ValueError, ProfileError) as exc:
+        text = str(exc)
+        head, _, rest = text.partition(": ")
+        raise CaseError(f"{where}.{key_of.get(head, head)}: {rest}" if head in key_of or head == "rows"
+                        else f"{where}: {text}") from None
+
+
+def _element_size(row) -> float:
+    return row.roller_diameter_m if isinstance(row, RollerRow) else row.ball_diameter_m
+
+
+def ring_profile(bearing: Bearing, ring: str, moving_ring: str, keys: RingKeys, where: str):
+    """(side, profile, raceways, places) of the ``"inner"`` or ``"outer"`` ring; CaseError naming the key."""
+    side = "moving" if ring == moving_ring else "fixed"
+    try:
+        places = raceway_places(bearing, side)
+    except ValueError as exc:
+        raise CaseError(f"{where}: {exc}") from None
+    profile = _profile(keys, f"{ring} ring", places, where)
+    try:
+        raceways = match_raceways(profile, places, {r.name: _element_size(r) for r in bearing.rows})
+    except ValueError as exc:
+        raise CaseError(f"{where}.{'segments' if keys.section == 'profile' else 'section'}: {exc}") from None
+    face = keys.support_face
+    if face not in profile.names:
+        key = "bolts.face" if keys.bolts is not None else "clamped_face"
+        raise CaseError(f"{where}.{key}: the section has no face {face!r}; its faces: {', '.join(profile.names)}")
+    if face in raceways.values():
+        key = "bolts.face" if keys.bolts is not None else "clamped_face"
+        raise CaseError(f"{where}.{key}: {face!r} carries a raceway; support the ring on another face")
+    return side, profile, raceways, places
+
+
+def ring_models(bearing: Bearing, moving_ring: str, tables: dict, materials: dict) -> dict[str, RingModel]:
+    """Validated :class:`RingModel` of every ``[rings.X]`` table (before any meshing)."""
+    out = {}
+    for ring, table in tables.items():
+        where = f"rings.{ring}"
+        if ring not in RING_NAMES:
+            raise CaseError(f"{where}: unknown ring (known: {', '.join(RING_NAMES)})")
+        keys = from_mapping(RingKeys, table, where)
+        if keys.material not in materials:
+            raise CaseError(f"{where}.material: unknown material {keys.material!r}; known: {', '.join(sorted(materials))}")
+        side, profile, raceways, places = ring_profile(bearing, ring, moving_ring, keys, where)
+        out[ring] = RingModel(ring, side, profile, raceways, places, keys, materials[keys.material])
+    return out
+
+
+def _mesh_spec(m: RingModel) -> MeshSpec:
+    r0, r1, z0, z1 = m.profile.bounds_m
+    size = m.keys.element_size_m or min(r1 - r0, z1 - z0) / 3.0
+    return MeshSpec(size, "hex27")
+
+
+def _support(m: RingModel) -> InterfaceSpec:
+    b = m.keys.bolts
+    if b is None:
+        r0, r1, _, _ = m.profile.bounds_m
+        return InterfaceSpec(m.keys.clamped_face, (0.0,), math.pi * r1)
+    angles = tuple(360.0 * (k + 0.5) / b.count for k in range(b.count))
+    return InterfaceSpec(b.face, angles, b.washer_radius_m, pitch_radius_m=0.5 * b.pitch_diameter_m)
+
+
+def reduce_ring(m: RingModel, bearing: Bearing):
+    """The reduced body of a ring (built once, then loaded from the cache)."""
+    n_elements = max(r.n_elements for r in bearing.rows)
+    n_theta = max(MIN_RACEWAY_SAMPLES, 4 * n_elements)
+    raceways = tuple(RacewaySpec(m.raceways[row], n_theta, at_rz_m=tuple(map(float, p.point_rz_m)),
+                                 directions=p.directions, n_max=m.keys.raceway_harmonics)
+                     for row, p in m.places.items())
+    spec = ReductionSpec(n_modes=m.keys.n_modes, interfaces=(_support(m),), raceways=raceways)
+    return reduced_body(m.profile, _mesh_spec(m), m.material, spec, name=f"{bearing.name}: {m.name} ring")
+
+
+def flexible_rings(models: dict[str, RingModel], bearing: Bearing) -> tuple[FlexibleRing, ...]:
+    """The :class:`FlexibleRing` of every ring model (reducing or loading each body)."""
+    return tuple(FlexibleRing(m.name, reduce_ring(m, bearing), m.side, dict(m.raceways)) for m in models.values())
+
+
