@@ -19,11 +19,12 @@ import csv
 import io
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
 
 from foundation.materials import BEARING_STEEL, ElasticMaterial
+from mbd_core.bearing.distribution_case_depth import CaseDepth
 from mbd_core.quasistatic import Bearing, RingLoad
 from mbd_core.quasistatic.results import LOAD_NAMES
 
@@ -99,6 +100,8 @@ class BearingDescription:
         The spectrum's time shares (None when the file has none).
     source : str
         The file read.
+    case_depths : dict of row name → CaseDepth
+        The rows given a case depth (``case_depth_m`` and a core strength), for the DG03 life factor.
     """
 
     name: str
@@ -107,6 +110,7 @@ class BearingDescription:
     load_cases: tuple[RingLoad, ...]
     time_share: tuple[float, ...] | None = None
     source: str = "<string>"
+    case_depths: Mapping[str, CaseDepth] = field(default_factory=dict)
 
     @property
     def default_load(self) -> RingLoad:
@@ -141,9 +145,9 @@ def _row_tables(data) -> list:
     return data
 
 
-def _rows(data, ctx_of) -> tuple:
-    """All rows of the ``[[rows]]`` tables, in file order."""
-    rows, first_use = [], {}
+def _rows(data, ctx_of) -> tuple[tuple, dict[str, CaseDepth]]:
+    """All rows of the ``[[rows]]`` tables, in file order, and the case depths by row name."""
+    rows, first_use, case_depths = [], {}, {}
     for i, table in enumerate(_row_tables(data)):
         where = f"rows[{i}]"
         if not isinstance(table, Mapping):
@@ -160,7 +164,9 @@ def _rows(data, ctx_of) -> tuple:
                 raise CaseError(f"{where}.name: row name {row.name!r} is already used by {first_use[row.name]}")
             first_use[row.name] = where
             rows.append(row)
-    return tuple(rows)
+            if keys.case_depth_m is not None:
+                case_depths[row.name] = CaseDepth(keys.case_depth_m, keys.core_shear_fatigue_Pa)
+    return tuple(rows), case_depths
 
 
 def _number(text: str, at: str) -> float:
@@ -246,13 +252,13 @@ def bearing_from_mapping(data: Mapping, base_dir: Path | None = None, source: st
         raise CaseError("bearing: missing key (a [bearing] table with at least name)")
     head = from_mapping(BearingKeys, data["bearing"], "bearing")
     materials = _materials(data.get("materials"))
-    rows = _rows(data.get("rows"), lambda where: RowContext(head.moving_ring, materials, where))
+    rows, case_depths = _rows(data.get("rows"), lambda where: RowContext(head.moving_ring, materials, where))
     loads, shares = _load(data.get("load"), base_dir)
     try:
         bearing = Bearing(head.name, rows)
     except ValueError as exc:
         raise CaseError(f"rows: {exc}") from None
-    return BearingDescription(head.name, head.description, bearing, loads, shares, source)
+    return BearingDescription(head.name, head.description, bearing, loads, shares, source, case_depths)
 
 
 def loads_bearing(text: str, source: str = "<string>", base_dir: Path | None = None) -> BearingDescription:
