@@ -13,11 +13,9 @@ L_cd = A_cd·L10 — as the slewing-ring study applies it to the most loaded bal
 
 Ball rows: the Hertz ellipse of that contact (:mod:`..quasistatic.contacts`). Roller rows: the
 contact sets hold the most loaded slice of each roller (p0 and half-width b); the slices are parts
-of one line contact, so the ellipse's semi-major axis is taken as half the roller's effective
-length L_we/2, not half the slice. An ellipse of b ≪ a tends to the plane-strain line contact:
-for b/a = 0.011 τ_max on the axis is 0.7–1.7 % above McEwen's line-contact stresses (Johnson,
-*Contact Mechanics*, 1985, eq. 4.75, with σ_y = ν(σ_x + σ_z)) between 0.5·b and 5·b deep, i.e. the
-factor is slightly conservative.
+of one line contact, so τ_max(z) is the plane-strain line contact's (McEwen; Johnson, *Contact
+Mechanics*, 1985, eq. 4.75; :func:`.case_depth.line_case_depth_life_factor`), not that of an
+ellipse as long as one slice (which would underestimate it by 27 % at z = 5·b for 20 slices).
 
 The bearing's corrected life combines the rows' corrected lives in series like the L10 of
 :mod:`.distribution_life` (Weibull slope e: L = (Σ L_row^(−e))^(−1/e)); rows without a case depth
@@ -32,11 +30,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..contact.subsurface import max_shear_profile_Pa
+from ..contact.subsurface import line_max_shear_profile_Pa, max_shear_profile_Pa
 from ..quasistatic.contacts import contact_sets
 from ..quasistatic.results import LoadDistribution
 from ..quasistatic.rows import Bearing, RollerRow
-from .case_depth import CASE_DEPTH_STRESS_DEPTH_FACTOR, case_depth_life_factor
+from .case_depth import CASE_DEPTH_STRESS_DEPTH_FACTOR, case_depth_life_factor, line_case_depth_life_factor
 from .distribution_life import BearingLife, bearing_weibull_slope, combined_life
 
 __all__ = ["CaseDepth", "RowCaseDepth", "row_case_depth_factors", "case_depth_bearing_life_Mrev"]
@@ -62,7 +60,7 @@ class RowCaseDepth:
     """The case-depth factor of one row and the contact it was evaluated at.
 
     ``factor`` A_cd (1 for an unloaded row); ``p0_Pa``, ``semi_major_m``, ``semi_minor_m`` the Hertz
-    contact used (rollers: a = L_we/2); ``nu`` the raceway's Poisson's ratio; ``tau_check_Pa`` the
+    contact used (rollers: a = inf, a line contact); ``nu`` the raceway's Poisson's ratio; ``tau_check_Pa`` the
     Tresca shear τ_max(1.1·h); ``contact`` the contact set's label, ``element`` and ``load_case``
     numbered from 0 (−1 when unloaded).
     """
@@ -81,13 +79,18 @@ class RowCaseDepth:
     load_case: int
 
     def to_dict(self) -> dict:
-        """Fields by name; element and load case numbered from 1 (None when unloaded)."""
+        """Fields by name; element and load case numbered from 1, None when unloaded (also a and b; a
+        of a line contact)."""
         return {"factor": self.factor, "case_depth_m": self.case_depth_m,
                 "check_depth_m": CASE_DEPTH_STRESS_DEPTH_FACTOR * self.case_depth_m,
                 "core_shear_fatigue_Pa": self.core_shear_fatigue_Pa, "shear_at_check_depth_Pa": self.tau_check_Pa,
-                "p0_Pa": self.p0_Pa, "a_m": self.semi_major_m, "b_m": self.semi_minor_m, "contact": self.contact,
+                "p0_Pa": self.p0_Pa, "a_m": _finite(self.semi_major_m), "b_m": _finite(self.semi_minor_m), "contact": self.contact,
                 "element": self.element + 1 if self.element >= 0 else None,
                 "load_case": self.load_case + 1 if self.load_case >= 0 else None}
+
+
+def _finite(x: float) -> float | None:
+    return x if math.isfinite(x) else None
 
 
 def _most_loaded(bearing: Bearing, dists: Sequence[LoadDistribution], row_name: str):
@@ -131,11 +134,14 @@ def row_case_depth_factors(bearing: Bearing, dists: Sequence[LoadDistribution],
             out.append(RowCaseDepth(row.name, spec.case_depth_m, spec.core_shear_fatigue_Pa, 1.0, 0.0, math.nan,
                                     math.nan, nu, 0.0, "", -1, -1))
             continue
-        if isinstance(row, RollerRow):
-            a = 0.5 * row.roller_length_m  # the slice is part of one line contact (module docstring)
-        a, b = max(a, b), min(a, b)
-        tau = float(max_shear_profile_Pa(p0, a, b, CASE_DEPTH_STRESS_DEPTH_FACTOR * spec.case_depth_m, nu))
-        factor = case_depth_life_factor(p0, a, b, spec.case_depth_m, nu, spec.core_shear_fatigue_Pa)
+        z, h, tau_f = CASE_DEPTH_STRESS_DEPTH_FACTOR * spec.case_depth_m, spec.case_depth_m, spec.core_shear_fatigue_Pa
+        if isinstance(row, RollerRow):  # the slice is part of one line contact (module docstring)
+            a = math.inf
+            tau = float(line_max_shear_profile_Pa(p0, b, z, nu))
+            factor = line_case_depth_life_factor(p0, b, h, nu, tau_f)
+        else:
+            tau = float(max_shear_profile_Pa(p0, a, b, z, nu))
+            factor = case_depth_life_factor(p0, a, b, h, nu, tau_f)
         out.append(RowCaseDepth(row.name, spec.case_depth_m, spec.core_shear_fatigue_Pa, factor, p0, a, b, nu, tau,
                                 label, element, case))
     return tuple(out)
