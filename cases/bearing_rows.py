@@ -109,6 +109,14 @@ class _CaseDepthKeys:
                              "give case_depth_m too")
         if self.case_depth_m is not None and not given:
             raise ValueError(f"case_depth_m: give the core strength too, one of {', '.join(CORE_STRENGTH_KEYS)}")
+        if given and not self.core_shear_fatigue_Pa > 0.0:
+            raise ValueError(f"{given[0]}: too small: the core shear fatigue strength 0.6·τ_y is 0")
+
+    def _check_case_depth_below(self, diameter_m: float, key: str) -> None:
+        """A case deeper than the rolling element is a through-hardened ring (and beyond the stresses)."""
+        if self.case_depth_m is not None and not self.case_depth_m < diameter_m:
+            raise ValueError(f"case_depth_m: must be smaller than {key} ({diameter_m!r}; a deeper case is a "
+                             f"through-hardened ring: leave the case-depth keys out), got {self.case_depth_m!r}")
 
     @property
     def core_shear_fatigue_Pa(self) -> float | None:
@@ -162,6 +170,7 @@ class _BallKeys(_CaseDepthKeys):
         for key in ("count", "ball_diameter_m", "pitch_diameter_m"):
             if not getattr(self, key) > 0:
                 raise ValueError(f"{key}: must be > 0, got {getattr(self, key)!r}")
+        self._check_case_depth_below(self.ball_diameter_m, "ball_diameter_m")
         if self.pitch_diameter_m <= self.ball_diameter_m:
             raise ValueError(f"pitch_diameter_m: must exceed ball_diameter_m ({self.ball_diameter_m!r}), "
                              f"got {self.pitch_diameter_m!r}")
@@ -375,6 +384,7 @@ class _RollerKeys(_CaseDepthKeys):
         for key in ("count", "roller_diameter_m", "roller_length_m", "pitch_diameter_m", "n_slices"):
             if not getattr(self, key) > 0:
                 raise ValueError(f"{key}: must be > 0, got {getattr(self, key)!r}")
+        self._check_case_depth_below(self.roller_diameter_m, "roller_diameter_m")
         if self.n_slices > 200:
             raise ValueError(f"n_slices: at most 200, got {self.n_slices!r}")
         if self.profile == "crowned":

@@ -213,6 +213,8 @@ def test_roller_row_factor_against_the_line_contact(tmp_path, capsys):
     ("case_depth_m = 0.002\ncore_uts_Pa = 9e8\ncore_yield_Pa = 7e8", "rows[0].core_yield_Pa: "),
     ("case_depth_m = -0.002\ncore_uts_Pa = 9e8", "rows[0].case_depth_m: "),
     ("case_depth_m = 0.002\ncore_shear_yield_Pa = 0", "rows[0].core_shear_yield_Pa: "),
+    ("case_depth_m = 0.002\ncore_uts_Pa = 5e-324", "rows[0].core_uts_Pa: too small"),
+    ("case_depth_m = 0.05\ncore_uts_Pa = 9e8", "rows[0].case_depth_m: must be smaller than ball_diameter_m"),
 ])
 def test_case_depth_key_errors_name_the_key(extra, prefix):
     with pytest.raises(CaseError) as exc:
