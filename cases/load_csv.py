@@ -97,7 +97,8 @@ def _loads(table: Table) -> tuple[RingLoad, ...]:
     return tuple(RingLoad(**{k: values[k] for k in LOAD_NAMES}) for _, values in table)
 
 
-def read_spectrum_csv(path: Path, key: str = "load.spectrum_csv") -> tuple[tuple[RingLoad, ...], tuple[float, ...] | None]:
+def read_spectrum_csv(path: Path, key: str = "load.spectrum_csv"
+                      ) -> tuple[tuple[RingLoad, ...], tuple[float, ...] | None]:
     """Load cases (and time shares, or None) of a spectrum CSV; CaseError naming ``key``, the file, row and column."""
     at = f"{key}: {path}"
     table = _read_table(path, at, LOAD_NAMES, (TIME_SHARE,))
@@ -129,7 +130,8 @@ def trapezoid_time_shares(time_s) -> np.ndarray:
     return w / (t[-1] - t[0])
 
 
-def read_time_history_csv(path: Path, key: str = "load.time_history_csv") -> tuple[tuple[RingLoad, ...], tuple[float, ...]]:
+def read_time_history_csv(path: Path, key: str = "load.time_history_csv"
+                          ) -> tuple[tuple[RingLoad, ...], tuple[float, ...]]:
     """Load cases and their trapezoid time shares of a load time history CSV (module docstring);
     CaseError naming ``key``, the file and the row (a time not after the previous row's)."""
     at = f"{key}: {path}"

@@ -194,20 +194,20 @@ def life_lines(life: dict) -> list[str]:
     for r in life["rows"]:
         rows.append(f"  {r['row']}: L10 = {r['life_Mrev']:.4g} Mrev = {r['life_h']:.4g} h (deciding: {r['deciding']})")
         if "case_depth" in r:
-            rows.append(_case_depth_line(r, spectrum=life["time_share"] is not None))
+            rows.extend(_case_depth_lines(r, spectrum=life["time_share"] is not None))
     bearing = [f"  bearing: L10 = {life['life_Mrev']:.4g} Mrev = {life['life_h']:.4g} h"]
     if "life_cd_Mrev" in life:
         bearing.append(f"  bearing: L10·A_cd = {life['life_cd_Mrev']:.4g} Mrev = {life['life_cd_h']:.4g} h")
     return [f"rating life L10 ({life['rotating_ring']} ring rotating, {life['speed_rpm']:g} rpm):", *rows, *bearing]
 
 
-def _case_depth_line(r: dict, spectrum: bool) -> str:
-    """One screen line of a row's case-depth factor (from the SI values of :func:`life_summary`)."""
+def _case_depth_lines(r: dict, spectrum: bool) -> list[str]:
+    """Screen lines of a row's case-depth factor (from the SI values of :func:`life_summary`)."""
     c = r["case_depth"]
     if c["element"] is None:
         at = "unloaded"
     else:
         at = f"{c['contact']}, element {c['element']}" + (f", case {c['load_case']}" if spectrum else "")
-    return (f"    case depth {c['case_depth_m'] * 1e3:.3g} mm: A_cd = {c['factor']:.3g} (τ_max(1.1·h) = "
-            f"{c['shear_at_check_depth_Pa'] / 1e6:.0f} MPa, τ_f = {c['core_shear_fatigue_Pa'] / 1e6:.0f} MPa at {at})"
-            f" → L10·A_cd = {r['life_cd_Mrev']:.4g} Mrev = {r['life_cd_h']:.4g} h")
+    return [f"    case depth {c['case_depth_m'] * 1e3:.3g} mm: A_cd = {c['factor']:.3g} at {at} (τ_max(1.1·h) = "
+            f"{c['shear_at_check_depth_Pa'] / 1e6:.0f} MPa, τ_f = {c['core_shear_fatigue_Pa'] / 1e6:.0f} MPa)",
+            f"    L10·A_cd = {r['life_cd_Mrev']:.4g} Mrev = {r['life_cd_h']:.4g} h"]

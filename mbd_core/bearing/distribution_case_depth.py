@@ -84,7 +84,8 @@ class RowCaseDepth:
         return {"factor": self.factor, "case_depth_m": self.case_depth_m,
                 "check_depth_m": CASE_DEPTH_STRESS_DEPTH_FACTOR * self.case_depth_m,
                 "core_shear_fatigue_Pa": self.core_shear_fatigue_Pa, "shear_at_check_depth_Pa": self.tau_check_Pa,
-                "p0_Pa": self.p0_Pa, "a_m": _finite(self.semi_major_m), "b_m": _finite(self.semi_minor_m), "contact": self.contact,
+                "p0_Pa": self.p0_Pa, "a_m": _finite(self.semi_major_m), "b_m": _finite(self.semi_minor_m),
+                "contact": self.contact,
                 "element": self.element + 1 if self.element >= 0 else None,
                 "load_case": self.load_case + 1 if self.load_case >= 0 else None}
 
