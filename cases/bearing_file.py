@@ -5,43 +5,42 @@ The format reference, every key with its unit, is ``cases/bearings/README.md``. 
     [bearing]                  # name, description, moving_ring = "inner" | "outer"
     [materials.NAME]           # E_Pa, nu, density_kg_m3; "bearing_steel" is built in
     [[rows]]                   # type = one of ROW_TYPES (cases.bearing_rows), then its keys
-    [load]                     # Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm, or spectrum_csv = "file.csv"
+    [load]                     # Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm, or spectrum_csv = "file.csv",
+                               # or time_history_csv = "file.csv"
     [rings.inner], [rings.outer]  # optional: the ring bends (section, support, modes; cases.bearing_rings)
 
 Everything is checked before any work; every error is a :class:`cases.config.CaseError` whose
 one-line message starts with the dotted key (``rows[2].conformity_inner: must be > 0.5 …``) or
 the file. A spectrum CSV (path relative to the description file) has the columns
-``Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm`` and optionally ``time_share``, one load case a line.
+``Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm`` and optionally ``time_share``, one load case a line; a time
+history CSV ``time_s`` and the five load columns, one instant a line, each instant a load case
+with its trapezoid-rule time share (:mod:`cases.load_csv`).
 """
 
 from __future__ import annotations
 
-import csv
-import io
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
 
 from foundation.materials import BEARING_STEEL, ElasticMaterial
+from mbd_core.bearing.distribution_case_depth import CaseDepth
 from mbd_core.quasistatic import Bearing, RingLoad
 from mbd_core.quasistatic.results import LOAD_NAMES
 
 from .bearing_rings import ring_models
 from .bearing_rows import ROW_TYPES, RowContext, build_rows
 from .config import CaseError, from_mapping, parse_toml, read_toml
+from .load_csv import MAX_LOAD_CASES, read_spectrum_csv, read_time_history_csv
 
 __all__ = ["BearingDescription", "BUILTIN_DIR", "read_bearing_file", "loads_bearing", "bearing_from_mapping",
-           "read_spectrum_csv", "MAX_LOAD_CASES"]
+           "read_spectrum_csv", "read_time_history_csv", "MAX_LOAD_CASES"]
 
 #: Folder of the description files shipped with the package (the built-in bearings).
 BUILTIN_DIR = Path(__file__).resolve().parent / "bearings"
 #: Name of the built-in material (:data:`foundation.materials.BEARING_STEEL`).
 BUILTIN_MATERIAL = "bearing_steel"
-#: Most load cases a spectrum file may hold.
-MAX_LOAD_CASES = 10_000
-TIME_SHARE = "time_share"
 
 
 @dataclass(frozen=True)
@@ -68,7 +67,8 @@ class MaterialKeys:
 
 @dataclass(frozen=True)
 class LoadKeys:
-    """``[load]``: the load on the moving ring at the bearing centre (N, N·m), or a spectrum file."""
+    """``[load]``: the load on the moving ring at the bearing centre (N, N·m), or a spectrum file,
+    or a load time history file (:mod:`cases.load_csv`)."""
 
     Fx_N: float = 0.0
     Fy_N: float = 0.0
@@ -76,14 +76,20 @@ class LoadKeys:
     Mx_Nm: float = 0.0
     My_Nm: float = 0.0
     spectrum_csv: str | None = None
+    time_history_csv: str | None = None
 
     def __post_init__(self) -> None:
-        if self.spectrum_csv is not None:
+        if self.spectrum_csv is not None and self.time_history_csv is not None:
+            raise ValueError("time_history_csv: give a spectrum file or a time history file, not both "
+                             "(spectrum_csv given)")
+        for key, what in (("spectrum_csv", "a spectrum file"), ("time_history_csv", "a time history file")):
+            if getattr(self, key) is None:
+                continue
             given = [n for n in LOAD_NAMES if getattr(self, n) != 0.0]
             if given:
-                raise ValueError(f"spectrum_csv: give the load components or a spectrum file, not both ({given[0]} given)")
-            if not self.spectrum_csv.strip():
-                raise ValueError("spectrum_csv: must name a file")
+                raise ValueError(f"{key}: give the load components or {what}, not both ({given[0]} given)")
+            if not getattr(self, key).strip():
+                raise ValueError(f"{key}: must name a file")
 
 
 @dataclass(frozen=True)
@@ -96,11 +102,13 @@ class BearingDescription:
     bearing : Bearing
         The rows, ready for :func:`mbd_core.quasistatic.solve_load_distribution`.
     load_cases : tuple of RingLoad
-        The file's load: one case, or one per line of its spectrum CSV.
+        The file's load: one case, or one per line of its spectrum or time history CSV.
     time_share : tuple of float or None
-        The spectrum's time shares (None when the file has none).
+        The spectrum's time shares, or the time history's trapezoid shares (None when the file has none).
     source : str
         The file read.
+    case_depths : dict of row name → CaseDepth
+        The rows given a case depth (``case_depth_m`` and a core strength), for the DG03 life factor.
     rings : dict of str → cases.bearing_rings.RingModel
         The rings given a ``[rings.X]`` table (they bend), validated but not meshed yet; the
         others are rigid.
@@ -112,6 +120,7 @@ class BearingDescription:
     load_cases: tuple[RingLoad, ...]
     time_share: tuple[float, ...] | None = None
     source: str = "<string>"
+    case_depths: Mapping[str, CaseDepth] = field(default_factory=dict)
     rings: Mapping = field(default_factory=dict)
 
     @property
@@ -147,9 +156,9 @@ def _row_tables(data) -> list:
     return data
 
 
-def _rows(data, ctx_of) -> tuple:
-    """All rows of the ``[[rows]]`` tables, in file order."""
-    rows, first_use = [], {}
+def _rows(data, ctx_of) -> tuple[tuple, dict[str, CaseDepth]]:
+    """All rows of the ``[[rows]]`` tables, in file order, and the case depths by row name."""
+    rows, first_use, case_depths = [], {}, {}
     for i, table in enumerate(_row_tables(data)):
         where = f"rows[{i}]"
         if not isinstance(table, Mapping):
@@ -166,78 +175,24 @@ def _rows(data, ctx_of) -> tuple:
                 raise CaseError(f"{where}.name: row name {row.name!r} is already used by {first_use[row.name]}")
             first_use[row.name] = where
             rows.append(row)
-    return tuple(rows)
-
-
-def _number(text: str, at: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise CaseError(f"{at}: not a number: {text.strip()!r:.40}") from None
-    if not math.isfinite(value):
-        raise CaseError(f"{at}: not a finite number: {text.strip()!r:.40}")
-    return value
-
-
-def _spectrum_header(header: list[str], at: str) -> list[str]:
-    names = [h.strip() for h in header]
-    known = (*LOAD_NAMES, TIME_SHARE)
-    for name in names:
-        if name not in known:
-            raise CaseError(f"{at}: unknown column {name!r:.40}; the columns are {', '.join(known)} (time_share optional)")
-    missing = [n for n in LOAD_NAMES if n not in names]
-    if missing:
-        raise CaseError(f"{at}: column {missing[0]} missing; the columns are {', '.join(known)} (time_share optional)")
-    if len(set(names)) != len(names):
-        raise CaseError(f"{at}: a column appears twice in {', '.join(names)}")
-    return names
-
-
-def read_spectrum_csv(path: Path, key: str = "load.spectrum_csv") -> tuple[tuple[RingLoad, ...], tuple[float, ...] | None]:
-    """Load cases (and time shares, or None) of a spectrum CSV; CaseError naming ``key``, the file, row and column."""
-    at = f"{key}: {path}"
-    try:
-        text = path.read_bytes().decode("utf-8-sig")
-    except OSError as exc:
-        raise CaseError(f"{at}: cannot read: {exc.strerror or exc}") from None
-    except UnicodeDecodeError as exc:
-        raise CaseError(f"{at}: not UTF-8 text (byte {exc.start})") from None
-    try:
-        lines = [r for r in csv.reader(io.StringIO(text)) if any(c.strip() for c in r)]
-    except csv.Error as exc:
-        raise CaseError(f"{at}: not a CSV file: {exc}") from None
-    if not lines:
-        raise CaseError(f"{at}: empty (expected a header {', '.join(LOAD_NAMES)}[, {TIME_SHARE}] and one line per case)")
-    names = _spectrum_header(lines[0], f"{at}, header")
-    if len(lines) == 1:
-        raise CaseError(f"{at}: no load cases below the header")
-    if len(lines) - 1 > MAX_LOAD_CASES:
-        raise CaseError(f"{at}: {len(lines) - 1} load cases, at most {MAX_LOAD_CASES}")
-    loads, shares = [], []
-    for n, line in enumerate(lines[1:], start=2):
-        if len(line) != len(names):
-            raise CaseError(f"{at}: row {n}: {len(line)} values for {len(names)} columns")
-        values = {name: _number(cell, f"{at}: row {n}, column {name}") for name, cell in zip(names, line)}
-        loads.append(RingLoad(**{k: values[k] for k in LOAD_NAMES}))
-        if TIME_SHARE in values:
-            if values[TIME_SHARE] < 0.0:
-                raise CaseError(f"{at}: row {n}, column {TIME_SHARE}: must be >= 0, got {values[TIME_SHARE]!r}")
-            shares.append(values[TIME_SHARE])
-    if shares and not sum(shares) > 0.0:
-        raise CaseError(f"{at}: column {TIME_SHARE}: the shares sum to 0")
-    return tuple(loads), (tuple(shares) if shares else None)
+            if keys.case_depth_m is not None:
+                case_depths[row.name] = CaseDepth(keys.case_depth_m, keys.core_shear_fatigue_Pa)
+    return tuple(rows), case_depths
 
 
 def _load(data, base_dir: Path | None) -> tuple[tuple[RingLoad, ...], tuple[float, ...] | None]:
     keys = from_mapping(LoadKeys, {} if data is None else data, "load")
-    if keys.spectrum_csv is None:
-        return (RingLoad(**{n: getattr(keys, n) for n in LOAD_NAMES}),), None
-    path = Path(keys.spectrum_csv)
-    if not path.is_absolute():
-        if base_dir is None:
-            raise CaseError("load.spectrum_csv: a relative path needs the description file's folder")
-        path = base_dir / path
-    return read_spectrum_csv(path)
+    for name, read in (("spectrum_csv", read_spectrum_csv), ("time_history_csv", read_time_history_csv)):
+        given = getattr(keys, name)
+        if given is None:
+            continue
+        path = Path(given)
+        if not path.is_absolute():
+            if base_dir is None:
+                raise CaseError(f"load.{name}: a relative path needs the description file's folder")
+            path = base_dir / path
+        return read(path, f"load.{name}")
+    return (RingLoad(**{n: getattr(keys, n) for n in LOAD_NAMES}),), None
 
 
 TOP_LEVEL = ("bearing", "materials", "rows", "load", "rings")
@@ -252,7 +207,7 @@ def bearing_from_mapping(data: Mapping, base_dir: Path | None = None, source: st
         raise CaseError("bearing: missing key (a [bearing] table with at least name)")
     head = from_mapping(BearingKeys, data["bearing"], "bearing")
     materials = _materials(data.get("materials"))
-    rows = _rows(data.get("rows"), lambda where: RowContext(head.moving_ring, materials, where))
+    rows, case_depths = _rows(data.get("rows"), lambda where: RowContext(head.moving_ring, materials, where))
     loads, shares = _load(data.get("load"), base_dir)
     try:
         bearing = Bearing(head.name, rows)
@@ -262,7 +217,7 @@ def bearing_from_mapping(data: Mapping, base_dir: Path | None = None, source: st
     if not isinstance(rings, Mapping):
         raise CaseError(f"rings: expected [rings.inner] and/or [rings.outer] tables, got {rings!r:.60}")
     rings = ring_models(bearing, head.moving_ring, rings, materials)
-    return BearingDescription(head.name, head.description, bearing, loads, shares, source, rings)
+    return BearingDescription(head.name, head.description, bearing, loads, shares, source, case_depths, rings)
 
 
 def loads_bearing(text: str, source: str = "<string>", base_dir: Path | None = None) -> BearingDescription:

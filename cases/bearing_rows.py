@@ -26,11 +26,12 @@ from dataclasses import dataclass
 from typing import Literal
 
 from foundation.materials import ElasticMaterial
+from mbd_core.bearing.case_depth import core_shear_fatigue_strength_Pa
 from mbd_core.quasistatic import BallRow, FourPointRow, RollerRow
 
 from .config import CaseError
 
-__all__ = ["ROW_TYPES", "RowType", "RowContext", "build_rows", "MAX_ELEMENTS"]
+__all__ = ["ROW_TYPES", "RowType", "RowContext", "build_rows", "MAX_ELEMENTS", "CORE_STRENGTH_KEYS"]
 
 Direction = Literal["+z", "-z"]
 #: Most rolling elements in one row (a guard against a mistyped count, before any array is built).
@@ -70,11 +71,67 @@ def _check_fits(where: str, count: int, diameter_m: float, pitch_diameter_m: flo
            f"(at most {int(math.pi * pitch_diameter_m / diameter_m)})")
 
 
+# --- keys every row has --------------------------------------------------------------------------
+
+#: core strength keys of a case-hardened row, one of which goes with ``case_depth_m``
+CORE_STRENGTH_KEYS = ("core_uts_Pa", "core_yield_Pa", "core_shear_yield_Pa")
+
+
+@dataclass(frozen=True, kw_only=True)
+class _CaseDepthKeys:
+    """Case hardening of the raceways, for the DG03 case-depth life factor
+    (:mod:`mbd_core.bearing.distribution_case_depth`); all or nothing.
+
+    Attributes
+    ----------
+    case_depth_m : float or None
+        Effective case depth h of the raceways, m.
+    core_uts_Pa, core_yield_Pa, core_shear_yield_Pa : float or None
+        One core strength: ultimate tensile, tensile yield or shear yield strength, Pa
+        (:func:`mbd_core.bearing.case_depth.core_shear_fatigue_strength_Pa`).
+    """
+
+    case_depth_m: float | None = None
+    core_uts_Pa: float | None = None
+    core_yield_Pa: float | None = None
+    core_shear_yield_Pa: float | None = None
+
+    def __post_init__(self) -> None:
+        given = [k for k in CORE_STRENGTH_KEYS if getattr(self, k) is not None]
+        for key in ("case_depth_m", *given):
+            value = getattr(self, key)
+            if value is not None and not value > 0.0:
+                raise ValueError(f"{key}: must be > 0, got {value!r}")
+        if len(given) > 1:
+            raise ValueError(f"{given[1]}: give one core strength, not both {given[0]} and {given[1]}")
+        if given and self.case_depth_m is None:
+            raise ValueError(f"{given[0]}: the core strength goes with the raceways' effective case depth: "
+                             "give case_depth_m too")
+        if self.case_depth_m is not None and not given:
+            raise ValueError(f"case_depth_m: give the core strength too, one of {', '.join(CORE_STRENGTH_KEYS)}")
+        if given and not self.core_shear_fatigue_Pa > 0.0:
+            raise ValueError(f"{given[0]}: too small: the core shear fatigue strength 0.6·τ_y is 0")
+
+    def _check_case_depth_below(self, diameter_m: float, key: str) -> None:
+        """A case deeper than the rolling element is a through-hardened ring (and beyond the stresses)."""
+        if self.case_depth_m is not None and not self.case_depth_m < diameter_m:
+            raise ValueError(f"case_depth_m: must be smaller than {key} ({diameter_m!r}; a deeper case is a "
+                             f"through-hardened ring: leave the case-depth keys out), got {self.case_depth_m!r}")
+
+    @property
+    def core_shear_fatigue_Pa(self) -> float | None:
+        """τ_f = 0.6·τ_y,core of DG03, Pa; None without a case depth."""
+        if self.case_depth_m is None:
+            return None
+        return core_shear_fatigue_strength_Pa(**{k: getattr(self, k) for k in CORE_STRENGTH_KEYS})
+
+
 # --- ball rows -----------------------------------------------------------------------------------
 
 @dataclass(frozen=True)
-class _BallKeys:
-    """Keys every ball row has (format reference: ``cases/bearings/README.md``).
+class _BallKeys(_CaseDepthKeys):
+    """Keys every ball row has (format reference: ``cases/bearings/README.md``); and the case
+    hardening keys of :class:`_CaseDepthKeys`.
 
     Attributes
     ----------
@@ -109,9 +166,11 @@ class _BallKeys:
     ring_material: str = "bearing_steel"
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         for key in ("count", "ball_diameter_m", "pitch_diameter_m"):
             if not getattr(self, key) > 0:
                 raise ValueError(f"{key}: must be > 0, got {getattr(self, key)!r}")
+        self._check_case_depth_below(self.ball_diameter_m, "ball_diameter_m")
         if self.pitch_diameter_m <= self.ball_diameter_m:
             raise ValueError(f"pitch_diameter_m: must exceed ball_diameter_m ({self.ball_diameter_m!r}), "
                              f"got {self.pitch_diameter_m!r}")
@@ -281,8 +340,8 @@ def _double_four_point(keys: DoubleFourPointKeys, ctx: RowContext) -> tuple:
 # --- roller rows ---------------------------------------------------------------------------------
 
 @dataclass(frozen=True)
-class _RollerKeys:
-    """Keys every roller row has.
+class _RollerKeys(_CaseDepthKeys):
+    """Keys every roller row has, and the case hardening keys of :class:`_CaseDepthKeys`.
 
     Attributes
     ----------
@@ -321,9 +380,11 @@ class _RollerKeys:
     ring_material: str = "bearing_steel"
 
     def __post_init__(self) -> None:
+        super().__post_init__()
         for key in ("count", "roller_diameter_m", "roller_length_m", "pitch_diameter_m", "n_slices"):
             if not getattr(self, key) > 0:
                 raise ValueError(f"{key}: must be > 0, got {getattr(self, key)!r}")
+        self._check_case_depth_below(self.roller_diameter_m, "roller_diameter_m")
         if self.n_slices > 200:
             raise ValueError(f"n_slices: at most 200, got {self.n_slices!r}")
         if self.profile == "crowned":

@@ -6,6 +6,7 @@ import logging
 import math
 import os
 
+from mbd_core.bearing.distribution_case_depth import case_depth_bearing_life_Mrev, row_case_depth_factors
 from mbd_core.bearing.distribution_life import rating_life, spectrum_rating_life
 from mbd_core.quasistatic import RingLoad
 from mbd_core.quasistatic.results import LOAD_NAMES
@@ -160,6 +161,9 @@ def life_summary(args, desc: BearingDescription, results, time_share) -> dict:
     """L10 per row and of the bearing (:mod:`mbd_core.bearing.distribution_life`, ISO 281 / ISO/TS 16281
     lamina method), in 10^6 rev and hours: L10h = L10·10^6/(60·n) (ISO 281:2007, eq. 4 note: hours at
     constant speed n in rev/min). A spectrum is combined by Palmgren–Miner with its time shares.
+    Rows given a case depth add ``case_depth`` (the DG03 factor A_cd and the contact it was evaluated
+    at, :mod:`mbd_core.bearing.distribution_case_depth`) and ``life_cd_Mrev``/``life_cd_h`` = A_cd·L10;
+    the bearing then adds its ``life_cd_Mrev``/``life_cd_h`` (rows in series, A_cd = 1 for the others).
     Without --rotating-ring and --speed-rpm: ``computed`` False and the reason."""
     if args.rotating_ring is None:
         return {"computed": False, "reason": "give --rotating-ring and --speed-rpm to compute the L10 rating life"}
@@ -175,14 +179,47 @@ def life_summary(args, desc: BearingDescription, results, time_share) -> dict:
               "time_share": None if len(results) == 1 else list(shares)})
     for r in d["rows"]:
         r["life_h"] = r["life_Mrev"] * hours
+    if desc.case_depths:
+        _add_case_depth(d, desc, life, results, hours)
     return d
+
+
+def _add_case_depth(d: dict, desc: BearingDescription, life, results, hours: float) -> None:
+    """The case-depth factor and the corrected lives A_cd·L10 in the life summary ``d``."""
+    factors = row_case_depth_factors(desc.bearing, list(results), desc.case_depths)
+    by_row = {f.row: f for f in factors}
+    for r in d["rows"]:
+        f = by_row.get(r["row"])
+        if f is not None:
+            r["case_depth"] = f.to_dict()
+            r["life_cd_Mrev"] = f.factor * r["life_Mrev"]
+            r["life_cd_h"] = r["life_cd_Mrev"] * hours
+    d["life_cd_Mrev"] = case_depth_bearing_life_Mrev(desc.bearing, life, factors)
+    d["life_cd_h"] = d["life_cd_Mrev"] * hours
 
 
 def life_lines(life: dict) -> list[str]:
     """Screen lines of :func:`life_summary`."""
     if not life["computed"]:
         return [f"rating life: not computed ({life['reason']})"]
-    rows = [f"  {r['row']}: L10 = {r['life_Mrev']:.4g} Mrev = {r['life_h']:.4g} h (deciding: {r['deciding']})"
-            for r in life["rows"]]
-    return [f"rating life L10 ({life['rotating_ring']} ring rotating, {life['speed_rpm']:g} rpm):", *rows,
-            f"  bearing: L10 = {life['life_Mrev']:.4g} Mrev = {life['life_h']:.4g} h"]
+    rows = []
+    for r in life["rows"]:
+        rows.append(f"  {r['row']}: L10 = {r['life_Mrev']:.4g} Mrev = {r['life_h']:.4g} h (deciding: {r['deciding']})")
+        if "case_depth" in r:
+            rows.extend(_case_depth_lines(r, spectrum=life["time_share"] is not None))
+    bearing = [f"  bearing: L10 = {life['life_Mrev']:.4g} Mrev = {life['life_h']:.4g} h"]
+    if "life_cd_Mrev" in life:
+        bearing.append(f"  bearing: L10·A_cd = {life['life_cd_Mrev']:.4g} Mrev = {life['life_cd_h']:.4g} h")
+    return [f"rating life L10 ({life['rotating_ring']} ring rotating, {life['speed_rpm']:g} rpm):", *rows, *bearing]
+
+
+def _case_depth_lines(r: dict, spectrum: bool) -> list[str]:
+    """Screen lines of a row's case-depth factor (from the SI values of :func:`life_summary`)."""
+    c = r["case_depth"]
+    if c["element"] is None:
+        at = "unloaded"
+    else:
+        at = f"{c['contact']}, element {c['element']}" + (f", case {c['load_case']}" if spectrum else "")
+    return [f"    case depth {c['case_depth_m'] * 1e3:.3g} mm: A_cd = {c['factor']:.3g} at {at} (τ_max(1.1·h) = "
+            f"{c['shear_at_check_depth_Pa'] / 1e6:.0f} MPa, τ_f = {c['core_shear_fatigue_Pa'] / 1e6:.0f} MPa)",
+            f"    L10·A_cd = {r['life_cd_Mrev']:.4g} Mrev = {r['life_cd_h']:.4g} h"]

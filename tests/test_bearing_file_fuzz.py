@@ -2,7 +2,7 @@
 
 A seeded generator mutates the shipped description files and one with every row type: keys of
 every table set to random values (numbers of every kind, strings, lists, tables), removed or made
-up, row types swapped, spectrum CSVs garbled, and files cut, garbled or not UTF-8. Each goes
+up, row types swapped, spectrum and time history CSVs garbled, and files cut, garbled or not UTF-8. Each goes
 through :func:`cases.bearing_file.read_bearing_file` only (no solve). The property checked: no
 exception other than :class:`cases.config.CaseError` escapes, and its message is one line that
 starts with the file or a dotted key (``rows[2].count: …``).
@@ -40,7 +40,12 @@ WORDS = ["", "x", "inner", "outer", "+z", "-z", "z", "straight", "crowned", "log
          "bearing_steel", "spectrum.csv", "nothere.csv", "/", "Ünïcødé", "two\nlines", "a" * 300, *ROW_TYPES]
 CSVS = ["Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm\n0,0,-1e5,0,0\n", "Fx_N,Fy_N\n1,2\n", "Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm\n1,2\n",
         "Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,time_share\n0,0,1,0,0,-1\n", "", "\xff\xfe", "a\n\"b", "Fz_N\ninf\n",
-        "Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,Fz_N\n0,0,0,0,0,0\n"]
+        "Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,Fz_N\n0,0,0,0,0,0\n",
+        # load time histories (time_history_csv)
+        "time_s,Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm\n0,0,0,-1e5,0,0\n1,0,0,-2e5,0,0\n",
+        "time_s,Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm\n1,0,0,-1e5,0,0\n0,0,0,-2e5,0,0\n",
+        "time_s,Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm\n0,0,0,-1e5,0,0\n", "time_s\n-inf\n",
+        "time_s,Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm\n-1e308,0,0,0,0,0\n1e308,0,0,0,0,0\n5e-324,0,0,0,0,0\n"]
 
 
 def _value(rng: random.Random):
@@ -110,7 +115,7 @@ def test_fuzz_bearing_files(tmp_path):
         if rng.random() < 0.2:
             data.setdefault("load", {})
             if isinstance(data["load"], dict):
-                data["load"] = {"spectrum_csv": "spectrum.csv"}
+                data["load"] = {rng.choice(["spectrum_csv", "time_history_csv"]): "spectrum.csv"}
         path = tmp_path / f"b{i}.toml"
         (tmp_path / "spectrum.csv").write_bytes(rng.choice(CSVS).encode("latin-1"))
         text = tomli_w.dumps(data)

@@ -6,6 +6,8 @@ shear stress. The stress is the maximum (Tresca) shear stress on the contact axi
 shear yield strength τ_y,core given or estimated as 0.425·UTS (Sague & Rumbarger, ASME paper
 77-DE-39, 1977) or 0.5·σ_y (Tresca). The life factor is A_cd = τ_f/τ_c, capped at 1 by default
 (a deep enough case cannot raise the life above L10), and the corrected life L = A_cd·L10.
+For a line contact (a roller) τ_c is the plane-strain line contact's (McEwen; Johnson, *Contact
+Mechanics*, eq. 4.75): :func:`line_case_depth_life_factor`.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from ..contact.subsurface import max_shear_profile_Pa, subsurface_shear
+from ..contact.subsurface import line_max_shear_profile_Pa, max_shear_profile_Pa, subsurface_shear
 from foundation.validation import check_positive
 
 __all__ = [
@@ -23,6 +25,7 @@ __all__ = [
     "shear_yield_from_tensile_yield_Pa",
     "core_shear_fatigue_strength_Pa",
     "case_depth_life_factor",
+    "line_case_depth_life_factor",
     "required_case_depth_m",
     "case_depth_corrected_life_Mrev",
 ]
@@ -131,16 +134,41 @@ def case_depth_life_factor(
     check_positive(core_shear_fatigue_Pa=core_shear_fatigue_Pa)
     p0_Pa, semi_major_m, semi_minor_m = float(p0_Pa), float(semi_major_m), float(semi_minor_m)
     core_shear_fatigue_Pa, nu = float(core_shear_fatigue_Pa), float(nu)
-    h = np.asarray(case_depth_m, dtype=float)
-    if not np.all(np.isfinite(h) & (h > 0.0)):
-        raise ValueError(f"case_depth_m must be positive and finite, got {case_depth_m!r}")
+    h = _checked_depth(case_depth_m)
     tau_c = max_shear_profile_Pa(
         p0_Pa, semi_major_m, semi_minor_m, CASE_DEPTH_STRESS_DEPTH_FACTOR * h, nu
     )
-    a_cd = core_shear_fatigue_Pa / tau_c
+    return _factor(core_shear_fatigue_Pa, tau_c, cap)
+
+
+def _checked_depth(case_depth_m) -> np.ndarray:
+    h = np.asarray(case_depth_m, dtype=float)
+    if not np.all(np.isfinite(h) & (h > 0.0)):
+        raise ValueError(f"case_depth_m must be positive and finite, got {case_depth_m!r}")
+    return h
+
+
+def _factor(core_shear_fatigue_Pa: float, tau_c, cap: bool):
+    """A_cd = τ_f/τ_c, capped at 1 if ``cap`` (DG03); float or array like ``tau_c``."""
+    a_cd = core_shear_fatigue_Pa / np.asarray(tau_c, dtype=float)
     if cap:
         a_cd = np.minimum(a_cd, 1.0)
     return float(a_cd) if a_cd.ndim == 0 else a_cd
+
+
+def line_case_depth_life_factor(p0_Pa: float, half_width_m: float, case_depth_m, nu: float,
+                                core_shear_fatigue_Pa: float, cap: bool = True):
+    """A_cd = τ_f / τ_max(1.1·h) of a line contact (plane strain), capped at 1 by default (DG03).
+
+    As :func:`case_depth_life_factor`, with the half-width b of the line contact for the ellipse
+    (:func:`..contact.subsurface.line_max_shear_profile_Pa`).
+    """
+    check_positive(p0_Pa=p0_Pa, half_width_m=half_width_m, core_shear_fatigue_Pa=core_shear_fatigue_Pa)
+    if not -1.0 < nu < 0.5:
+        raise ValueError(f"nu must lie in (-1, 0.5), got {nu!r}")
+    h = _checked_depth(case_depth_m)
+    tau_c = line_max_shear_profile_Pa(float(p0_Pa), float(half_width_m), CASE_DEPTH_STRESS_DEPTH_FACTOR * h, float(nu))
+    return _factor(float(core_shear_fatigue_Pa), tau_c, cap)
 
 
 def required_case_depth_m(

@@ -58,7 +58,8 @@ from ..quasistatic.solver import solve_load_distribution
 from .rating import BM_DEFAULTS
 
 __all__ = ["RowLife", "BearingLife", "ball_contact_rating_N", "roller_contact_rating_N", "equivalent_contact_load_N",
-           "combined_life", "rating_life", "spectrum_rating_life", "BALL_WEIBULL_SLOPE", "ROLLER_WEIBULL_SLOPE"]
+           "combined_life", "bearing_weibull_slope", "rating_life", "spectrum_rating_life", "BALL_WEIBULL_SLOPE",
+           "ROLLER_WEIBULL_SLOPE"]
 
 #: Weibull slope e of ball bearings (ISO 281; Lundberg–Palmgren).
 BALL_WEIBULL_SLOPE = 10.0 / 9.0
@@ -240,8 +241,13 @@ def _assemble(bearing: Bearing, per_row: dict[str, list[_Part]], rotating_ring: 
         row_life = combined_life(np.concatenate(lives), e)
         row_lives.append(row_life)
         rows.append(RowLife(row.name, labels, qc, qe, set_life, a_iso * row_life, deciding))
-    e_bearing = ROLLER_WEIBULL_SLOPE if all(isinstance(r, RollerRow) for r in bearing.rows) else BALL_WEIBULL_SLOPE
-    return BearingLife(tuple(rows), a_iso * combined_life(row_lives, e_bearing), rotating_ring, a_iso)
+    return BearingLife(tuple(rows), a_iso * combined_life(row_lives, bearing_weibull_slope(bearing)), rotating_ring,
+                       a_iso)
+
+
+def bearing_weibull_slope(bearing: Bearing) -> float:
+    """e that combines the rows of a bearing: 9/8 if every row is a roller row, else 10/9 (module docstring)."""
+    return ROLLER_WEIBULL_SLOPE if all(isinstance(r, RollerRow) for r in bearing.rows) else BALL_WEIBULL_SLOPE
 
 
 def _check_common(rotating_ring: str, bm: float | None, a_iso: float) -> None:

@@ -31,6 +31,7 @@ from scipy.special import ellipeinc, ellipkinc
 __all__ = [
     "axis_stresses_Pa",
     "max_shear_profile_Pa",
+    "line_max_shear_profile_Pa",
     "SubsurfaceShear",
     "subsurface_shear",
     "orthogonal_shear",
@@ -96,6 +97,27 @@ def axis_stresses_Pa(p0_Pa: float, a_m: float, b_m: float, depth_m, nu: float):
 def max_shear_profile_Pa(p0_Pa: float, a_m: float, b_m: float, depth_m, nu: float):
     """Maximum (Tresca) shear stress τ_max(z) = (σ_max − σ_min)/2 on the contact axis, Pa."""
     s = np.stack(axis_stresses_Pa(p0_Pa, a_m, b_m, depth_m, nu))
+    return 0.5 * (s.max(axis=0) - s.min(axis=0))
+
+
+def line_max_shear_profile_Pa(p0_Pa: float, b_m: float, depth_m, nu: float):
+    """τ_max(z) on the axis of a Hertz line contact of half-width b in plane strain, Pa.
+
+    McEwen's stresses on the axis (Johnson, *Contact Mechanics*, 1985, eq. 4.75)::
+
+        σx = −(p0/b)·((b² + 2z²)/sqrt(b² + z²) − 2z),   σz = −p0·b/sqrt(b² + z²),
+        σy = ν·(σx + σz)   (plane strain along the line)
+
+    and τ_max = (σ_max − σ_min)/2 of the three; depth_m float or (n,) array, m (≥ 0).
+    """
+    _check_contact(p0_Pa, b_m, b_m, nu)
+    z = np.asarray(depth_m, dtype=float)
+    if np.any(z < 0.0):
+        raise ValueError(f"depth_m must be >= 0, got {depth_m!r}")
+    root = np.sqrt(b_m * b_m + z * z)
+    sx = -(p0_Pa / b_m) * ((b_m * b_m + 2.0 * z * z) / root - 2.0 * z)
+    sz = -p0_Pa * b_m / root
+    s = np.stack((sx, nu * (sx + sz), sz))
     return 0.5 * (s.max(axis=0) - s.min(axis=0))
 
 
