@@ -28,11 +28,12 @@ from .mesh import MeshSpec, RingMesh, mesh_ring
 from .model import FEModel, build_model
 from .profile import Arc, Line, Profile, ProfileError
 from .solve import Modes, Support, modal_analysis, static_solve
+from .step_solid import StepInfo, check_step_solid
 from .stress import nodal_stress_Pa, von_mises_Pa
 
 __all__ = [
     "Arc", "Line", "Profile", "ProfileError", "profile_from_dxf",
-    "MeshSpec", "RingMesh", "mesh_ring",
+    "MeshSpec", "RingMesh", "mesh_ring", "StepInfo", "check_step_solid",
     "FEModel", "build_model",
     "Support", "static_solve", "Modes", "modal_analysis",
     "nodal_stress_Pa", "von_mises_Pa",
