@@ -114,6 +114,8 @@ def profile_from_dxf(path, *, name: str, unit: str = "mm", layer_names: bool = T
         raise ProfileError(f"{label}: cannot be read as a DXF file ({reason})") from None
     scale_m = _drawing_unit_m(label, unit, doc.header.get("$INSUNITS", 0))
     pieces, ignored = _read_pieces(label, doc.modelspace(), scale_m, layer_names)
+    if ignored:
+        log.debug("%s: ignored %s", label, ignored)
     if not pieces:
         kinds = ", ".join(f"{n} {k}" for k, n in sorted(ignored.items())) or "nothing"
         hint = " (explode block references to use them)" if "INSERT" in ignored else ""
@@ -275,9 +277,16 @@ def _chain(label: str, pieces) -> list:
     keep = [i for i in range(len(pieces)) if node_of[2 * i] != node_of[2 * i + 1]]
     for i in sorted(set(range(len(pieces))) - set(keep)):
         log.debug("%s: %s has zero length; skipped", label, pieces[i].where)
-    degree = np.bincount(node_of[[2 * i + k for i in keep for k in (0, 1)]], minlength=len(node_xy))
-    _check_degrees(label, pieces, keep, node_of, node_xy, degree)
-    return _walk(label, pieces, keep, node_of, node_xy)
+    at = {}  # node → the pieces ending there
+    for i in keep:
+        for k in (0, 1):
+            at.setdefault(int(node_of[2 * i + k]), []).append(i)
+    _check_degrees(label, pieces, at, node_of, node_xy)
+    loops = _walk(pieces, keep, at, node_of, node_xy)
+    if len(loops) > 1:
+        where = "; ".join(f"loop {n + 1} ({len(lp)} pieces) through {_mm(lp[0].start)}" for n, lp in enumerate(loops))
+        raise ProfileError(f"{label}: {len(loops)} separate closed loops, a section is one: {where}")
+    return loops[0]
 
 
 def _check_axis_side(label: str, pieces, tol: float) -> None:
@@ -296,17 +305,17 @@ def _check_axis_side(label: str, pieces, tol: float) -> None:
                                "at x ≥ 0 (x is the radius, the ring axis is the line x = 0)")
 
 
-def _check_degrees(label, pieces, keep, node_of, node_xy, degree) -> None:
-    at = {}
-    for i in keep:
-        for k in (0, 1):
-            at.setdefault(int(node_of[2 * i + k]), []).append(pieces[i].where)
-    branch = np.flatnonzero(degree > 2)
-    if len(branch):
-        k = int(branch[0])
-        raise ProfileError(f"{label}: the outline branches at (r, z) = {_mm(node_xy[k])}: {degree[k]} pieces meet "
-                           f"there ({', '.join(at[k])}); a section is one closed loop")
-    open_ = np.flatnonzero(degree == 1)
+def _check_degrees(label, pieces, at, node_of, node_xy) -> None:
+    """Refuse a branch (three or more pieces at a point) and open ends."""
+    for k, idx in sorted(at.items()):
+        if len(idx) > 2:
+            ends = [frozenset((int(node_of[2 * i]), int(node_of[2 * i + 1]))) for i in idx]
+            twice = [pieces[i].where for i, e in zip(idx, ends) if ends.count(e) > 1]
+            hint = f"; {' and '.join(twice)} join the same two points (drawn twice?)" if twice else ""
+            raise ProfileError(f"{label}: the outline branches at (r, z) = {_mm(node_xy[k])}: {len(idx)} pieces "
+                               f"meet there ({', '.join(pieces[i].where for i in idx)}){hint}; "
+                               "a section is one closed loop")
+    open_ = np.array(sorted(k for k, idx in at.items() if len(idx) == 1), dtype=int)
     if len(open_):
         xy = node_xy[open_]
         d = np.linalg.norm(xy[:, None, :] - xy[None, :, :], axis=2)
@@ -314,16 +323,13 @@ def _check_degrees(label, pieces, keep, node_of, node_xy, degree) -> None:
         a, b = np.unravel_index(int(np.argmin(d)), d.shape)
         k, m = int(open_[a]), int(open_[b])
         raise ProfileError(f"{label}: the section is not closed: gap of {d[a, b] * 1e3:.6g} mm between the open "
-                           f"ends at (r, z) = {_mm(node_xy[k])} ({at[k][0]}) and {_mm(node_xy[m])} ({at[m][0]}); "
+                           f"ends at (r, z) = {_mm(node_xy[k])} ({pieces[at[k][0]].where}) and {_mm(node_xy[m])} "
+                           f"({pieces[at[m][0]].where}); "
                            f"{len(open_)} open ends in all")
 
 
-def _walk(label, pieces, keep, node_of, node_xy) -> list:
-    """Follow the pieces from node to node; every node has degree 2 here."""
-    at = {}
-    for i in keep:
-        for k in (0, 1):
-            at.setdefault(int(node_of[2 * i + k]), []).append(i)
+def _walk(pieces, keep, at, node_of, node_xy) -> list:
+    """Follow the pieces from node to node (every node joins two pieces here); one list per loop."""
     loops, todo = [], set(keep)
     while todo:
         first = min(todo)
@@ -338,10 +344,7 @@ def _walk(label, pieces, keep, node_of, node_xy) -> list:
             if i not in todo:
                 break
         loops.append(loop)
-    if len(loops) > 1:
-        where = "; ".join(f"loop {n + 1} ({len(lp)} pieces) through {_mm(lp[0].start)}" for n, lp in enumerate(loops))
-        raise ProfileError(f"{label}: {len(loops)} separate closed loops, a section is one: {where}")
-    return loops[0]
+    return loops
 
 
 def _segment(pc: _Piece, a, b, forward: bool):

@@ -294,6 +294,10 @@ def test_two_loops_branch_and_wrong_side_of_axis(tmp_path):
     branch = write(tmp_path, lambda msp: (rect(msp), msp.add_line((150, 40), (170, 60))), "branch.dxf")
     with pytest.raises(ProfileError, match=r"branch\.dxf: the outline branches at \(r, z\) = \(150, 40\) mm: 3 pieces"):
         profile_from_dxf(branch, name="x")
+    twice = write(tmp_path, lambda msp: (rect(msp), msp.add_line((100, 40), (100, 0))), "twice.dxf")
+    with pytest.raises(ProfileError, match=r"twice\.dxf: the outline branches at \(r, z\) = \(100, 0\) mm: 3 pieces.*"
+                                           r"LINE #\w+ on layer '0' and LINE #\w+ on layer '0' join the same two points"):
+        profile_from_dxf(twice, name="x")
     left = write(tmp_path, lambda msp: rect(msp, -150, -100), "left.dxf")
     with pytest.raises(ProfileError, match=r"left\.dxf: LINE #\w+ on layer '0' reaches r < 0 at \(r, z\) = \(-150, 0\) mm"):
         profile_from_dxf(left, name="x")
@@ -322,3 +326,25 @@ def test_profile_checks_are_prefixed_with_the_file(tmp_path):
                                         ((100, 40), (100, 0))]], "bow.dxf")
     with pytest.raises(ProfileError, match=r"bow\.dxf: profile 'x': boundary crosses itself"):
         profile_from_dxf(bow, name="x")
+
+
+def test_arc_bulging_across_the_axis_is_refused(tmp_path):
+    # ends at r = 5 mm, but the arc about (5, 0) of radius 10 mm reaches r = −5 mm at z = 0
+    def build(msp):
+        msp.add_line((5, -10), (5, 10))
+        msp.add_arc((5, 0), 10, 90, 270, dxfattribs={"layer": "nose"})
+    with pytest.raises(ProfileError, match=r"nose\.dxf: ARC #\w+ on layer 'nose' reaches r < 0 at \(r, z\) = \(-5, 0\) mm"):
+        profile_from_dxf(write(tmp_path, build, "nose.dxf"), name="x")
+
+
+def test_endpoints_within_the_tolerance_are_joined(tmp_path):
+    # Half disc of radius 20 mm about (120, 0) (size 40 mm, joining tolerance 1e-6·40 mm = 4e-5 mm),
+    # its diameter drawn 2e-5 mm short at both ends: joined, and the arc keeps one radius.
+    def build(msp):
+        msp.add_line((100 + 2e-5, 1e-5), (140 - 2e-5, -1e-5), dxfattribs={"layer": "flat"})
+        msp.add_arc((120, 0), 20, 0, 180, dxfattribs={"layer": "round"})
+    prof = profile_from_dxf(write(tmp_path, build, "near.dxf"), name="x")
+    # reference: πa²/2 with a = 20 mm; each joined point is the mean of the two ends, 1e-5 mm inside
+    # the circle, so the arc's radius shrinks by 1e-5 mm: area −2·1e-5/20 = −1e-6 relative
+    assert prof.area_m2 == pytest.approx(math.pi * 0.020**2 / 2 * (1 - 1e-6), rel=1e-8)
+    assert prof.names == ("flat", "round") or prof.names == ("round", "flat")
