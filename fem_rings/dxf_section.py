@@ -21,7 +21,9 @@ Drawing conventions
 Units: ``unit="mm"`` or ``"m"`` states the drawing unit; the header variable ``$INSUNITS`` is then
 only checked (a header unit different from ``unit`` is refused; an unset header is accepted).
 ``unit="file"`` takes the unit from ``$INSUNITS`` (inch, foot, mm, cm or m) and refuses a drawing
-without it.
+without it. Drawing templates set ``$INSUNITS`` whether or not the drawing follows it (new ezdxf
+drawings say metres, AutoCAD's imperial template inches): a wrong header is corrected in the file
+(AutoCAD: ``INSUNITS`` command), never overridden here.
 
 References: Autodesk, *DXF Reference* (AutoCAD 2012), entities ARC (angles counter-clockwise
 about the extrusion direction), LWPOLYLINE/VERTEX group 42 (bulge = tan(θ/4) of the included
@@ -120,11 +122,11 @@ def profile_from_dxf(path, *, name: str, unit: str = "mm", layer_names: bool = T
         kinds = ", ".join(f"{n} {k}" for k, n in sorted(ignored.items())) or "nothing"
         hint = " (explode block references to use them)" if "INSERT" in ignored else ""
         raise ProfileError(f"{label}: no LINE, ARC or polyline in model space (found {kinds}){hint}")
-    segments = _chain(label, pieces)
     try:
-        return Profile(name, tuple(segments))
-    except ProfileError as exc:
-        raise ProfileError(f"{label}: {exc}") from None
+        return Profile(name, tuple(_chain(label, pieces)))
+    except ProfileError as exc:  # the profile's own checks do not know the file
+        msg = str(exc)
+        raise ProfileError(msg if msg.startswith(f"{label}: ") else f"{label}: {msg}") from None
 
 
 # -- units ----------------------------------------------------------------------------------------
@@ -245,7 +247,7 @@ def _bulge_arc(p, q, bulge: float):
 
 def _split_arc(c, r: float, a0: float, sweep: float, ccw: bool, p=None, q=None):
     """Arc of ``sweep`` from angle ``a0`` in pieces of at most a half circle (``Arc``'s limit)."""
-    n = max(1, math.ceil(sweep / math.pi - 1e-9))
+    n = max(1, math.ceil((sweep - 1e-12) / math.pi))  # Arc accepts up to π + 1e-12
     sign = 1.0 if ccw else -1.0
     ang = [a0 + sign * sweep * k / n for k in range(n + 1)]
     pts = [(c[0] + r * math.cos(a), c[1] + r * math.sin(a)) for a in ang]
