@@ -2,7 +2,7 @@
 
 The first stage of the data flow::
 
-    Profile (r, z section of lines and arcs)       fem_rings.profile, .sections, .cages
+    Profile (r, z section of lines and arcs)       fem_rings.profile, .sections, .cages, .dxf_section
       └─ mesh_ring(profile, MeshSpec)               gmsh → meshio → scikit-fem (tet10 / hex27)
            └─ build_model(..., material) → FEModel  K, M (vectorised assembly), named sets, cached
                 ├─ static_solve / modal_analysis    fem_rings.solve (CHOLMOD or SuperLU)
@@ -23,15 +23,17 @@ Units are SI throughout; node arrays are (n_nodes, 3) in metres and vector DOFs 
 (``3 * node + component``).
 """
 
+from .dxf_section import profile_from_dxf
 from .mesh import MeshSpec, RingMesh, mesh_ring
 from .model import FEModel, build_model
 from .profile import Arc, Line, Profile, ProfileError
 from .solve import Modes, Support, modal_analysis, static_solve
+from .step_solid import StepInfo, check_step_solid
 from .stress import nodal_stress_Pa, von_mises_Pa
 
 __all__ = [
-    "Arc", "Line", "Profile", "ProfileError",
-    "MeshSpec", "RingMesh", "mesh_ring",
+    "Arc", "Line", "Profile", "ProfileError", "profile_from_dxf",
+    "MeshSpec", "RingMesh", "mesh_ring", "StepInfo", "check_step_solid",
     "FEModel", "build_model",
     "Support", "static_solve", "Modes", "modal_analysis",
     "nodal_stress_Pa", "von_mises_Pa",

@@ -25,6 +25,7 @@ import logging
 import math
 import tempfile
 import threading
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -41,7 +42,7 @@ from .profile import Arc, Line, Profile
 if TYPE_CHECKING:
     from .cages import CagePockets
 
-__all__ = ["MeshSpec", "RingMesh", "mesh_ring", "ELEMENT_TYPES"]
+__all__ = ["MeshSpec", "RingMesh", "mesh_ring", "gmsh_session", "ELEMENT_TYPES"]
 
 log = logging.getLogger(__name__)
 
@@ -161,7 +162,7 @@ def mesh_ring(profile: Profile, spec: MeshSpec, pockets: CagePockets | None = No
     if unknown:
         raise ValueError(f"mesh spec: refine names {sorted(unknown)} are not segments of profile "
                          f"{profile.name!r} (has {list(profile.names)})")
-    with _GMSH_LOCK, tempfile.TemporaryDirectory() as tmp:
+    with tempfile.TemporaryDirectory() as tmp:
         msh = Path(tmp) / "ring.msh"
         _gmsh_mesh(profile, spec, pockets, msh)
         mesh = _read_volume_mesh(msh, ELEMENT_TYPES[spec.element])
@@ -185,29 +186,43 @@ def facet_nodes(mesh: skfem.Mesh, facets: np.ndarray) -> np.ndarray:
 
 # -- gmsh ---------------------------------------------------------------------------------------
 
-def _gmsh_mesh(profile: Profile, spec: MeshSpec, pockets, path: Path) -> None:
+@contextmanager
+def gmsh_session(model_name: str):
+    """A gmsh session with one empty model, silent and without a display, always finalized.
+
+    gmsh keeps one global state per process, so sessions are serialised by a lock; signals are
+    left to Python (``interruptible=False``) so that a session can run outside the main thread.
+    Yields the ``gmsh`` module.
+    """
     import gmsh
 
-    gmsh.initialize(interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add("ring")
-        if spec.element == "tet10":
-            _build_tet(gmsh, profile, spec, pockets)
-        else:
-            _build_hex(gmsh, profile, spec)
-        gmsh.option.setNumber("Mesh.ElementOrder", 2)
-        gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
-        gmsh.option.setNumber("Mesh.HighOrderOptimize", 0)
-        if spec.element == "hex27":
-            _quadrilateral_section(gmsh)
-        gmsh.model.mesh.generate(3)
-        gmsh.model.mesh.removeDuplicateNodes()
-        gmsh.write(str(path))
-    except Exception as exc:  # gmsh raises bare Exceptions with its log message
-        raise RuntimeError(f"gmsh failed to mesh profile {profile.name!r}: {exc}") from exc
-    finally:
-        gmsh.finalize()
+    with _GMSH_LOCK:
+        gmsh.initialize(interruptible=False)
+        try:
+            gmsh.option.setNumber("General.Terminal", 0)
+            gmsh.model.add(model_name)
+            yield gmsh
+        finally:
+            gmsh.finalize()
+
+
+def _gmsh_mesh(profile: Profile, spec: MeshSpec, pockets, path: Path) -> None:
+    with gmsh_session("ring") as gmsh:
+        try:
+            if spec.element == "tet10":
+                _build_tet(gmsh, profile, spec, pockets)
+            else:
+                _build_hex(gmsh, profile, spec)
+            gmsh.option.setNumber("Mesh.ElementOrder", 2)
+            gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
+            gmsh.option.setNumber("Mesh.HighOrderOptimize", 0)
+            if spec.element == "hex27":
+                _quadrilateral_section(gmsh)
+            gmsh.model.mesh.generate(3)
+            gmsh.model.mesh.removeDuplicateNodes()
+            gmsh.write(str(path))
+        except Exception as exc:  # gmsh raises bare Exceptions with its log message
+            raise RuntimeError(f"gmsh failed to mesh profile {profile.name!r}: {exc}") from exc
 
 
 def _split_arcs(profile: Profile):

@@ -1,0 +1,138 @@
+"""Checks of a ring solid given as a STEP file: is it a solid, how large, is it a ring about z.
+
+The file is read with gmsh's OpenCASCADE importer (``gmsh.model.occ.importShapes``). OpenCASCADE
+converts the length unit the file declares to millimetres; the checks run in millimetres (the
+importer's and the point-in-solid test's native scale) and the results are returned in metres.
+
+Units: ``unit="file"`` trusts the file's declared unit. ``unit="mm"`` or ``"m"`` states the unit
+the file is expected to be in and refuses a file that declares another SI length unit (or none),
+like :func:`fem_rings.dxf_section.profile_from_dxf` does with ``$INSUNITS``. The declared unit is
+the ``SI_UNIT(prefix, .METRE.)`` of the file's length unit (ISO 10303-41, ``si_unit``; ISO
+10303-21 for the file syntax).
+
+A ring about z: the bounding box is centred on the z axis (within 1e-6 of its size) and the point
+of the axis at mid-height lies outside every volume (the bore).
+"""
+
+from __future__ import annotations
+
+import logging
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from .mesh import gmsh_session
+
+__all__ = ["StepInfo", "check_step_solid"]
+
+log = logging.getLogger(__name__)
+
+_UNIT_M = {"mm": 1e-3, "m": 1.0}
+_SI_PREFIX = {"$": "m", ".MILLI.": "mm", ".CENTI.": "cm", ".MICRO.": "µm", ".KILO.": "km", ".DECI.": "dm"}
+_SI_LENGTH = re.compile(r"SI_UNIT\s*\(\s*(\$|\.[A-Z]+\.)\s*,\s*\.METRE\.\s*\)")
+_CENTRED_REL = 1e-6
+
+
+@dataclass(frozen=True)
+class StepInfo:
+    """What :func:`check_step_solid` found in a STEP file.
+
+    Attributes
+    ----------
+    path : str
+    n_volumes, n_surfaces : int
+        Solids and faces in the file.
+    volume_m3 : float
+        Total volume of the solids, m³.
+    bbox_min_m, bbox_max_m : (3,) tuple of float, m
+        Axis-aligned bounding box (x, y, z) of all entities.
+    is_ring_about_z : bool
+        Bounding box centred on the z axis and the axis at mid-height outside the solid.
+    not_ring_reason : str
+        Why it is not a ring about z; empty when it is.
+    """
+
+    path: str
+    n_volumes: int
+    n_surfaces: int
+    volume_m3: float
+    bbox_min_m: tuple[float, float, float]
+    bbox_max_m: tuple[float, float, float]
+    is_ring_about_z: bool
+    not_ring_reason: str = ""
+
+
+def check_step_solid(path, *, unit: str = "file") -> StepInfo:
+    """Read a STEP file and check that it holds a solid ring about the z axis.
+
+    Parameters
+    ----------
+    path : str or Path
+    unit : {"file", "mm", "m"}
+        ``"file"`` uses the file's declared length unit; ``"mm"`` / ``"m"`` must agree with it.
+
+    Returns
+    -------
+    StepInfo
+        Lengths in metres.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file: missing or unreadable, unit disagreement, no volume
+        (``"… is not a solid: N surfaces, 0 volumes"``).
+    """
+    label = str(path)
+    if unit not in (*_UNIT_M, "file"):
+        raise ValueError(f"{label}: unit must be 'file', 'mm' or 'm', got {unit!r}")
+    if not Path(path).is_file():
+        raise ValueError(f"{label}: no such file")
+    if unit != "file":
+        _check_declared_unit(label, Path(path), unit)
+    with gmsh_session("step check") as gmsh:
+        gmsh.option.setString("Geometry.OCCTargetUnit", "MM")
+        try:
+            gmsh.model.occ.importShapes(str(path))
+            gmsh.model.occ.synchronize()
+        except Exception:  # gmsh raises a bare Exception ("Could not read file …")
+            raise ValueError(f"{label}: not a readable STEP file") from None
+        vols = [t for _, t in gmsh.model.getEntities(3)]
+        n_surf = len(gmsh.model.getEntities(2))
+        if not vols:
+            raise ValueError(f"{label} is not a solid: {n_surf} surfaces, 0 volumes")
+        box_mm = gmsh.model.getBoundingBox(-1, -1)
+        volume_mm3 = sum(gmsh.model.occ.getMass(3, t) for t in vols)
+        reason = _not_ring_reason(gmsh, vols, box_mm)
+    info = StepInfo(label, len(vols), n_surf, volume_mm3 * 1e-9,
+                    tuple(v * 1e-3 for v in box_mm[:3]), tuple(v * 1e-3 for v in box_mm[3:]),
+                    not reason, reason)
+    log.info("%s: %d volumes, %d surfaces, %.6g m³, %s", label, info.n_volumes, info.n_surfaces,
+             info.volume_m3, "a ring about z" if not reason else f"not a ring about z ({reason})")
+    return info
+
+
+def _check_declared_unit(label: str, path: Path, unit: str) -> None:
+    """Refuse a file whose declared SI length unit is not ``unit``."""
+    try:
+        text = path.read_text(errors="replace")
+    except OSError as exc:
+        raise ValueError(f"{label}: cannot be read ({exc.strerror})") from None
+    found = {_SI_PREFIX.get(p, p) for p in _SI_LENGTH.findall(text)}
+    if found != {unit}:
+        said = ", ".join(sorted(found)) if found else "no SI length unit"
+        raise ValueError(f"{label}: unit={unit!r} disagrees with the file, which declares {said}; "
+                         "pass unit='file' to use the file's unit")
+
+
+def _not_ring_reason(gmsh, vols, box_mm) -> str:
+    """Empty when the solid is centred on the z axis with the axis outside it, else why not."""
+    x0, y0, z0, x1, y1, z1 = box_mm
+    size = max(x1 - x0, y1 - y0, z1 - z0)
+    off = max(abs(x0 + x1), abs(y0 + y1)) / 2
+    if off > _CENTRED_REL * size:
+        return f"bounding box centred {off * 1e-3:.6g} m off the z axis"
+    axis_point = [0.0, 0.0, (z0 + z1) / 2]
+    inside = [t for t in vols if gmsh.model.isInside(3, t, axis_point)]
+    if inside:
+        return f"the z axis at mid-height (z = {axis_point[2] * 1e-3:.6g} m) lies inside volume {inside[0]}: no bore"
+    return ""
