@@ -1,0 +1,210 @@
+"""Modal rings of bearing description files ([rings.inner] / [rings.outer]).
+
+References: the gothic-arch geometry of a four-point row (Amasorrain et al., Mech. Mach. Theory 38,
+2003: each diagonal's groove arc of radius f·D about a curvature centre (f − ½)·D beyond the ball
+centre), integrated here independently of the profile code; the rigid-ring load distribution
+(:func:`mbd_core.quasistatic.solve_load_distribution`) as the limit of very stiff rings; a central
+finite difference of the flexible displacement–load relation for the condensed stiffness matrix.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from cases.bearing_file import loads_bearing
+from cases.bearing_rings import flexible_rings
+from cases.bearing_solver import bearing_solver
+from cases.config import CaseError
+from cms_reduction.body import with_stiffness_scaled
+from mbd_core.quasistatic import RingLoad, solve_load_distribution
+from mbd_core.quasistatic.flexible import FlexibleRing, build_flexible_model
+from mbd_core.quasistatic.flexible_solve import solve_flexible_load_distribution
+
+D, DM, F, ALPHA, SHOULDER = 0.025, 0.5, 0.53, 45.0, 70.0
+
+SMALL = f"""
+[bearing]
+name = "four-point test bearing"
+moving_ring = "inner"
+
+[[rows]]
+type = "four_point"
+name = "balls"
+count = 40
+ball_diameter_m = {D}
+pitch_diameter_m = {DM}
+contact_angle_deg = {ALPHA}
+shoulder_angle_deg = {SHOULDER}
+conformity_inner = {F}
+conformity_outer = {F}
+
+[rings.inner]
+inner_diameter_m = 0.42
+z_min_m = -0.03
+z_max_m = 0.03
+n_modes = 12
+raceway_harmonics = 4
+element_size_m = 0.03
+[rings.inner.bolts]
+count = 12
+pitch_diameter_m = 0.44
+face = "top"
+
+[rings.outer]
+outer_diameter_m = 0.58
+z_min_m = -0.03
+z_max_m = 0.03
+n_modes = 12
+raceway_harmonics = 4
+element_size_m = 0.03
+clamped_face = "bottom"
+
+[load]
+Fx_N = 5.0e3
+Fz_N = -2.0e4
+My_Nm = 2.0e3
+"""
+
+
+@pytest.fixture(scope="module")
+def desc():
+    return loads_bearing(SMALL)
+
+
+@pytest.fixture(scope="module")
+def solver(desc):
+    return bearing_solver(desc)
+
+
+def _land_radius(ring: str) -> float:
+    """Independent: the groove arc of diagonal +α on the inner ring, centre at
+    b + (f − ½)D·(cos α, sin α), reaches the shoulder angle at r = b_r − (f·D·cos θ_s − (f − ½)·D·cos α)."""
+    lever = F * D * math.cos(math.radians(SHOULDER)) - (F - 0.5) * D * math.cos(math.radians(ALPHA))
+    return 0.5 * DM - lever if ring == "inner" else 0.5 * DM + lever
+
+
+def _groove_area(ring: str) -> float:
+    """Area cut from the box by the gothic arch: ∫ |r_land − r_arc(z)| dz over both arcs (quadrature)."""
+    R = F * D
+    c_r = 0.5 * DM + (1 if ring == "inner" else -1) * (F - 0.5) * D * math.cos(math.radians(ALPHA))
+    c_z = (F - 0.5) * D * math.sin(math.radians(ALPHA))  # centre of the arc below the mid-plane
+    z_sh = c_z - R * math.sin(math.radians(SHOULDER))
+    side = -1 if ring == "inner" else 1
+
+    def depth(z):
+        return abs(c_r + side * math.sqrt(R * R - (z - c_z) ** 2) - _land_radius(ring))
+
+    return 2.0 * quad(depth, z_sh, 0.0, epsabs=1e-14, epsrel=1e-12)[0]
+
+
+@pytest.mark.parametrize("ring, r_far", [("inner", 0.21), ("outer", 0.29)])
+def test_box_section_has_the_gothic_arch_of_the_row(desc, ring, r_far):
+    prof = desc.rings[ring].profile
+    r0, r1, z0, z1 = prof.bounds_m
+    land = r1 if ring == "inner" else r0
+    assert land == pytest.approx(_land_radius(ring), rel=1e-12, abs=1e-12)
+    box = abs(land - r_far) * 0.06
+    # area of the section = box − groove (quadrature to 1e-12), the profile integrates its arcs exactly
+    assert prof.area_m2 == pytest.approx(box - _groove_area(ring), rel=1e-9)
+    # the raceway sample sits at the arch apex: on the mid-plane, f·D from both curvature centres
+    apex = np.asarray(desc.rings[ring].places["balls"].point_rz_m)
+    assert apex[1] == pytest.approx(0.0, abs=1e-15)
+    side = 1 if ring == "inner" else -1
+    for s in (1, -1):
+        c = np.array([0.5 * DM + side * (F - 0.5) * D * math.cos(math.radians(ALPHA)),
+                      s * (F - 0.5) * D * math.sin(math.radians(ALPHA))])
+        assert np.linalg.norm(apex - c) == pytest.approx(F * D, rel=1e-12)
+
+
+def test_modal_rings_equilibrium_and_condensed_stiffness(desc, solver):
+    assert solver.flexible and {r.name for r in solver.rings} == {"inner", "outer"}
+    load = desc.default_load
+    dist = solver.solve(load)
+    assert dist.equilibrium_error <= 1e-9  # acceptance: residual ≤ 1e-9 relative
+    K = dist.stiffness
+    assert np.max(np.abs(K - K.T)) <= 1e-9 * np.max(np.abs(K))
+    # central difference of q(F): K·dq/dF = I (acceptance 1e-5)
+    base = load.as_array()
+    scale = np.array([2.0, 2.0, 2.0, 0.2, 0.2])  # truncation O(h²): 1e-5 needs h ≲ 10 N here
+    C = np.zeros((5, 5))
+    for j in range(5):
+        h = np.zeros(5)
+        h[j] = scale[j]
+        qp = solver.solve(RingLoad(*(base + h))).displacement
+        qm = solver.solve(RingLoad(*(base - h))).displacement
+        C[:, j] = (qp - qm) / (2.0 * scale[j])
+    assert np.max(np.abs(K @ C - np.eye(5))) <= 1e-5
+
+
+def test_very_stiff_modal_rings_give_the_rigid_ring_loads(desc, solver):
+    """E × 10⁶: the ring bending vanishes (∝ 1/E), so ball loads approach the rigid-ring ones;
+    left: the raceway's own deflection at 10⁻⁶ of the soft ring's, far below 1e-4 of the loads."""
+    stiff = tuple(FlexibleRing(r.name, with_stiffness_scaled(r.body, 1e6), r.ring, dict(r.raceways)) for r in solver.rings)
+    model = build_flexible_model(desc.bearing, stiff)
+    load = desc.default_load
+    flex = solve_flexible_load_distribution(model, load)
+    rigid = solve_load_distribution(desc.bearing, load)
+    qf, qr = flex.rows[0].contact_load_N, rigid.rows[0].contact_load_N
+    assert np.max(np.abs(qf - qr)) <= 1e-4 * qr.max()
+    # and the real (soft) rings do change the loads: the test would see a coupling that does nothing
+    soft = solver.solve(load).rows[0].contact_load_N
+    assert np.max(np.abs(soft - qr)) >= 1e-3 * qr.max()
+
+
+def test_bolt_patches_are_washer_discs(desc):
+    """Independent: the top-face nodes within the washer radius of a bolt point, in Cartesian x, y."""
+    from cases.bearing_rings import _mesh_spec
+    from fem_rings.model import build_model
+    from fem_rings.nodesets import patch_nodes
+
+    m = desc.rings["inner"]
+    ring = build_model(m.profile, _mesh_spec(m), m.material).ring
+    bolts = m.keys.bolts
+    radius = 0.25 * math.pi * bolts.pitch_diameter_m / bolts.count  # default washer: half the bolt spacing
+    theta = 360.0 * 0.5 / bolts.count
+    got = patch_nodes(ring, "top", theta, radius, at_radius_m=0.5 * bolts.pitch_diameter_m)
+    nodes = ring.node_sets["top"]
+    x, y = ring.mesh.doflocs[0, nodes], ring.mesh.doflocs[1, nodes]
+    bx, by = 0.5 * bolts.pitch_diameter_m * math.cos(math.radians(theta)), 0.5 * bolts.pitch_diameter_m * math.sin(math.radians(theta))
+    d = np.hypot(x - bx, y - by)
+    assert set(got) >= set(nodes[d <= radius]) and set(got) <= set(nodes[d <= radius * (1 + 1e-6) + 1e-6 * ring.size_m])
+    assert 0 < len(got) < len(nodes) / bolts.count
+
+
+@pytest.mark.parametrize("change, message", [
+    (("inner_diameter_m = 0.42\n", ""), "rings.inner.inner_diameter_m: missing key"),
+    (("outer_diameter_m = 0.58\n", "outer_diameter_m = 0.58\ninner_diameter_m = 0.5\n"),
+     "rings.outer.inner_diameter_m: the raceways put this face at"),
+    (('face = "top"', 'face = "flange"'), "rings.inner.bolts.face: the section has no face 'flange'"),
+    (('clamped_face = "bottom"', 'clamped_face = "raceway balls"'), "rings.outer.clamped_face: 'raceway balls' carries a raceway"),
+    (('clamped_face = "bottom"', ''), "rings.outer.bolts: give the ring's support"),
+    (("n_modes = 12\nraceway_harmonics = 4\nelement_size_m = 0.03\nclamped", "n_modes = 0\nclamped"),
+     "rings.outer.n_modes: must lie in 1"),
+    (("[rings.inner]", "[rings.middle]\n[rings.inner]"), "rings.middle: unknown ring"),
+])
+def test_bad_ring_tables_name_the_key(change, message):
+    text = SMALL.replace(*change, 1)
+    assert text != SMALL
+    with pytest.raises(CaseError) as err:
+        loads_bearing(text)
+    assert str(err.value).startswith(message), str(err.value)
+
+
+def test_profile_section_must_carry_the_raceway():
+    profile = """
+[rings.outer]
+section = "profile"
+clamped_face = "bottom"
+segments = [
+  { kind = "line", start_m = [0.27, -0.03], end_m = [0.29, -0.03], name = "bottom" },
+  { kind = "line", start_m = [0.29, -0.03], end_m = [0.29, 0.03], name = "outer" },
+  { kind = "line", start_m = [0.29, 0.03], end_m = [0.27, 0.03], name = "top" },
+  { kind = "line", start_m = [0.27, 0.03], end_m = [0.27, -0.03], name = "bore" },
+]
+"""
+    text = SMALL[:SMALL.index("[rings.outer]")] + profile + SMALL[SMALL.index("[load]"):]
+    with pytest.raises(CaseError) as err:
+        loads_bearing(text)
+    assert str(err.value).startswith("rings.outer.segments: no segment passes through the raceway of row 'balls'")
