@@ -216,7 +216,7 @@ def bearing_from_mapping(data: Mapping, base_dir: Path | None = None, source: st
     rings = data.get("rings", {})
     if not isinstance(rings, Mapping):
         raise CaseError(f"rings: expected [rings.inner] and/or [rings.outer] tables, got {rings!r:.60}")
-    rings = ring_models(bearing, head.moving_ring, rings, materials)
+    rings = ring_models(bearing, head.moving_ring, rings, materials, base_dir)
     return BearingDescription(head.name, head.description, bearing, loads, shares, source, case_depths, rings)
 
 

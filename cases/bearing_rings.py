@@ -1,7 +1,7 @@
 """Modal rings of a described bearing: the ``[rings.inner]`` / ``[rings.outer]`` tables.
 
-A ring given a table bends: its section (a box around the rows' raceways, or a profile of lines
-and arcs, :mod:`.ring_sections`) is revolved, meshed with quadratic hexahedra, held at its support
+A ring given a table bends: its section (a box around the rows' raceways, a profile of lines
+and arcs, or a DXF drawing of one: :mod:`.ring_sections`, :mod:`fem_rings.dxf_section`) is revolved, meshed with quadratic hexahedra, held at its support
 (bolts on a pitch circle, or a whole face) and reduced by Craig–Bampton with raceway load shapes
 (:func:`cms_reduction.reduced_body`, cached on disk by its inputs). The fixed ring is held against
 the ground; the moving ring's support rides on the moving ring's rigid displacement q (the
@@ -23,9 +23,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any, Literal
 
 from cms_reduction.pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, reduced_body
+from fem_rings.dxf_section import profile_from_dxf
 from fem_rings.mesh import MeshSpec
 from fem_rings.profile import Arc, Line, Profile, ProfileError
 from foundation.materials import ElasticMaterial
@@ -73,12 +75,14 @@ class BoltKeys:
 class RingKeys:
     """``[rings.inner]`` / ``[rings.outer]`` (format reference: cases/bearings/README.md)."""
 
-    section: Literal["box", "profile"] = "box"
+    section: Literal["box", "profile", "dxf"] = "box"
     inner_diameter_m: float | None = None
     outer_diameter_m: float | None = None
     z_min_m: float | None = None
     z_max_m: float | None = None
     segments: tuple[Any, ...] = ()
+    dxf_file: str | None = None
+    dxf_unit: Literal["mm", "m", "file"] = "mm"
     material: str = "bearing_steel"
     bolts: BoltKeys | None = None
     clamped_face: str | None = None
@@ -101,14 +105,18 @@ class RingKeys:
             raise ValueError(f"n_modes: must lie in 1 … 400, got {self.n_modes}")
         if not 0 <= self.raceway_harmonics <= 60:
             raise ValueError(f"raceway_harmonics: must lie in 0 … 60, got {self.raceway_harmonics}")
-        if self.section == "box" and self.segments:
+        if self.section != "profile" and self.segments:
             raise ValueError("segments: only for section = \"profile\"")
-        if self.section == "profile":
-            if not self.segments:
-                raise ValueError("segments: missing key (a profile section needs its [[segments]])")
+        if self.section != "dxf" and self.dxf_file is not None:
+            raise ValueError("dxf_file: only for section = \"dxf\"")
+        if self.section == "profile" and not self.segments:
+            raise ValueError("segments: missing key (a profile section needs its [[segments]])")
+        if self.section == "dxf" and not (self.dxf_file or "").strip():
+            raise ValueError("dxf_file: missing key (the DXF drawing of the section, path relative to this file)")
+        if self.section != "box":
             given = [k for k in ("inner_diameter_m", "outer_diameter_m", "z_min_m", "z_max_m") if getattr(self, k) is not None]
             if given:
-                raise ValueError(f"{given[0]}: only for section = \"box\" (a profile gives its own outline)")
+                raise ValueError(f"{given[0]}: only for section = \"box\" (a {self.section} gives its own outline)")
 
     @property
     def support_face(self) -> str:
@@ -165,7 +173,17 @@ def _segment(table, at: str):
         raise CaseError(f"{at}: {exc}") from None
 
 
-def _profile(keys: RingKeys, name: str, places: dict, where: str) -> Profile:
+def _profile(keys: RingKeys, name: str, places: dict, where: str, base_dir: Path | None) -> Profile:
+    if keys.section == "dxf":
+        path = Path(keys.dxf_file)
+        if not path.is_absolute():
+            if base_dir is None:
+                raise CaseError(f"{where}.dxf_file: a relative path needs the description file's folder")
+            path = base_dir / path
+        try:
+            return profile_from_dxf(path, name=name, unit=keys.dxf_unit)
+        except ProfileError as exc:
+            raise CaseError(f"{where}.dxf_file: {exc}") from None
     if keys.section == "profile":
         segs = tuple(_segment(t, f"{where}.segments[{i}]") for i, t in enumerate(keys.segments))
         try:
@@ -189,18 +207,20 @@ def _element_size(row) -> float:
     return row.roller_diameter_m if isinstance(row, RollerRow) else row.ball_diameter_m
 
 
-def ring_profile(bearing: Bearing, ring: str, moving_ring: str, keys: RingKeys, where: str):
+def ring_profile(bearing: Bearing, ring: str, moving_ring: str, keys: RingKeys, where: str,
+                 base_dir: Path | None = None):
     """(side, profile, raceways, places) of the ``"inner"`` or ``"outer"`` ring; CaseError naming the key."""
     side = "moving" if ring == moving_ring else "fixed"
     try:
         places = raceway_places(bearing, side)
     except ValueError as exc:
         raise CaseError(f"{where}: {exc}") from None
-    profile = _profile(keys, f"{ring} ring", places, where)
+    profile = _profile(keys, f"{ring} ring", places, where, base_dir)
     try:
         raceways = match_raceways(profile, places, {r.name: _element_size(r) for r in bearing.rows})
     except ValueError as exc:
-        raise CaseError(f"{where}.{'segments' if keys.section == 'profile' else 'section'}: {exc}") from None
+        key = {"profile": "segments", "dxf": "dxf_file"}.get(keys.section, "section")
+        raise CaseError(f"{where}.{key}: {exc}") from None
     face = keys.support_face
     if face not in profile.names:
         key = "bolts.face" if keys.bolts is not None else "clamped_face"
@@ -211,8 +231,10 @@ def ring_profile(bearing: Bearing, ring: str, moving_ring: str, keys: RingKeys, 
     return side, profile, raceways, places
 
 
-def ring_models(bearing: Bearing, moving_ring: str, tables: dict, materials: dict) -> dict[str, RingModel]:
-    """Validated :class:`RingModel` of every ``[rings.X]`` table (before any meshing)."""
+def ring_models(bearing: Bearing, moving_ring: str, tables: dict, materials: dict,
+                base_dir: Path | None = None) -> dict[str, RingModel]:
+    """Validated :class:`RingModel` of every ``[rings.X]`` table (before any meshing); ``base_dir``:
+    the description file's folder (for a DXF section's relative path)."""
     out = {}
     for ring, table in tables.items():
         where = f"rings.{ring}"
@@ -221,7 +243,7 @@ def ring_models(bearing: Bearing, moving_ring: str, tables: dict, materials: dic
         keys = from_mapping(RingKeys, table, where)
         if keys.material not in materials:
             raise CaseError(f"{where}.material: unknown material {keys.material!r}; known: {', '.join(sorted(materials))}")
-        side, profile, raceways, places = ring_profile(bearing, ring, moving_ring, keys, where)
+        side, profile, raceways, places = ring_profile(bearing, ring, moving_ring, keys, where, base_dir)
         out[ring] = RingModel(ring, side, profile, raceways, places, keys, materials[keys.material])
     return out
 

@@ -208,3 +208,50 @@ segments = [
     with pytest.raises(CaseError) as err:
         loads_bearing(text)
     assert str(err.value).startswith("rings.outer.segments: no segment passes through the raceway of row 'balls'")
+
+
+def _write_dxf(profile, path, drop_last: bool = False) -> None:
+    """The profile as LINE and ARC entities (mm), each on the layer of its segment's name."""
+    import ezdxf
+
+    from fem_rings.profile import Arc
+
+    doc = ezdxf.new()
+    doc.header["$INSUNITS"] = 4  # mm
+    msp = doc.modelspace()
+    segs = profile.segments[:-1] if drop_last else profile.segments
+    for seg in segs:
+        layer = seg.name.replace(" ", "_")
+        if isinstance(seg, Arc):
+            c = np.asarray(seg.center)
+            a0 = math.degrees(math.atan2(seg.start[1] - c[1], seg.start[0] - c[0]))
+            a1 = math.degrees(math.atan2(seg.end[1] - c[1], seg.end[0] - c[0]))
+            if not seg.ccw:
+                a0, a1 = a1, a0
+            msp.add_arc(tuple(1e3 * c), 1e3 * seg.radius_m, a0, a1, dxfattribs={"layer": layer})
+        else:
+            msp.add_line(tuple(1e3 * np.asarray(seg.start)), tuple(1e3 * np.asarray(seg.end)), dxfattribs={"layer": layer})
+    doc.saveas(path)
+
+
+def test_dxf_section_of_a_ring(desc, tmp_path):
+    """The outer ring's box section drawn in a DXF (mm) and read back as its section: same area, the
+    raceway found on the groove layer; an open drawing stops at the key before any meshing."""
+    _write_dxf(desc.rings["outer"].profile, tmp_path / "outer.dxf")
+    dxf = f"""
+[rings.outer]
+section = "dxf"
+dxf_file = "outer.dxf"
+clamped_face = "bottom"
+"""
+    text = SMALL[:SMALL.index("[rings.outer]")] + dxf + SMALL[SMALL.index("[load]"):]
+    (tmp_path / "b.toml").write_text(text)
+    from cases.bearing_file import read_bearing_file
+
+    ring = read_bearing_file(tmp_path / "b.toml").rings["outer"]
+    assert ring.profile.area_m2 == pytest.approx(desc.rings["outer"].profile.area_m2, rel=1e-9)
+    assert ring.raceways == {"balls": "raceway_balls"}
+    _write_dxf(desc.rings["outer"].profile, tmp_path / "outer.dxf", drop_last=True)
+    with pytest.raises(CaseError) as err:
+        read_bearing_file(tmp_path / "b.toml")
+    assert str(err.value).startswith("rings.outer.dxf_file: ") and "outer.dxf" in str(err.value)
