@@ -39,7 +39,7 @@ from .config import CaseError, from_mapping
 from .ring_sections import box_section, match_raceways, raceway_places
 
 __all__ = ["RingKeys", "BoltKeys", "RingModel", "ring_models", "ring_profile", "reduce_ring", "flexible_rings",
-           "RING_NAMES"]
+           "ring_part_of", "RING_NAMES"]
 
 RING_NAMES = ("inner", "outer")
 #: Raceway samples round a ring: at least this many, and at least four per rolling element.
@@ -279,3 +279,17 @@ def flexible_rings(models: dict[str, RingModel], bearing: Bearing) -> tuple[Flex
     return tuple(FlexibleRing(m.name, reduce_ring(m, bearing), m.side, dict(m.raceways)) for m in models.values())
 
 
+
+
+def ring_part_of(desc, ring: str):
+    """A described bearing's ``"inner"`` or ``"outer"`` ring as a :class:`cases.parts.RingPart`
+    (``flexbearing modes FILE --ring …``); ValueError naming ``--ring`` when the file gives that ring
+    no ``[rings.X]`` table."""
+    from .parts import RingPart
+
+    if ring not in desc.rings:
+        given = ", ".join(desc.rings) or "none"
+        raise ValueError(f"--ring {ring}: the description file gives no [rings.{ring}] table (rings given: {given})")
+    m = desc.rings[ring]
+    return RingPart(f"{desc.name}: {ring} ring", lambda: (m.profile, None), m.material, _mesh_spec(m).size_m, "hex27",
+                    f"{ring} ring of {desc.name} ({m.keys.section} section)")

@@ -246,11 +246,27 @@ def cmd_loaddist(args) -> dict:
     return loaddist_outputs(args, name, desc, results, time_share, solver)
 
 
+def _modes_part(args):
+    """The part of ``flexbearing modes``: a built-in part, or a ring of a bearing description file."""
+    from .bearing_rings import ring_part_of
+
+    if args.part in RING_PARTS:
+        if args.ring is not None:
+            raise UserError(f"--ring picks a ring of a bearing description file; {args.part!r} is a built-in part")
+        return ring_part(args.part)
+    if args.part.endswith(".toml") or os.path.exists(args.part):
+        if args.ring is None:
+            raise UserError("--ring inner|outer: which ring of the bearing description file")
+        _, desc = bearing_description(args.part)
+        return ring_part_of(desc, args.ring)
+    return ring_part(args.part)
+
+
 def cmd_modes(args) -> dict:
     from .fem_report import modes_table, part_modes, write_modes
 
     _check_out(args)
-    part = ring_part(args.part)
+    part = _modes_part(args)
     if args.size_mm is not None:
         _require_positive(size_mm=args.size_mm)
     if args.modes < 7:
@@ -350,7 +366,10 @@ def build_parser() -> argparse.ArgumentParser:
     rn.set_defaults(func=cmd_run)
 
     md = sub.add_parser("modes", help="free–free natural modes of a ring or cage (solid finite elements)")
-    md.add_argument("part", choices=sorted(RING_PARTS), help="built-in ring or cage")
+    md.add_argument("part", help=f"built-in ring or cage ({', '.join(sorted(RING_PARTS))}), or a bearing "
+                    "description file .toml whose [rings.X] table gives the ring (with --ring)")
+    md.add_argument("--ring", choices=("inner", "outer"), default=None,
+                    help="the ring of a bearing description file")
     md.add_argument("--modes", type=int, default=16, help="modes to compute, rigid-body modes included")
     md.add_argument("--size-mm", type=float, default=None, help="element size (mm); default per part")
     md.add_argument("--element", choices=("hex27", "tet10"), default=None, help="default per part")

@@ -143,7 +143,8 @@ def raceway_places(bearing: Bearing, side: str) -> dict[str, RacewayPlace]:
             normal = _rz(slices.normal[sel[0]], psi)
             out[row.name] = _roller_place(row, axis, normal, side)
         else:
-            raise ValueError(f"row {row.name!r}: its ring sections can only be given as a profile of lines and arcs")
+            raise ValueError(f"row {row.name!r} ({getattr(row, 'orientation', type(row).__name__)} rollers): modal rings "
+                             "do not take this row type; leave out the [rings] tables (rigid rings)")
     return out
 
 

@@ -255,3 +255,31 @@ clamped_face = "bottom"
     with pytest.raises(CaseError) as err:
         read_bearing_file(tmp_path / "b.toml")
     assert str(err.value).startswith("rings.outer.dxf_file: ") and "outer.dxf" in str(err.value)
+
+
+def test_modes_of_a_described_ring_against_thin_ring_theory(tmp_path, capsys):
+    """`flexbearing modes FILE --ring outer`: the lowest in-plane bending pair (n = 2) against the
+    inextensional thin-ring frequency ω_n = n(n² − 1)/√(n² + 1)·√(EI/(ρAR⁴)) (Hoppe 1871; Love,
+    *Mathematical Theory of Elasticity*, §293), with A, the centroid radius R and I = ∫(r − R)² dA
+    of the section integrated here from its outline (Green's theorem). Tolerance 3 %: the theory
+    neglects shear and rotary inertia, O((h/R)²) ≈ 1 % for this section (h/R ≈ 0.11)."""
+    import json
+
+    from cases.cli import main
+
+    path = tmp_path / "b.toml"
+    path.write_text(SMALL)
+    assert main(["modes", str(path), "--ring", "outer", "--modes", "10", "--json"]) in (0, None)
+    out = json.loads(capsys.readouterr().out)
+    f_in = [m["frequency_Hz"] for m in out["modes"] if m["family"] == "in" and m["waves"] == 2]
+    prof = loads_bearing(SMALL).rings["outer"].profile
+    pts = prof.polyline(4000)[0]
+    r, z = pts[:, 0], pts[:, 1]
+    rn, zn = np.roll(r, -1), np.roll(z, -1)
+    cr = r * zn - rn * z
+    A = 0.5 * cr.sum()
+    R = ((r + rn) * cr).sum() / 6.0 / A
+    I = ((r * r + r * rn + rn * rn) * cr).sum() / 12.0 - A * R * R
+    E, rho = 207e9, 7850.0  # bearing_steel
+    f2 = 6.0 / math.sqrt(5.0) * math.sqrt(E * I / (rho * A * R**4)) / (2.0 * math.pi)
+    assert f_in and f_in[0] == pytest.approx(f2, rel=0.03)
