@@ -39,7 +39,8 @@ Crossed roller rows (``orientation="crossed"``): the rollers alternate between t
 of a V-groove in each ring (90° for α0 = 45°), each roller touching each ring in one line contact,
 both on its normal n_k = s_r·cos α0·e_r + σ_k·sin α0·e_z (s_r = ``load_sign``, +1 when the moving
 ring carries the inner raceway; σ_k = ±1 the roller's diagonal, :attr:`RollerRow.diagonal_signs`),
-its axis a_k = cos α0·e_z − σ_k·s_r·sin α0·e_r in the meridian plane, perpendicular to n_k. With
+its axis a_k = cos α0·e_z − σ_k·s_r·sin α0·e_r in the meridian plane, perpendicular to n_k
+(pointing to +z: the slices are numbered from the roller's −z end, as in radial rows). With
 rigid rings each roller is a sliced angular-contact roller along its own fixed normal, exactly as
 the radial and thrust rows (the rigid-ring model of the crossed roller bearing, e.g. Harris &
 Kotzalas, *Rolling Bearing Analysis*, 5th ed., ch. 7, for angular-contact line contacts; the
