@@ -65,9 +65,9 @@ def _check(where: str, ok: bool, message: str) -> None:
 def _check_fits(where: str, count: int, diameter_m: float, pitch_diameter_m: float, what: str) -> None:
     """Z elements of diameter D fit on the pitch circle: Z·D ≤ π·d_m."""
     _check(f"{where}.count", count <= MAX_ELEMENTS, f"at most {MAX_ELEMENTS} {what} per row, got {count}")
-    _check(f"{where}.count", count * diameter_m <= math.pi * pitch_diameter_m * (1 + 1e-9),
-           f"{count} {what} of {diameter_m:g} m do not fit on the pitch circle of {pitch_diameter_m:g} m "
-           f"(at most {int(math.pi * pitch_diameter_m / diameter_m)})")
+    if not count * diameter_m <= math.pi * pitch_diameter_m * (1 + 1e-9):  # the message only then: π·d_m may overflow
+        raise CaseError(f"{where}.count: {count} {what} of {diameter_m:g} m do not fit on the pitch circle of "
+                        f"{pitch_diameter_m:g} m (at most {int(math.pi * pitch_diameter_m / diameter_m)})")
 
 
 # --- ball rows -----------------------------------------------------------------------------------
