@@ -303,3 +303,21 @@ def test_multibody_rows_refuse_crossed_rollers():
     row = _row(0.0, {}, "alternate", True)
     with pytest.raises(ValueError, match="crossed roller rows are modelled by the quasi-static solver only"):
         add_roller_row(ModelBuilder(), row, None, None)
+
+
+def test_flexible_model_takes_crossed_rows_on_rigid_raceways_only():
+    """Without flexible rings the flexible-ring solver's slices are the rigid solver's: the same roller
+    loads (to the solvers' tolerance, 1e-7 of the largest); a flexible ring naming a crossed row is
+    refused (one sampled raceway cannot describe both V-groove flanks)."""
+    from mbd_core.quasistatic import FlexibleRing, build_flexible_model, solve_flexible_load_distribution
+    from tests.test_quasistatic_flexible import circle, random_fields, sampled_body
+
+    row = _row(-10e-6, dict(profile="logarithmic"), "alternate", True)
+    bearing = Bearing("x", (row,))
+    a = solve_load_distribution(bearing, LOADS["combined"])
+    b = solve_flexible_load_distribution(build_flexible_model(bearing), LOADS["combined"])
+    assert b.rows[0].load_N == pytest.approx(a.rows[0].load_N, abs=1e-7 * a.rows[0].load_N.max())
+    th, pts = circle((0.5 * DM + 0.5 * D, 0.0), 36)
+    outer = sampled_body("o", [100.0], {"raceway": (th, pts, *random_fields(np.random.default_rng(1), 36, 1), True)})
+    with pytest.raises(ValueError, match="row 'crossed' is a crossed roller row"):
+        build_flexible_model(bearing, (FlexibleRing("o", outer, "fixed", {"crossed": "raceway"}),))

@@ -40,7 +40,9 @@ Q' = 1.5·K·δ^0.5 (the chain rule through s_i, as in the rigid solver).
 Roller rows: slice k (centre p_k on the roller axis, normal n_k) of a roller at ψ takes the raceway
 fields at ψ the same way, the slice point moving with the section, T_k = D − [p_k − p]ₓ Ω (a tilt
 of the raceway about e_t loads one roller end more), so δ_k = n_k·(G_k x) − gap − drop with G_k as
-above and the slice forces project with G_kᵀ n_k. Offsets shift a raceway by n_k·Δc_k.
+above and the slice forces project with G_kᵀ n_k. Offsets shift a raceway by n_k·Δc_k. Crossed roller
+rows take part with rigid raceways only: a flexible ring naming one is refused (its rollers run on
+two V-groove flanks, which one sampled raceway does not describe).
 
 Solution (:mod:`.flexible_solve`): Newton with backtracking (:func:`.solver.damped_newton`), first on q with η = 0 (the
 rigid-ring solution with the offsets), then on (q, η) from there. Each η_j is scaled by the
@@ -442,6 +444,9 @@ def build_flexible_model(bearing: Bearing, rings=(), offsets=()) -> FlexibleBear
         amplitude = np.zeros(ring.body.n_modes)
         for row_name, sample_name in ring.raceways:
             i_row = _row_index(bearing, row_name, f"flexible ring {ring.name!r}")
+            if getattr(bearing.rows[i_row], "orientation", None) == "crossed":
+                raise ValueError(f"flexible ring {ring.name!r}: row {row_name!r} is a crossed roller row, whose two "
+                                 "V-groove flanks one sampled raceway does not describe; give it rigid raceways")
             if isinstance(bearing.rows[i_row], BallRow):
                 c, idx, T = _ball_coupling(bearing, balls, ring, i_row, sample_name, delta[ring.ring][0])
                 G[idx, :, cols] += sign * T
