@@ -353,6 +353,9 @@ def _slice_coupling(bearing: Bearing, slices: SliceGroup, ring: FlexibleRing, i_
     """Coupling of a roller row, its slice indices and the approach per unit η (k, m) of its slices."""
     row = bearing.rows[i_row]
     who = f"flexible ring {ring.name!r}, row {row.name!r}"
+    if row.orientation == "crossed":
+        raise ValueError(f"{who}: a crossed roller row, whose two V-groove flanks one sampled raceway does not "
+                         "describe; give it rigid raceways")
     mask = slices.row == i_row
     ns = row.n_slices
     psi = row.first_azimuth_rad + 2.0 * np.pi * np.arange(row.n_rollers) / row.n_rollers
@@ -444,9 +447,6 @@ def build_flexible_model(bearing: Bearing, rings=(), offsets=()) -> FlexibleBear
         amplitude = np.zeros(ring.body.n_modes)
         for row_name, sample_name in ring.raceways:
             i_row = _row_index(bearing, row_name, f"flexible ring {ring.name!r}")
-            if getattr(bearing.rows[i_row], "orientation", None) == "crossed":
-                raise ValueError(f"flexible ring {ring.name!r}: row {row_name!r} is a crossed roller row, whose two "
-                                 "V-groove flanks one sampled raceway does not describe; give it rigid raceways")
             if isinstance(bearing.rows[i_row], BallRow):
                 c, idx, T = _ball_coupling(bearing, balls, ring, i_row, sample_name, delta[ring.ring][0])
                 G[idx, :, cols] += sign * T
