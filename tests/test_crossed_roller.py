@@ -256,6 +256,21 @@ def test_contact_sets_static_safety_and_iso76_rating():
         roller_row_static_rating_N(row) / (F_r + 0.44 / math.tan(ALPHA) * abs(F_a)), rel=1e-12)
 
 
+def test_iso76_rating_of_a_steep_crossed_row_is_the_thrust_rating_of_one_diagonal():
+    """α0 = 60° (> 45°: a thrust bearing for ISO 76): C0a against ISO 76 8.1's printed
+    220·(1 − D·cos α/d_m)·Z·L·D·sin α (N, mm) with Z the rollers loaded in one direction (Z/2, and the
+    fewer of the two diagonals for pattern "++-": Z/3 rounded down), 1.5 % (rounded constant); P0a =
+    F_a + 2.3·F_r·tan α (ISO 76 8.2)."""
+    a = math.radians(60.0)
+    gamma = D * math.cos(a) / DM
+    for pattern, Z_d in (("alternate", Z // 2), ("++-", Z // 3)):
+        row = _row(0.0, {}, pattern, True, a)
+        C0a = 220.0 * (1.0 - gamma) * Z_d * (L * 1e3) * (D * 1e3) * math.sin(a)
+        assert roller_row_static_rating_N(row) == pytest.approx(C0a, rel=1.5e-2)
+        assert classical_static_safety(row, 1.0e4, 5.0e4) == pytest.approx(
+            roller_row_static_rating_N(row) / (5.0e4 + 2.3 * 1.0e4 * math.tan(a)), rel=1e-12)
+
+
 def test_rating_life_of_a_pure_axial_load_per_diagonal():
     """Pure axial load, zero clearance: the +α0 rollers alone carry it, all alike, so each lamina's
     equivalent load over the Z/2 rollers of its diagonal is its own load q_k, and ISO/TS 16281 gives

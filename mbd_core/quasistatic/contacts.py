@@ -15,7 +15,8 @@ Kotzalas, *Rolling Bearing Analysis*, 5th ed., ch. 6, contact ellipse truncation
 each slice a Hertz line contact of length L/n_s (:func:`..contact.line.line_contact`); the set holds
 the most loaded slice of each roller (p0 and the half-width b there; semi-major = half the slice
 length), on raceways of the curvature across the roller axis (conical for crossed rows,
-:meth:`.rows.RollerRow.raceway_diameters_m`). Static limits of p0 after ISO 76:2006: 4.2 GPa for ball, 4.0 GPa for roller bearings.
+:meth:`.rows.RollerRow.raceway_diameters_m`). Static limits of p0 after ISO 76:2006: 4.2 GPa for
+ball, 4.0 GPa for roller bearings.
 """
 
 from __future__ import annotations
