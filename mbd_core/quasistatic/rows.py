@@ -41,15 +41,16 @@ both on its normal n_k = s_r·cos α0·e_r + σ_k·sin α0·e_z (s_r = ``load_si
 ring carries the inner raceway; σ_k = ±1 the roller's diagonal, :attr:`RollerRow.diagonal_signs`),
 its axis a_k = cos α0·e_z − σ_k·s_r·sin α0·e_r in the meridian plane, perpendicular to n_k
 (pointing to +z: the slices are numbered from the roller's −z end, as in radial rows). With
-rigid rings each roller is a sliced angular-contact roller along its own fixed normal, exactly as
-the radial and thrust rows (the rigid-ring model of the crossed roller bearing, e.g. Harris &
-Kotzalas, *Rolling Bearing Analysis*, 5th ed., ch. 7, for angular-contact line contacts; the
-normal of a line contact does not turn under load). A diametral clearance P_d (the free radial
-play of the concentric rings) gives each roller the gap g = (P_d/2)·cos α0 along its normal: a
-radial shift u_r of the moving ring closes n·u_r·e_r = u_r·cos α0 at the roller in its direction,
-so the ring touches at u_r = ±g/cos α0 and the free radial play is 2g/cos α0 = P_d (the free
-axial play is then 2g/sin α0 = P_d for α0 = 45°). Harris & Kotzalas, ch. 2, for the clearance of
-angular-contact rows; negative = preload.
+rigid rings each roller is then a sliced angular-contact roller along its own fixed normal,
+treated exactly as the radial and thrust rows: the rigid-ring load distribution of Harris &
+Kotzalas, *Rolling Bearing Analysis*, 5th ed., ch. 7, with the line contacts sliced along a
+normal that does not turn under load, as ISO/TS 16281:2008 slices angular-contact (tapered)
+rollers. A diametral clearance P_d (the free radial play of the concentric rings) gives each
+roller the gap g = (P_d/2)·cos α0 along its normal: a radial shift u_r of the moving ring closes
+n·u_r·e_r = u_r·cos α0 at the roller in its direction, so the ring touches at u_r = ±g/cos α0 and
+the free radial play is 2g/cos α0 = P_d; the free axial play is 2g/sin α0 = P_d·cot α0 (P_d at
+45°). (Harris & Kotzalas, ch. 2, radial and axial play of angular-contact bearings.) Negative =
+preload.
 """
 
 from __future__ import annotations
