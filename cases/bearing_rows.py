@@ -66,9 +66,9 @@ def _check(where: str, ok: bool, message: str) -> None:
 def _check_fits(where: str, count: int, diameter_m: float, pitch_diameter_m: float, what: str) -> None:
     """Z elements of diameter D fit on the pitch circle: Z·D ≤ π·d_m."""
     _check(f"{where}.count", count <= MAX_ELEMENTS, f"at most {MAX_ELEMENTS} {what} per row, got {count}")
-    _check(f"{where}.count", count * diameter_m <= math.pi * pitch_diameter_m * (1 + 1e-9),
-           f"{count} {what} of {diameter_m:g} m do not fit on the pitch circle of {pitch_diameter_m:g} m "
-           f"(at most {int(math.pi * pitch_diameter_m / diameter_m)})")
+    if not count * diameter_m <= math.pi * pitch_diameter_m * (1 + 1e-9):  # the message only then: π·d_m may overflow
+        raise CaseError(f"{where}.count: {count} {what} of {diameter_m:g} m do not fit on the pitch circle of "
+                        f"{pitch_diameter_m:g} m (at most {int(math.pi * pitch_diameter_m / diameter_m)})")
 
 
 # --- keys every row has --------------------------------------------------------------------------
@@ -445,6 +445,45 @@ def _thrust_roller(keys: ThrustRollerKeys, ctx: RowContext) -> tuple:
 
 
 @dataclass(frozen=True)
+class CrossedRollerKeys(_RollerKeys):
+    """A crossed cylindrical roller row: rollers alternating between the two diagonals of V-grooves.
+
+    Attributes
+    ----------
+    contact_angle_deg : float
+        Nominal contact angle α0, deg, in (0, 90); default 45 (90° V-grooves).
+    diametral_clearance_m : float
+        P_d of the unloaded concentric bearing, m (negative = preload): each roller has the gap
+        (P_d/2)·cos α0 along its normal (:mod:`mbd_core.quasistatic.rows`).
+    pattern : str
+        ``"alternate"`` (roller 1 on +α0, roller 2 on −α0, …) or a string of ``+`` and ``-``
+        repeated around the row.
+    """
+
+    contact_angle_deg: float = 45.0
+    diametral_clearance_m: float = 0.0
+    pattern: str = "alternate"
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if not 0.0 < self.contact_angle_deg < 90.0:
+            raise ValueError(f"contact_angle_deg: must lie in (0, 90), got {self.contact_angle_deg!r}")
+        p = self.pattern
+        if not (p == "alternate" or (p and set(p) <= {"+", "-"})):
+            raise ValueError(f"pattern: must be \"alternate\" or a string of '+' and '-' (the diagonal of each "
+                             f"roller, repeated around the row), got {p!r}")
+        if -0.5 * self.diametral_clearance_m >= self.roller_diameter_m:
+            raise ValueError(f"diametral_clearance_m: a preload of {-self.diametral_clearance_m:g} m exceeds the "
+                             f"roller diameter ({self.roller_diameter_m:g} m)")
+
+
+def _crossed_roller(keys: CrossedRollerKeys, ctx: RowContext) -> tuple:
+    a0 = math.radians(keys.contact_angle_deg)
+    return (RollerRow(orientation="crossed", load_sign=ctx.radial_sign, contact_angle_rad=a0, pattern=keys.pattern,
+                      gap_m=0.5 * keys.diametral_clearance_m * math.cos(a0), **_roller_common(keys, ctx)),)
+
+
+@dataclass(frozen=True)
 class RowType:
     """One registry entry: the dataclass of the row table's keys and the builder of its rows."""
 
@@ -463,6 +502,8 @@ ROW_TYPES: dict[str, RowType] = {
     "double_four_point": RowType(DoubleFourPointKeys, _double_four_point, "two four-point rows"),
     "radial_roller": RowType(RadialRollerKeys, _radial_roller, "cylindrical roller row, radial"),
     "thrust_roller": RowType(ThrustRollerKeys, _thrust_roller, "cylindrical roller row, axial"),
+    "crossed_roller": RowType(CrossedRollerKeys, _crossed_roller,
+                              "crossed cylindrical roller row (V-grooves, rollers alternating ±α0)"),
 }
 
 
@@ -475,7 +516,7 @@ def _row_message(message: str) -> str:
 #: fields of the row dataclasses → the file key that sets them
 _FILE_KEYS = {"n_balls": "count", "n_rollers": "count", "radial_clearance_m": "diametral_clearance_m",
               "diametral_clearance_m": "diametral_clearance_m", "gap_m": "diametral_clearance_m",
-              "contact_angle": "contact_angle_deg", "shoulder_angle": "shoulder_angle_deg"}
+              "contact_angle": "contact_angle_deg", "shoulder_angle": "shoulder_angle_deg", "pattern": "pattern"}
 
 
 def build_rows(keys: object, row_type: RowType, ctx: RowContext) -> tuple:

@@ -38,18 +38,37 @@ def plot_element_loads(results: list[LoadDistribution], path: Path) -> None:
     pyplot, fig, axes = _panels(len(first.rows), f"{first.bearing_name}: element loads")
     for i, ax in enumerate(axes):
         lines = []
+        crossed = _diagonals(first.rows[i])
         for res in results:
             r = res.rows[i]
             psi, order = _by_azimuth(r)
-            lines += ax.plot(psi[order], r.load_N[order], marker="o", ms=2.5, lw=1)
+            if crossed is None:
+                lines += ax.plot(psi[order], r.load_N[order], marker="o", ms=2.5, lw=1)
+                continue
+            for k, on in enumerate(crossed):  # one line per diagonal, the second dashed in the same colour
+                o = order[on[order]]
+                line, = ax.plot(psi[o], r.load_N[o], marker="o", ms=2.5, lw=1, ls="-" if k == 0 else "--",
+                                color=None if k == 0 else lines[-1].get_color())
+                if k == 0:
+                    lines.append(line)
         ax.set_ylabel("Q (N)")
         ax.set_ylim(bottom=0)
         ax.grid(True, alpha=0.3)
-        ax.set_title(f"{first.rows[i].name} ({first.rows[i].kind}, {len(first.rows[i].load_N)} elements)", fontsize=9)
+        note = "; solid: rollers on +α, dashed: on −α" if crossed is not None else ""
+        ax.set_title(f"{first.rows[i].name} ({first.rows[i].kind}, {len(first.rows[i].load_N)} elements{note})",
+                     fontsize=9)
         if len(results) > 1:
             label_lines(ax, lines, range(1, len(results) + 1), "load case")
     fig.savefig(path, dpi=110)
     pyplot.close(fig)
+
+
+def _diagonals(r):
+    """Masks of the rollers on +α and on −α of a crossed roller row (contact angles of both signs), else None."""
+    if r.kind != "roller":
+        return None
+    plus, minus = r.contact_angle_rad > 0.0, r.contact_angle_rad < 0.0
+    return (plus, minus) if plus.any() and minus.any() else None
 
 
 def has_ball_rows(res: LoadDistribution) -> bool:

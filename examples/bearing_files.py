@@ -1,9 +1,10 @@
-"""Your own bearing: description files of four bearing types, solved under their loads.
+"""Your own bearing: description files of five bearing types, solved under their loads.
 
 ``examples/bearings/`` holds a four-point contact pitch bearing (Ø2.5 m, one row, a three-case
 load spectrum in a CSV beside it), a double-row four-point slewing bearing, a double-row
-angular-contact bearing (back-to-back) and a radial + thrust roller bearing with logarithmic
-roller profiles (format: ``cases/bearings/README.md``). Each is read, solved under the load of its
+angular-contact bearing (back-to-back), a radial + thrust roller bearing with logarithmic
+roller profiles and a preloaded crossed roller slewing bearing (Ø1.0 m, 100 rollers alternating
+between the ±45° diagonals) (format: ``cases/bearings/README.md``). Each is read, solved under the load of its
 file (every case of a spectrum) and written to ``results/examples/bearing-files/<name>/``
 (or ``$FLEXBEARING_EXAMPLE_OUT``) as ``flexbearing loaddist FILE.toml --out …`` writes it. Then
 each takes a pure axial load, whose ball and roller loads have a closed form (checked in

@@ -78,6 +78,13 @@ profile = "crowned"
 crown_drop_m = 5e-6
 axial_gap_m = 0.05e-3
 {ROLLER}
+[[rows]]
+type = "crossed_roller"
+name = "xr"
+contact_angle_deg = 40.0
+diametral_clearance_m = -0.02e-3
+pattern = "++-"
+{ROLLER}
 [load]
 Fz_N = -1.0e5
 Mx_Nm = 2.0e4
@@ -88,8 +95,8 @@ def test_every_row_type_builds_its_rows():
     d = loads_bearing(EVERY_TYPE)
     rows = {r.name: r for r in d.bearing.rows}
     assert set(ROW_TYPES) == {"deep_groove", "angular_contact", "thrust_ball", "four_point", "double_four_point",
-                              "radial_roller", "thrust_roller"}
-    assert list(rows) == ["dg", "ac", "o (1)", "o (2)", "tb", "fp", "dfp (1)", "dfp (2)", "rr", "tr"]
+                              "radial_roller", "thrust_roller", "crossed_roller"}
+    assert list(rows) == ["dg", "ac", "o (1)", "o (2)", "tb", "fp", "dfp (1)", "dfp (2)", "rr", "tr", "xr"]
     assert rows["dg"].contact_angle_rad == 0.0 and rows["tb"].contact_angle_rad == math.pi / 2
     assert rows["ac"].contact_angle_rad == math.radians(40.0) and rows["ac"].axial_sign == 1
     assert rows["tb"].axial_sign == -1
@@ -105,6 +112,11 @@ def test_every_row_type_builds_its_rows():
     assert rows["rr"].roller_material.E_Pa == 1.1e11
     assert (rows["tr"].orientation, rows["tr"].load_sign, rows["tr"].gap_m, rows["tr"].crown_drop_m) == \
         ("thrust", 1, 0.05e-3, 5e-6)
+    # crossed: gap (P_d/2)·cos α0 along each normal, the pattern repeated around the row
+    xr = rows["xr"]
+    assert (xr.orientation, xr.load_sign, xr.contact_angle_rad) == ("crossed", -1, math.radians(40.0))
+    assert xr.gap_m == pytest.approx(-0.01e-3 * math.cos(math.radians(40.0)), rel=1e-15)
+    assert list(xr.diagonal_signs[:6]) == [1, 1, -1, 1, 1, -1]
     assert d.default_load.Fz_N == -1.0e5 and d.default_load.Mx_Nm == 2.0e4
 
 
@@ -241,6 +253,13 @@ AC = 'contact_angle_deg = 40.0\nloaded_direction = "+z"\n'
     (_one_row(AC + 'ball_material = "gold"'), "rows[0].ball_material: unknown material 'gold'; one of bearing_steel"),
     (_one_row("profile = \"crowned\"", kind="radial_roller", base=ROLLER), "rows[0].crown_drop_m: a crowned roller needs"),
     (_one_row("n_slices = 0", kind="radial_roller", base=ROLLER), "rows[0].n_slices: must be > 0"),
+    (_one_row("contact_angle_deg = 90.0", kind="crossed_roller", base=ROLLER), "rows[0].contact_angle_deg: must lie in (0, 90)"),
+    (_one_row("contact_angle_deg = \"45\"", kind="crossed_roller", base=ROLLER), "rows[0].contact_angle_deg: expected a number"),
+    (_one_row("pattern = \"+x\"", kind="crossed_roller", base=ROLLER), "rows[0].pattern: must be \"alternate\" or a string"),
+    (_one_row("pattern = \"\"", kind="crossed_roller", base=ROLLER), "rows[0].pattern: must be \"alternate\" or a string"),
+    (_one_row("diametral_clearance_m = -0.1", kind="crossed_roller", base=ROLLER), "rows[0].diametral_clearance_m: a preload of 0.1 m"),
+    (_one_row("diametral_clearance_m = nan", kind="crossed_roller", base=ROLLER), "rows[0].diametral_clearance_m:"),
+    (_one_row("axial_gap_m = 0.0", kind="crossed_roller", base=ROLLER), "rows[0].axial_gap_m: unknown key"),
     (_one_row(AC, head="moving_ring = \"middle\""), "bearing.moving_ring: must be one of 'inner', 'outer'"),
     (_one_row(AC) + "[load]\nFz_N = \"a lot\"\n", "load.Fz_N: expected a number"),
     (_one_row(AC) + "[load]\nFz_N = 1.0\nspectrum_csv = \"s.csv\"\n", "load.spectrum_csv: give the load components"),

@@ -37,7 +37,8 @@ TABLE_KEYS = {"bearing": [f.name for f in dataclasses.fields(BearingKeys)],
 NUMBERS = [0, -1, 1, 3, 2**63 - 1, -(2**63), 10**6, math.nan, math.inf, -math.inf, 1e308, -1e308, 5e-324, 0.5,
            0.49, 0.525, 45.0, 90.0, 91.0, -0.01, 1e-3, 1e-9, -1e-9]
 WORDS = ["", "x", "inner", "outer", "+z", "-z", "z", "straight", "crowned", "logarithmic", "back_to_back", "tandem",
-         "bearing_steel", "spectrum.csv", "nothere.csv", "/", "Ünïcødé", "two\nlines", "a" * 300, *ROW_TYPES]
+         "bearing_steel", "spectrum.csv", "nothere.csv", "/", "Ünïcødé", "two\nlines", "a" * 300, *ROW_TYPES,
+         "alternate", "+-", "++--", "-", "+-x"]  # crossed roller patterns
 CSVS = ["Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm\n0,0,-1e5,0,0\n", "Fx_N,Fy_N\n1,2\n", "Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm\n1,2\n",
         "Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,time_share\n0,0,1,0,0,-1\n", "", "\xff\xfe", "a\n\"b", "Fz_N\ninf\n",
         "Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,Fz_N\n0,0,0,0,0,0\n",

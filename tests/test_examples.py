@@ -89,11 +89,11 @@ def _axial_ball_load(row, F_a: float, Z: int) -> tuple[float, float]:
 
 
 def test_bearing_files(monkeypatch, tmp_path):
-    """The four example description files under a pure axial load F_a: every loaded ball carries
+    """The example description files under a pure axial load F_a: every loaded ball carries
     Q = F_a/(Z·sin α) with α the loaded contact angle of the Hertz approach (independent solve
     above), and every loaded thrust roller F_a/Z, its slices q_k = (c_L/n_s)·(δ_a − gap − drop_k)^(10/9)
-    with drop_k of the ISO/TS 16281 logarithmic profile, evaluated here (1e-8 relative: the
-    solver's equilibrium tolerance is 1e-10)."""
+    with drop_k of the ISO/TS 16281 logarithmic profile, and the crossed rollers of each diagonal alike,
+    evaluated here (1e-8 relative: the solver's equilibrium tolerance is 1e-10)."""
     from scipy.optimize import brentq
 
     ex = _run("bearing_files", monkeypatch, tmp_path)
@@ -128,6 +128,21 @@ def test_bearing_files(monkeypatch, tmp_path):
     assert res.rows[1].load_N == pytest.approx(np.full(front.n_rollers, F / front.n_rollers), rel=1e-8)
     assert res.rows[1].slice_load_N == pytest.approx(np.tile(q(d_a), (front.n_rollers, 1)), rel=1e-7)
     assert res.rows[0].load_N.max() == 0.0 and res.rows[2].load_N.max() == 0.0
+    # crossed roller bearing (preloaded): pushed along +z the ring moves by z alone (the rollers of each
+    # diagonal are equally spaced, their radial components cancel); a slice of a +α0 roller approaches
+    # by z·sin α0 − g − drop_k, of a −α0 roller by −z·sin α0 − g − drop_k (g = (P_d/2)·cos α0 < 0), and
+    # (Z/2)·sin α0·(Q₊ − Q₋) = F_a
+    res, row = ex.axial["crossed-roller"], ex.descriptions["crossed-roller"].bearing.rows[0]
+    a, ns, L = row.contact_angle_rad, row.n_slices, row.roller_length_m
+    x = -0.5 * L + (np.arange(ns) + 0.5) * L / ns
+    drop = 0.00035 * row.roller_diameter_m * np.log(1.0 / (1.0 - (2.0 * x / L) ** 2))
+    gap = 0.5 * (-0.02e-3) * math.cos(a)  # the file's diametral clearance
+    q = lambda z, s: row.contact_stiffness() / ns * np.clip(s * z * math.sin(a) - gap - drop, 0.0, None) ** (10 / 9)
+    Q = lambda z: (q(z, 1.0).sum(), q(z, -1.0).sum())
+    z = brentq(lambda z: row.n_rollers / 2 * math.sin(a) * (Q(z)[0] - Q(z)[1]) - F, 0.0, 1e-3, xtol=1e-18, rtol=1e-14)
+    assert res.displacement[2] == pytest.approx(z, rel=1e-8)
+    assert res.rows[0].load_N[0::2] == pytest.approx(np.full(row.n_rollers // 2, Q(z)[0]), rel=1e-8)
+    assert res.rows[0].load_N[1::2] == pytest.approx(np.full(row.n_rollers // 2, Q(z)[1]), rel=1e-8)
     # the outputs of the files' own loads: the pitch bearing's three load cases
     out = tmp_path / "bearing_files" / "pitch-bearing-four-point"
     assert len(ex.results["pitch-bearing-four-point"]) == 3

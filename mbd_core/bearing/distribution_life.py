@@ -25,6 +25,15 @@ Roller rows, per raceway, by ISO/TS 16281's laminae (the row's n_s slices, :mod:
 * per lamina k: q_e,k = (Σ_j q_jk^w / Z)^(1/w), w = 4 (rotating) or 9/2 (stationary), and
   L_k = (q_c/q_e,k)^4; the raceway's life (Σ_k L_k^(−9/8))^(−8/9).
 
+Crossed roller rows: the rollers of each diagonal (±α0) roll on their own flank of each ring's
+V-groove, so each diagonal is a row of its own of Z_d rollers at α0 (the laminae above with
+Z = Z_d, γ = D·cos α0/d_m and the equivalent loads over those Z_d rollers): four raceways, each
+passed Z_d times per revolution. The crossed roller bearing is taken as two angular-contact
+roller rows of Z_d (about Z/2) rollers, as ISO 281's radial roller formula would rate it with
+i = 2 rows of Z/2 rollers (:func:`.rating.radial_roller_rating_N`), not as one row of Z rollers on
+each raceway: a point of a flank is rolled over only by the rollers of its diagonal. b_m: radial roller (1.1) for
+α0 ≤ 45°, thrust roller (1.0) above.
+
 Thrust rows (α = 90°): γ = 0 and γ/cos α → D/d_m. b_m of ISO 281 Table 1 (defaults 1.3 ball, 1.1
 radial roller, 1.0 thrust roller); ISO 281's reduction factors (λ, ν) for edge stresses are not
 applied (1): give ``contact_ratings_N`` to use other Q_c.
@@ -169,14 +178,15 @@ def _slope(row) -> float:
 
 def _default_bm(row) -> float:
     if isinstance(row, RollerRow):
-        return BM_DEFAULTS["radial_roller" if row.orientation == "radial" else "thrust_roller"]
+        radial = row.nominal_contact_angle_rad <= math.pi / 4 + 1e-12
+        return BM_DEFAULTS["radial_roller" if radial else "thrust_roller"]
     return BM_DEFAULTS["radial_ball"]
 
 
 def _rotating_raceways(row, rotating_ring: str) -> str:
     """The raceway ("inner"/"outer") of the ring that turns relative to the load."""
     if isinstance(row, RollerRow):
-        # radial: load_sign +1 means the moving ring carries the inner raceway; thrust: "inner" is the moving ring's
+        # radial, crossed: load_sign +1 means the moving ring carries the inner raceway; thrust: "inner" is the moving ring's
         moving = "inner" if row.orientation == "thrust" or row.load_sign == 1 else "outer"
     else:
         moving = row.moving_raceway
@@ -200,20 +210,32 @@ def _ball_parts(row, sets, rotating_ring: str, bm: float, ratings) -> list[_Part
     return out
 
 
+def _roller_groups(row: RollerRow) -> list[tuple[str, np.ndarray]]:
+    """(label suffix, mask (Z,) of the rollers) of each group rolling on its own raceways: the whole
+    row, or each diagonal of a crossed row (module docstring)."""
+    if row.orientation != "crossed":
+        return [("", np.ones(row.n_rollers, dtype=bool))]
+    sig = row.diagonal_signs
+    return [(f", diagonal {label}", sig == s) for s, label in zip((1.0, -1.0), ("+α", "−α")) if np.any(sig == s)]
+
+
 def _roller_parts(row: RollerRow, dist: LoadDistribution, rotating_ring: str, bm: float, ratings) -> list[_Part]:
-    """One part per raceway of a roller row, with the lives (q_c/q_e,k)^4 of its n_s laminae."""
-    q = np.asarray(dist.row(row.name).slice_load_N, dtype=float)  # (Z, n_s) lamina loads, N
-    alpha = math.pi / 2 if row.orientation == "thrust" else 0.0
+    """One part per raceway of a roller row (per raceway and diagonal of a crossed row), with the
+    lives (q_c/q_e,k)^4 of its n_s laminae."""
+    q_all = np.asarray(dist.row(row.name).slice_load_N, dtype=float)  # (Z, n_s) lamina loads, N
+    alpha = row.nominal_contact_angle_rad
     out = []
-    for raceway in ("inner", "outer"):
-        label = f"{raceway} raceway"
-        Qc = ratings.get((row.name, label)) or roller_contact_rating_N(
-            row.roller_diameter_m, row.roller_length_m, row.pitch_diameter_m, alpha, row.n_rollers, raceway, bm)
-        qc = Qc * row.n_slices ** (-7.0 / 9.0)
-        qe = _w_mean(q, _W_LAMINA[raceway == _rotating_raceways(row, rotating_ring)], axis=0)
-        with np.errstate(divide="ignore"):
-            lives = np.where(qe > 0.0, (qc / np.where(qe > 0.0, qe, 1.0)) ** _P_LAMINA, math.inf)
-        out.append((label, Qc, float(np.max(qe)) * row.n_slices, lives))
+    for suffix, on in _roller_groups(row):
+        q, Z = q_all[on], int(np.sum(on))
+        for raceway in ("inner", "outer"):
+            label = f"{raceway} raceway{suffix}"
+            Qc = ratings.get((row.name, label)) or roller_contact_rating_N(
+                row.roller_diameter_m, row.roller_length_m, row.pitch_diameter_m, alpha, Z, raceway, bm)
+            qc = Qc * row.n_slices ** (-7.0 / 9.0)
+            qe = _w_mean(q, _W_LAMINA[raceway == _rotating_raceways(row, rotating_ring)], axis=0)
+            with np.errstate(divide="ignore"):
+                lives = np.where(qe > 0.0, (qc / np.where(qe > 0.0, qe, 1.0)) ** _P_LAMINA, math.inf)
+            out.append((label, Qc, float(np.max(qe)) * row.n_slices, lives))
     return out
 
 

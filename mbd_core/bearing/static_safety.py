@@ -32,6 +32,15 @@ C0a = Z·Q_lim (α = 90°), Q_lim the roller load at p0 = 4.0 GPa on the more cu
 (line contact, p0² = Q·E'/(2π·R·L), Johnson, *Contact Mechanics*, 1985, eq. 4.45); with
 R = (D/2)(1 − γ) this is ISO 76's C0r = 44·(1 − γ)·Z·L_we·D_we and C0a = 220·Z·L_we·D_we
 (the constants rounded for E = 207 GPa, ν = 0.3). P0r = F_r, P0a = F_a.
+
+Crossed roller rows (:mod:`..quasistatic.rows`) at α0 ≤ 45° are rated as the double-row radial
+roller bearing they are (each diagonal an angular-contact row of its rollers, i·Z = Z in all):
+C0r = Z·Q_lim·cos α0/5 (ISO 76 6.1: C0r = 44·(1 − D_we·cos α/D_pw)·i·Z·L_we·D_we·cos α), Q_lim on
+the conical raceways (γ = D·cos α0/d_m), and P0r = X0·F_r + Y0·F_a with ISO 76 6.2's double-row
+factors X0 = 1, Y0 = 0.44·cot α0. Above 45° they are thrust rows loaded in either direction by
+the rollers of one diagonal: C0a = Z_d·Q_lim·sin α0 (ISO 76 8.1, Z_d the fewer rollers of the two
+diagonals) and P0a = F_a + 2.3·F_r·tan α0 (ISO 76 8.2). The rows' tilting moment, which ISO 76
+does not cover, is in the contact-pressure s0 of :func:`static_safety` only.
 """
 
 from __future__ import annotations
@@ -49,7 +58,8 @@ from ..quasistatic.results import LoadDistribution
 from ..quasistatic.rows import BallRow, Bearing, RollerRow
 
 __all__ = ["RowStaticSafety", "static_safety", "contact_load_at_pressure_N", "ball_row_static_rating_N",
-           "ball_row_equivalent_static_load_N", "roller_row_static_rating_N", "classical_static_safety",
+           "ball_row_equivalent_static_load_N", "roller_row_static_rating_N", "roller_row_equivalent_static_load_N",
+           "classical_static_safety",
            "row_forces_N", "STRIBECK_ISO76"]
 
 #: Stribeck's factor of ISO 76's radial ball rating: Q_max = 5·F_r/(Z·cos α).
@@ -174,40 +184,57 @@ def ball_row_equivalent_static_load_N(row: BallRow, radial_N: float, axial_N: fl
 
 def roller_row_static_rating_N(row: RollerRow, pressure_limit_Pa: float | None = None) -> float:
     """ISO 76 basic static load rating of a roller row from the line-contact Hertz relation, N
-    (module docstring): C0r = Z·Q_lim/5 (radial), C0a = Z·Q_lim (thrust); Q_lim the whole roller's
+    (module docstring): C0r = Z·Q_lim·cos α0/5 (radial and crossed rows, α0 ≤ 45°), C0a = Z·Q_lim·sin α0
+    (thrust rows; crossed rows above 45° with the rollers of one diagonal); Q_lim the whole roller's
     load at p0 = ``pressure_limit_Pa`` (default 4.0 GPa) on the more curved raceway."""
     if not isinstance(row, RollerRow):
         raise ValueError(f"row: expected a RollerRow, got {type(row).__name__}")
     p = P0_STATIC_LIMIT_ROLLER_PA if pressure_limit_Pa is None else pressure_limit_Pa
     if not (math.isfinite(p) and p > 0.0):
         raise ValueError(f"pressure_limit_Pa must be a finite number > 0, got {pressure_limit_Pa!r}")
-    if row.orientation == "thrust":
-        raceways = [(math.inf, False)]
-    else:
-        raceways = [(row.pitch_diameter_m - row.roller_diameter_m, False),
-                    (row.pitch_diameter_m + row.roller_diameter_m, True)]
     q1 = 1.0
     q_lim = min(q1 * (p / float(line_contact(row.roller_diameter_m, d, row.roller_length_m, row.roller_material,
                                              row.race_material, concave=c).max_pressure_Pa(q1))) ** 2
-                for d, c in raceways)
-    return row.n_rollers * q_lim / (1.0 if row.orientation == "thrust" else STRIBECK_ISO76)
+                for _, d, c in row.raceway_diameters_m())
+    a0 = row.nominal_contact_angle_rad
+    if row.orientation == "thrust":
+        return row.n_rollers * q_lim
+    if a0 <= math.pi / 4 + 1e-12:
+        return row.n_rollers * q_lim * math.cos(a0) / STRIBECK_ISO76
+    sig = row.diagonal_signs
+    return float(min(np.sum(sig > 0), np.sum(sig < 0))) * q_lim * math.sin(a0)
+
+
+def roller_row_equivalent_static_load_N(row: RollerRow, radial_N: float, axial_N: float) -> float:
+    """ISO 76 static equivalent load of a roller row, N (module docstring): P0r = F_r (radial),
+    P0a = F_a (thrust); crossed rows P0r = F_r + 0.44·cot α0·F_a (α0 ≤ 45°, ISO 76 6.2, double row)
+    or P0a = F_a + 2.3·F_r·tan α0 (ISO 76 8.2)."""
+    for name, v in (("radial_N", radial_N), ("axial_N", axial_N)):
+        if not (math.isfinite(v) and v >= 0.0):
+            raise ValueError(f"{name} must be a finite number >= 0, got {v!r}")
+    if row.orientation == "radial":
+        return radial_N
+    if row.orientation == "thrust":
+        return axial_N
+    a0 = row.contact_angle_rad
+    if a0 <= math.pi / 4 + 1e-12:
+        return radial_N + 0.44 / math.tan(a0) * axial_N
+    return axial_N + 2.3 * radial_N * math.tan(a0)
 
 
 def classical_static_safety(row, radial_N: float, axial_N: float, X0: float = 0.6, Y0: float = 0.5) -> float:
     """s0 = C0/P0 of ISO 76 for a ball or roller row under the row forces (F_r, F_a), N.
 
     Ball rows: :func:`ball_row_static_rating_N`, :func:`ball_row_equivalent_static_load_N` (X0, Y0 of
-    radial rows). Roller rows: :func:`roller_row_static_rating_N` with P0r = F_r, P0a = F_a. ISO 76
+    radial rows). Roller rows: :func:`roller_row_static_rating_N`, :func:`roller_row_equivalent_static_load_N`
+    (F_a the row's axial force either way). ISO 76
     has no C0 here for four-point rows (rated by their contact pressure, :func:`static_safety`): ValueError.
     """
     if isinstance(row, BallRow):
         P0 = ball_row_equivalent_static_load_N(row, radial_N, axial_N, X0, Y0)
         C0 = ball_row_static_rating_N(row)
     elif isinstance(row, RollerRow):
-        for name, v in (("radial_N", radial_N), ("axial_N", axial_N)):
-            if not (math.isfinite(v) and v >= 0.0):
-                raise ValueError(f"{name} must be a finite number >= 0, got {v!r}")
-        P0 = axial_N if row.orientation == "thrust" else radial_N
+        P0 = roller_row_equivalent_static_load_N(row, radial_N, axial_N)
         C0 = roller_row_static_rating_N(row)
     else:
         raise ValueError(f"row {getattr(row, 'name', row)!r}: ISO 76 defines C0 and P0 for ball and roller rows, "

@@ -156,6 +156,9 @@ def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_rin
     pocket k at roller k; ``pocket_walls``: the pockets deform with the cage's stored ``"pockets"``
     sample (:meth:`ModelBuilder.add_pocket`).
     """
+    if row.orientation == "crossed":
+        raise ValueError(f"add_roller_row: row {row.name!r}: crossed roller rows are modelled by the quasi-static "
+                         "solver only (no V-groove raceway surfaces in the multibody model)")
     D, L, R, ns = row.roller_diameter_m, row.roller_length_m, row.pitch_diameter_m / 2, row.n_slices
     g2 = row.gap_m / 2
     x = -0.5 * L + (np.arange(ns) + 0.5) * L / ns

@@ -14,12 +14,13 @@ computed; the ellipse is truncated when α ± a/(f·D) leaves the groove's angle
 Kotzalas, *Rolling Bearing Analysis*, 5th ed., ch. 6, contact ellipse truncation). Roller contacts:
 each slice a Hertz line contact of length L/n_s (:func:`..contact.line.line_contact`); the set holds
 the most loaded slice of each roller (p0 and the half-width b there; semi-major = half the slice
-length). Static limits of p0 after ISO 76:2006: 4.2 GPa for ball, 4.0 GPa for roller bearings.
+length), on raceways of the curvature across the roller axis (conical for crossed rows,
+:meth:`.rows.RollerRow.raceway_diameters_m`). Static limits of p0 after ISO 76:2006: 4.2 GPa for
+ball, 4.0 GPa for roller bearings.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
@@ -154,30 +155,38 @@ def _four_point_row_sets(row: FourPointRow, res: RowLoads) -> list[ContactSet]:
     return out
 
 
-def _roller_raceways(row: RollerRow) -> list[tuple[str, float, bool]]:
-    """(raceway, raceway diameter m, concave) of a roller row's two contacts."""
-    if row.orientation == "thrust":
-        return [("inner", math.inf, False), ("outer", math.inf, False)]
-    return [("inner", row.pitch_diameter_m - row.roller_diameter_m, False),
-            ("outer", row.pitch_diameter_m + row.roller_diameter_m, True)]
-
-
-@register_contact_sets(RollerRow)
-def _roller_row_sets(row: RollerRow, res: RowLoads) -> list[ContactSet]:
-    q = np.zeros((len(res.load_N), row.n_slices)) if res.slice_load_N is None else np.asarray(res.slice_load_N)
-    q_max = q.max(axis=1) if q.size else np.zeros(len(res.load_N))
+def roller_line_sets(row: RollerRow, q_max: np.ndarray, angle_rad: np.ndarray, label_suffix: str = "") -> list[ContactSet]:
+    """The inner and the outer raceway set of a roller row's most loaded slices ``q_max`` (Z,), N:
+    Hertz line contacts of length L/n_s on the raceways of :meth:`.rows.RollerRow.raceway_diameters_m`."""
     half_length = np.full(len(q_max), 0.5 * row.roller_length_m / row.n_slices)
     out = []
-    for raceway, diameter_m, concave in _roller_raceways(row):
+    for raceway, diameter_m, concave in row.raceway_diameters_m():
         c = line_contact(row.roller_diameter_m, diameter_m, row.roller_length_m / row.n_slices,
                          row.roller_material, row.race_material, concave=concave)
         out.append(ContactSet(
-            row=row.name, label=f"{raceway} raceway", raceway=raceway, geometry="line",
-            load_N=q_max, contact_angle_rad=np.asarray(res.contact_angle_rad, dtype=float),
+            row=row.name, label=f"{raceway} raceway{label_suffix}", raceway=raceway, geometry="line",
+            load_N=q_max, contact_angle_rad=np.asarray(angle_rad, dtype=float),
             max_pressure_Pa=np.asarray(c.max_pressure_Pa(q_max), dtype=float),
             semi_major_m=half_length, semi_minor_m=np.asarray(c.half_width_m(q_max), dtype=float),
             truncated=np.zeros(len(q_max), dtype=bool), static_limit_Pa=P0_STATIC_LIMIT_ROLLER_PA,
         ))
+    return out
+
+
+@register_contact_sets(RollerRow)
+def _roller_row_sets(row: RollerRow, res: RowLoads) -> list[ContactSet]:
+    """Two sets (inner and outer raceway); a crossed row four, the two raceways of each diagonal
+    (+α0, −α0), each holding the rollers of its diagonal (the others zero): the two diagonals roll on
+    different flanks of the V-grooves."""
+    q = np.zeros((len(res.load_N), row.n_slices)) if res.slice_load_N is None else np.asarray(res.slice_load_N)
+    q_max = q.max(axis=1) if q.size else np.zeros(len(res.load_N))
+    if row.orientation != "crossed":
+        return roller_line_sets(row, q_max, res.contact_angle_rad)
+    out = []
+    for sign, label in zip((1.0, -1.0), DIAGONAL_LABELS):
+        on = row.diagonal_signs == sign
+        out += roller_line_sets(row, np.where(on, q_max, 0.0), np.full(len(q_max), row.contact_angle_rad),
+                                f", diagonal {label}")
     return out
 
 

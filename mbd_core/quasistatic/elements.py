@@ -133,20 +133,15 @@ def _ball_arrays(i_row: int, row: BallRow | FourPointRow) -> dict[str, np.ndarra
 
 
 def _slice_arrays(i_row: int, row: RollerRow) -> dict[str, np.ndarray]:
+    """Slices of a roller row: centres along each roller's axis, its normal (:meth:`RollerRow.roller_frames`)."""
     n, ns = row.n_rollers, row.n_slices
-    psi = np.repeat(_azimuths(n, row.first_azimuth_rad), ns)
-    e_r, _ = _frame(psi)
-    e_z = np.array([0.0, 0.0, 1.0])
+    e_r, _ = _frame(_azimuths(n, row.first_azimuth_rad))
+    axis, normal = (np.repeat(v, ns, axis=0) for v in row.roller_frames(e_r))
     L = row.roller_length_m
     x = np.tile(-0.5 * L + (np.arange(ns) + 0.5) * L / ns, n)  # slice centres along the roller
     drop = row.drop_m(x)
-    R = 0.5 * row.pitch_diameter_m
-    if row.orientation == "radial":
-        p = R * e_r + (row.axial_position_m + x)[:, None] * e_z
-        normal = row.load_sign * e_r
-    else:
-        p = (R + x)[:, None] * e_r + row.axial_position_m * e_z
-        normal = np.tile(row.load_sign * e_z, (n * ns, 1))
+    centre = 0.5 * row.pitch_diameter_m * e_r + row.axial_position_m * np.array([0.0, 0.0, 1.0])
+    p = np.repeat(centre, ns, axis=0) + x[:, None] * axis
     return dict(
         p_m=p,
         normal=normal,

@@ -62,7 +62,8 @@ class RowLoads:
     azimuth_rad : (Z,) element azimuth ψ, rad
     load_N : (Z,) normal load of a ball, or total load of a roller, N
     approach_m : (Z,) ball approach δ, or the largest slice approach of a roller, m
-    contact_angle_rad : (Z,) loaded contact angle (balls); nominal 0 / π/2 (radial / thrust rollers)
+    contact_angle_rad : (Z,) loaded contact angle (balls); nominal 0 / π/2 (radial / thrust rollers),
+        ±α0 of crossed rollers (the sign the roller's diagonal)
     unloaded : (Z,) True where the element carries no load
     slice_load_N : (Z, n_s) slice loads of rollers, or None for balls
 

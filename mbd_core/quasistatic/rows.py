@@ -26,13 +26,31 @@ force and gyroscopic moment are neglected (slow bearings).
 Four-point (gothic-arch) ball rows, two such ball pairs per ball along the diagonals ±α, are in
 :mod:`.rows_four_point`.
 
-Roller rows (ISO/TS 16281 slices): a roller of effective length L is cut into n_s slices; slice
-k at distance x_k from the roller centre has approach δ_k = u(p_k)·n − gap − drop(x_k) along the
-fixed contact normal n (radial row: n = s·e_r; thrust row: n = s·e_z) and carries
+Roller rows (ISO/TS 16281 slices): a roller of effective length L is cut into n_s slices along
+its axis a; slice k at p_k = c + x_k·a (c the roller centre) has approach
+δ_k = u(p_k)·n − gap − drop(x_k) along the fixed contact normal n (radial row: n = s·e_r, a = e_z;
+thrust row: n = s·e_z, a = e_r; crossed row, below) and carries
 q_k = (c_L/n_s)·δ_k^(10/9), c_L the roller's constant between both raceways. The roller profile
 drop(x) is parabolic, c·(2x/L)² with c the crown drop at the ends (0: straight roller), or
 logarithmic, p·ln(1/(1 − (2x/L)²)) (ISO/TS 16281:2008, the logarithmic roller profile; its default
 relief p = 0.00035·D_we), see :func:`roller_drop_m`.
+
+Crossed roller rows (``orientation="crossed"``): the rollers alternate between the two diagonals
+of a V-groove in each ring (90° for α0 = 45°), each roller touching each ring in one line contact,
+both on its normal n_k = s_r·cos α0·e_r + σ_k·sin α0·e_z (s_r = ``load_sign``, +1 when the moving
+ring carries the inner raceway; σ_k = ±1 the roller's diagonal, :attr:`RollerRow.diagonal_signs`),
+its axis a_k = cos α0·e_z − σ_k·s_r·sin α0·e_r in the meridian plane, perpendicular to n_k
+(pointing to +z: the slices are numbered from the roller's −z end, as in radial rows). With
+rigid rings each roller is then a sliced angular-contact roller along its own fixed normal,
+treated exactly as the radial and thrust rows: the rigid-ring load distribution of Harris &
+Kotzalas, *Rolling Bearing Analysis*, 5th ed., ch. 7, with the line contacts sliced along a
+normal that does not turn under load, as ISO/TS 16281:2008 slices angular-contact (tapered)
+rollers. A diametral clearance P_d (the free radial play of the concentric rings) gives each
+roller the gap g = (P_d/2)·cos α0 along its normal: a radial shift u_r of the moving ring closes
+n·u_r·e_r = u_r·cos α0 at the roller in its direction, so the ring touches at u_r = ±g/cos α0 and
+the free radial play is 2g/cos α0 = P_d; the free axial play is 2g/sin α0 = P_d·cot α0 (P_d at
+45°). (Harris & Kotzalas, ch. 2, radial and axial play of angular-contact bearings.) Negative =
+preload.
 """
 
 from __future__ import annotations
@@ -173,14 +191,16 @@ class RollerRow:
         Effective contact length L_we, m.
     pitch_diameter_m : float
         Pitch diameter d_m, m.
-    orientation : {"radial", "thrust"}
-        Radial row (roller axis parallel to the bearing axis, normal radial) or thrust row
-        (roller axis radial, normal axial).
+    orientation : {"radial", "thrust", "crossed"}
+        Radial row (roller axis parallel to the bearing axis, normal radial), thrust row
+        (roller axis radial, normal axial) or crossed row (rollers alternating between the two
+        diagonals ±α0 of V-grooves, module docstring).
     load_sign : int
-        +1 if a moving-ring displacement towards +e_r (radial row) or +z (thrust row) loads the
-        row, −1 for the opposite direction.
+        +1 if a moving-ring displacement towards +e_r (radial and crossed rows: the moving ring
+        carries the inner raceway) or +z (thrust row) loads the row, −1 for the opposite direction.
     gap_m : float
-        Clearance per roller along the normal, m (negative = preload).
+        Clearance per roller along the normal, m (negative = preload); of a crossed row
+        (P_d/2)·cos α0 for the diametral clearance P_d (module docstring).
     axial_position_m : float
         z of the roller centres, m.
     n_slices : int
@@ -199,6 +219,11 @@ class RollerRow:
     first_azimuth_rad : float
         Azimuth of roller 0, rad.
     roller_material, race_material : ElasticMaterial
+    contact_angle_rad : float or None
+        Crossed rows only: nominal contact angle α0, rad, in (0, π/2); default π/4 (a 90° V-groove).
+    pattern : str
+        Crossed rows only: the diagonal of each roller, ``"alternate"`` (roller 0 on +α0, roller 1
+        on −α0, …) or a string of ``+`` and ``-`` repeated around the row (``"++--"``).
     """
 
     name: str
@@ -206,7 +231,7 @@ class RollerRow:
     roller_diameter_m: float
     roller_length_m: float
     pitch_diameter_m: float
-    orientation: Literal["radial", "thrust"] = "radial"
+    orientation: Literal["radial", "thrust", "crossed"] = "radial"
     load_sign: int = 1
     gap_m: float = 0.0
     axial_position_m: float = 0.0
@@ -219,6 +244,8 @@ class RollerRow:
     race_material: ElasticMaterial = field(default=BEARING_STEEL)
     profile: Literal["parabolic", "logarithmic"] = "parabolic"
     log_relief_m: float | None = None
+    contact_angle_rad: float | None = None
+    pattern: str = "alternate"
 
     def __post_init__(self) -> None:
         who = f"roller row {self.name!r}"
@@ -226,8 +253,9 @@ class RollerRow:
         check_count(who, "n_slices", self.n_slices)
         check_positive(who, roller_diameter_m=self.roller_diameter_m, roller_length_m=self.roller_length_m,
                   pitch_diameter_m=self.pitch_diameter_m)
-        if self.orientation not in ("radial", "thrust"):
-            raise ValueError(f"{who}: orientation must be 'radial' or 'thrust', got {self.orientation!r}")
+        if self.orientation not in ("radial", "thrust", "crossed"):
+            raise ValueError(f"{who}: orientation must be 'radial', 'thrust' or 'crossed', got {self.orientation!r}")
+        self._check_crossed(who)
         check_sign(who, "load_sign", self.load_sign)
         check_finite(who, gap_m=self.gap_m, axial_position_m=self.axial_position_m,
                 crown_drop_m=self.crown_drop_m, first_azimuth_rad=self.first_azimuth_rad)
@@ -240,13 +268,85 @@ class RollerRow:
             check_positive(who, stiffness_N_per_m10_9=self.stiffness_N_per_m10_9)
         if self.orientation == "thrust" and self.roller_length_m >= self.pitch_diameter_m:
             raise ValueError(f"{who}: roller_length_m must be shorter than pitch_diameter_m")
-        if self.orientation == "radial" and self.pitch_diameter_m <= self.roller_diameter_m:
+        if self.orientation != "thrust" and self.pitch_diameter_m <= self.roller_diameter_m:
             raise ValueError(f"{who}: pitch_diameter_m must exceed roller_diameter_m")
         if self.n_rollers * self.roller_diameter_m > math.pi * self.pitch_diameter_m * (1 + 1e-9):
             raise ValueError(
                 f"{who}: {self.n_rollers} rollers of {self.roller_diameter_m} m do not fit on the pitch circle "
                 f"of {self.pitch_diameter_m} m"
             )
+
+    def _check_crossed(self, who: str) -> None:
+        """Contact angle and pattern: given for crossed rows only (the angle defaults to π/4 there)."""
+        if self.orientation != "crossed":
+            if self.contact_angle_rad is not None:
+                raise ValueError(f"{who}: contact_angle is only used by crossed rows, not {self.orientation!r} ones")
+            if self.pattern != "alternate":
+                raise ValueError(f"{who}: pattern is only used by crossed rows, not {self.orientation!r} ones")
+            return
+        if self.contact_angle_rad is None:
+            object.__setattr__(self, "contact_angle_rad", math.pi / 4)
+        a = self.contact_angle_rad
+        if not (isinstance(a, (int, float)) and 0.0 < a < math.pi / 2):
+            raise ValueError(f"{who}: contact_angle must lie in (0, 90) deg, got "
+                             f"{math.degrees(a) if isinstance(a, (int, float)) else a!r}")
+        p = self.pattern
+        if not (isinstance(p, str) and (p == "alternate" or (p and set(p) <= {"+", "-"}))):
+            raise ValueError(f"{who}: pattern must be 'alternate' or a string of '+' and '-' (the diagonal of "
+                             f"each roller, repeated around the row), got {p!r}")
+
+    @property
+    def nominal_contact_angle_rad(self) -> float:
+        """α0 of the roller contacts, rad: 0 (radial), π/2 (thrust), ``contact_angle_rad`` (crossed)."""
+        if self.orientation == "crossed":
+            return self.contact_angle_rad
+        return 0.0 if self.orientation == "radial" else math.pi / 2
+
+    @property
+    def diagonal_signs(self) -> np.ndarray:
+        """σ_k = ±1 (Z,) of every roller: its diagonal (+α0 or −α0) in a crossed row, +1 in the others."""
+        if self.orientation != "crossed":
+            return np.ones(self.n_rollers)
+        p = "+-" if self.pattern == "alternate" else self.pattern
+        return np.array([1.0 if p[k % len(p)] == "+" else -1.0 for k in range(self.n_rollers)])
+
+    @property
+    def contact_angles_rad(self) -> np.ndarray:
+        """Nominal contact angle of every roller (Z,), rad: σ_k·α0 for crossed rows (signed by the
+        diagonal), 0 (radial) and π/2 (thrust) otherwise."""
+        return self.nominal_contact_angle_rad * self.diagonal_signs
+
+    def roller_frames(self, e_r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Unit roller axes and contact normals (Z, 3) for the radial unit vectors ``e_r`` (Z, 3) of
+        the rollers (module docstring): the slices lie along the axis, the moving ring loads the
+        roller along the normal."""
+        e_z = np.zeros_like(e_r)
+        e_z[:, 2] = 1.0
+        s = float(self.load_sign)
+        if self.orientation == "radial":
+            return e_z, s * e_r
+        if self.orientation == "thrust":
+            return e_r, s * e_z
+        a, sig = self.contact_angle_rad, self.diagonal_signs[:, None]
+        normal = (s * math.cos(a)) * e_r + (sig * math.sin(a)) * e_z
+        axis = math.cos(a) * e_z - (sig * s * math.sin(a)) * e_r
+        return axis, normal
+
+    def raceway_diameters_m(self) -> list[tuple[str, float, bool]]:
+        """(raceway, diameter m, concave) of the roller's two line contacts, the diameter the one of
+        the cylinder with the raceway's curvature across the roller axis.
+
+        A conical raceway at contact angle α touched at radius r = (d_m ∓ D·cos α)/2 has that
+        curvature cos α/r (Meusnier), so the diameter is (d_m ∓ D·cos α)/cos α, giving the curvature
+        sums (2/D)/(1 ∓ γ) with γ = D·cos α/d_m of ISO 281 and ISO 76 (Harris & Kotzalas, *Rolling
+        Bearing Analysis*, 5th ed., ch. 2, curvature of angular-contact raceways): d_m ∓ D for
+        radial rows, flat (inf) for thrust rows; "inner" the convex one.
+        """
+        if self.orientation == "thrust":
+            return [("inner", math.inf, False), ("outer", math.inf, False)]
+        c = math.cos(self.nominal_contact_angle_rad)
+        d, D = self.pitch_diameter_m, self.roller_diameter_m
+        return [("inner", (d - D * c) / c, False), ("outer", (d + D * c) / c, True)]
 
     def _check_profile(self, who: str) -> None:
         if self.profile not in ("parabolic", "logarithmic"):

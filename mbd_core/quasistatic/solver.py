@@ -442,8 +442,7 @@ def row_loads(bearing: Bearing, bg: BallGroup, sg: SliceGroup, balls, slices) ->
             ns = row.n_slices
             q_sl = Qs[m].reshape(row.n_rollers, ns)
             d_sl = ds[m].reshape(row.n_rollers, ns)
-            angle = 0.0 if row.orientation == "radial" else np.pi / 2
             total = q_sl.sum(axis=1)
             rows.append(RowLoads(row.name, "roller", psi, total, d_sl.max(axis=1),
-                                 np.full(row.n_rollers, angle), total <= 0.0, q_sl))
+                                 row.contact_angles_rad, total <= 0.0, q_sl))
     return tuple(rows)

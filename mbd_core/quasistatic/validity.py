@@ -96,7 +96,7 @@ def _ball_row_warnings(row: BallRow | FourPointRow, res, which: str = "") -> lis
 def _roller_row_warnings(row: RollerRow, res) -> list[str]:
     if res.slice_load_N is None or not (res.slice_load_N > 0.0).any():
         return []
-    raceway_m = row.pitch_diameter_m - row.roller_diameter_m if row.orientation == "radial" else math.inf
+    _, raceway_m, _ = row.raceway_diameters_m()[0]  # the inner, convex raceway
     c = line_contact(row.roller_diameter_m, raceway_m, row.roller_length_m / row.n_slices,
                      row.roller_material, row.race_material)
     k, j = np.unravel_index(int(np.argmax(res.slice_load_N)), res.slice_load_N.shape)
