@@ -271,7 +271,14 @@ def reduce_ring(m: RingModel, bearing: Bearing):
                                  directions=p.directions, n_max=m.keys.raceway_harmonics)
                      for row, p in m.places.items())
     spec = ReductionSpec(n_modes=m.keys.n_modes, interfaces=(_support(m),), raceways=raceways)
-    return reduced_body(m.profile, _mesh_spec(m), m.material, spec, name=f"{bearing.name}: {m.name} ring")
+    try:
+        return reduced_body(m.profile, _mesh_spec(m), m.material, spec, name=f"{bearing.name}: {m.name} ring")
+    except ValueError as exc:
+        if not str(exc).startswith("interface "):
+            raise
+        key = "bolts.washer_diameter_m" if m.keys.bolts is not None else "clamped_face"
+        raise CaseError(f"rings.{m.name}.{key}: the support holds too few nodes of the mesh ({exc}); give a larger "
+                        f"washer or a smaller element_size_m (now {_mesh_spec(m).size_m * 1e3:.4g} mm)") from None
 
 
 def flexible_rings(models: dict[str, RingModel], bearing: Bearing) -> tuple[FlexibleRing, ...]:

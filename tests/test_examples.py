@@ -147,3 +147,21 @@ def test_bearing_files(monkeypatch, tmp_path):
     out = tmp_path / "bearing_files" / "pitch-bearing-four-point"
     assert len(ex.results["pitch-bearing-four-point"]) == 3
     assert (out / "contact_angles.png").stat().st_size > 10_000 and (out / "element_loads.csv").stat().st_size > 0
+
+
+def test_modal_rings(monkeypatch, tmp_path):
+    """The pitch bearing with modal rings (quick size): every load case in equilibrium (≤ 1e-9), and
+    each point of the modal-ring limiting load curve, re-solved here, puts the most loaded contact
+    at the ISO 76 limit p0 = 4200 MPa (s0 = 1, ball on steel raceway: ISO 76:2006, 4.2 GPa) to 1e-6."""
+    from mbd_core.quasistatic import RingLoad
+    from mbd_core.quasistatic.contacts import contact_sets
+
+    ex = _run("modal_rings", monkeypatch, tmp_path)
+    assert ex.modal.flexible
+    assert all(r.equilibrium_error <= 1e-9 for r in ex.modal_results)
+    curve = ex.curve_modal
+    for k in np.flatnonzero(curve.carried)[:3]:
+        dist = ex.modal.solve(RingLoad(Fx_N=curve.radial_N, Fz_N=float(curve.axial_N[k]), My_Nm=float(curve.moment_Nm[k])))
+        p0 = max(float(np.max(s.max_pressure_Pa)) for s in contact_sets(ex.desc.bearing, dist) if len(s.max_pressure_Pa))
+        assert p0 == pytest.approx(4200e6, rel=1e-6)
+    assert (tmp_path / "modal_rings" / "limiting_load_curve.png").is_file()
