@@ -78,7 +78,9 @@ def full() -> str:
     ratio = ex["ratio"]
     return (f"modal_case_ms={per_case * 1e3:.1f} reduction_s={ex['reduction_s']:.1f} "
             f"curve_ratio_min={np.nanmin(ratio):.4f} curve_ratio_mean={np.nanmean(ratio):.4f} "
-            f"curve_ratio_max={np.nanmax(ratio):.4f} total_cpu_s={total:.0f} peak_mb={_peak_mb():.0f}")
+            f"curve_ratio_max={np.nanmax(ratio):.4f} eq_limited_rays_modal={int(ex['curve_modal'].equilibrium_limited.sum())} "
+            f"eq_limited_rays_rigid={int(ex['curve_rigid'].equilibrium_limited.sum())} total_cpu_s={total:.0f} "
+            f"peak_mb={_peak_mb():.0f}")
 
 
 def main() -> None:

@@ -145,4 +145,6 @@ def curve_comparison(curve: LimitingLoadCurve, rigid: LimitingLoadCurve) -> dict
     return {"rays_compared": int(ok.sum()), "min_ratio": float(ratio[k]), "mean_ratio": float(np.nanmean(ratio)),
             "max_ratio": float(np.nanmax(ratio)),
             "min_ratio_at": {"axial_force_N": float(rigid.axial_N[k]), "tilting_moment_Nm": float(rigid.moment_Nm[k])},
+            "equilibrium_limited_rays": {"modal": int(curve.equilibrium_limited.sum()),
+                                         "rigid": int(rigid.equilibrium_limited.sum())},
             "ratio_per_ray": [None if not np.isfinite(v) else float(v) for v in ratio]}

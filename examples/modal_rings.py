@@ -70,7 +70,9 @@ ratio = ray_ratios(curve_modal, curve_rigid)
 worst = int(np.nanargmin(ratio))
 print(f"  limiting load curve, modal over rigid along {np.isfinite(ratio).sum()} rays: min {ratio[worst]:.3f} "
       f"(at F_a {curve_rigid.axial_N[worst] / 1e3:.0f} kN, M {curve_rigid.moment_Nm[worst] / 1e3:.0f} kN·m), "
-      f"mean {np.nanmean(ratio):.3f}, max {np.nanmax(ratio):.3f}")
+      f"mean {np.nanmean(ratio):.3f}, max {np.nanmax(ratio):.3f}; rays limited by the end of equilibrium "
+      f"(balls over the groove shoulder) {int(curve_modal.equilibrium_limited.sum())} modal, "
+      f"{int(curve_rigid.equilibrium_limited.sum())} rigid")
 OUT.mkdir(parents=True, exist_ok=True)
 plot_limiting_load_curve(curve_modal, OUT / "limiting_load_curve.png", desc.name, reference=curve_rigid,
                          labels=("modal rings", "rigid rings"))

@@ -283,3 +283,15 @@ def test_modes_of_a_described_ring_against_thin_ring_theory(tmp_path, capsys):
     E, rho = 207e9, 7850.0  # bearing_steel
     f2 = 6.0 / math.sqrt(5.0) * math.sqrt(E * I / (rho * A * R**4)) / (2.0 * math.pi)
     assert f_in and f_in[0] == pytest.approx(f2, rel=0.03)
+
+
+def test_load_steps_reach_the_same_equilibrium(desc, solver):
+    """The load applied in 8 steps (the fallback where Newton from the rigid-ring start fails) ends
+    in the equilibrium of the direct solve: displacement and modal coordinates to 1e-9 relative."""
+    load = RingLoad(Fx_N=2.0e4, Fz_N=-3.0e5, My_Nm=-1.5e4)
+    direct = solve_flexible_load_distribution(solver.model, load)
+    stepped = solve_flexible_load_distribution(solver.model, load, load_steps=8)
+    assert stepped.equilibrium_error <= 1e-9
+    assert np.max(np.abs(stepped.displacement - direct.displacement)) <= 1e-9 * np.max(np.abs(direct.displacement))
+    for a, b in zip(stepped.modal_coordinates, direct.modal_coordinates):
+        assert np.max(np.abs(a - b)) <= 1e-9 * np.max(np.abs(b))

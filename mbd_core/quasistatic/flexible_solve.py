@@ -29,6 +29,9 @@ from .solver import (
 )
 from .validity import approach_limit_error, load_distribution_warnings
 
+#: Load steps tried, one count after the other, when Newton from the rigid-ring solution fails.
+CONTINUATION_STEPS = (4, 16)
+
 __all__ = ["RacewayDeflection", "FlexibleLoadDistribution", "solve_flexible_load_distribution", "condensed_stiffness"]
 
 
@@ -107,6 +110,7 @@ def solve_flexible_load_distribution(
     tolerance: float = 1e-10,
     max_iterations: int = 100,
     initial_displacement: np.ndarray | None = None,
+    load_steps: int | None = None,
 ) -> FlexibleLoadDistribution:
     """Equilibrium of the moving ring and of the flexible rings' modes under ``load``.
 
@@ -123,6 +127,10 @@ def solve_flexible_load_distribution(
         Newton iterations per stage before giving up.
     initial_displacement : (5,) array, optional
         Starting q (m, rad); default from a linear spring estimate.
+    load_steps : int, optional
+        Apply the load in this many equal steps, each solved from the last (stage 2). Default: at
+        once, and where that Newton fails (rings deflecting far beyond the rigid-ring solution) in
+        :data:`CONTINUATION_STEPS` steps.
 
     Raises
     ------
@@ -133,6 +141,8 @@ def solve_flexible_load_distribution(
         raise TypeError(f"model must be a FlexibleBearingModel (build_flexible_model), got {type(model).__name__}")
     if not isinstance(load, RingLoad):
         raise TypeError(f"load must be a RingLoad, got {type(load).__name__}")
+    if load_steps is not None and (isinstance(load_steps, bool) or not isinstance(load_steps, int) or load_steps < 1):
+        raise ValueError(f"load_steps must be an integer ≥ 1, got {load_steps!r}")
     bearing = model.bearing
     S = model.dof_scale
     f_ext = load.as_array()
@@ -151,9 +161,13 @@ def solve_flexible_load_distribution(
         y[:5] = np.asarray(initial_displacement, dtype=float).reshape(5) * S[:5]
         y[:5][~supported] = 0.0
 
-    def residual(y_scaled, jac=True):
-        R, J = model.residual(y_scaled / S, load, jac)
-        return R / S, (None if J is None else J / S[:, None] / S[None, :])
+    def residual_at(case: RingLoad):
+        def residual(y_scaled, jac=True):
+            R, J = model.residual(y_scaled / S, case, jac)
+            return R / S, (None if J is None else J / S[:, None] / S[None, :])
+        return residual
+
+    residual = residual_at(load)
 
     # relative to the load at every load (no absolute floor), overflow-safe
     scale = safe_norm(f_ext / S[:5])
@@ -166,7 +180,23 @@ def solve_flexible_load_distribution(
     element_sum = float(Qb.sum() + Qs.sum())
     scale = max(scale, element_sum if math.isfinite(element_sum) else 0.0)
     free = np.concatenate((free_q, np.arange(5, N)))
-    y, R, norm, it2 = damped_newton(residual, y, free, tolerance * scale, max_iterations, fallback)
+    y1, it2, norm = y, 0, math.inf
+    if load_steps is None:
+        y, R, norm, it2 = damped_newton(residual, y1, free, tolerance * scale, max_iterations, fallback)
+    for n_steps in (CONTINUATION_STEPS if load_steps is None else (int(load_steps),)):
+        if norm <= tolerance * scale:
+            break
+        # Newton from the rigid-ring solution can fail where the rings deflect far beyond it (large
+        # loads on soft rings): the load applied in equal steps, each solved from the last
+        y = y1 * 0.0
+        y[:5] = y1[:5] / n_steps
+        for k in range(1, n_steps + 1):
+            part = RingLoad(*(f_ext * (k / n_steps)))
+            y, R, norm, it = damped_newton(residual_at(part), y, free, tolerance * scale * k / n_steps,
+                                           max_iterations, fallback)
+            it2 += it
+            if not norm <= tolerance * scale * k / n_steps:
+                break
     if not norm <= tolerance * scale:
         raise no_equilibrium_error(bearing.name, it1 + it2, R[:5], S[:5], f_ext)
     return _collect(model, load, y / S, it1 + it2, norm / scale if scale > 0.0 else 0.0, held)
