@@ -14,7 +14,6 @@ import pytest
 from scipy.integrate import quad
 
 from cases.bearing_file import loads_bearing
-from cases.bearing_rings import flexible_rings
 from cases.bearing_solver import bearing_solver
 from cases.config import CaseError
 from cms_reduction.body import with_stiffness_scaled
@@ -238,7 +237,7 @@ def test_dxf_section_of_a_ring(desc, tmp_path):
     """The outer ring's box section drawn in a DXF (mm) and read back as its section: same area, the
     raceway found on the groove layer; an open drawing stops at the key before any meshing."""
     _write_dxf(desc.rings["outer"].profile, tmp_path / "outer.dxf")
-    dxf = f"""
+    dxf = """
 [rings.outer]
 section = "dxf"
 dxf_file = "outer.dxf"

@@ -188,7 +188,7 @@ def solve_flexible_load_distribution(
             break
         # Newton from the rigid-ring solution can fail where the rings deflect far beyond it (large
         # loads on soft rings): the load applied in equal steps, each solved from the last
-        y = y1 * 0.0
+        y = np.zeros_like(y1)
         y[:5] = y1[:5] / n_steps
         for k in range(1, n_steps + 1):
             part = RingLoad(*(f_ext * (k / n_steps)))
