@@ -280,11 +280,19 @@ def test_clearance_is_the_free_play_of_the_gothic_arches(clearance_m):
     assert 0.0 < z_ref - z_free < 0.05 * z_free and np.all(res.rows[0].n_contact_points == 2)
 
 
-def test_flexible_rings_refuse_four_point_rows():
+def test_flexible_model_without_rings_reproduces_the_rigid_four_point_row():
+    """A four-point row in the flexible-ring model with no flexible ring is the rigid-ring problem:
+    the same per-diagonal loads as :func:`solve_load_distribution` (1e-9 of the largest; both solve
+    to 1e-10). Flexible rings on four-point rows: tests/test_bearing_rings.py."""
     from mbd_core.quasistatic.flexible import build_flexible_model
+    from mbd_core.quasistatic.flexible_solve import solve_flexible_load_distribution
 
-    with pytest.raises(ValueError, match="row 'fp' is a four-point row"):
-        build_flexible_model(Bearing("b", (_row(),)))
+    bearing = Bearing("b", (_row(),))
+    load = RingLoad(Fx_N=2e4, Fz_N=-5e4, My_Nm=3e4)
+    flex = solve_flexible_load_distribution(build_flexible_model(bearing), load)
+    rigid = solve_load_distribution(bearing, load)
+    q_f, q_r = flex.rows[0].contact_load_N, rigid.rows[0].contact_load_N
+    assert np.max(np.abs(q_f - q_r)) <= 1e-9 * q_r.max()
 
 
 def test_validity_warnings_name_the_diagonal():

@@ -96,7 +96,7 @@ def test_every_command_refuses_a_foreign_or_empty_out_before_its_work(tmp_path, 
     def no_work(*args, **kwargs):
         raise AssertionError("work started before --out was checked")
 
-    monkeypatch.setattr(cli, "solve_load_distribution", no_work)
+    monkeypatch.setattr(cli, "bearing_solver", no_work)
     monkeypatch.setattr(fem_report, "part_modes", no_work)
     monkeypatch.setattr(run_mod, "resolve_case", no_work)
     out = tmp_path / "results"
