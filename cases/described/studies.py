@@ -1,0 +1,73 @@
+"""The studies of a described bearing: the path of ``flexbearing loaddist``, inside a run's folder."""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+from ..bearing_solver import bearing_solver
+from ..loaddist_command import bearing_description, loaddist_outputs
+from ..overrides import StudyEntry, unused_keys
+from .case import DescribedCase
+
+__all__ = ["STUDIES", "case_unused_keys", "uses_dynamics", "run_study"]
+
+
+def _options(case: DescribedCase, folder: str, curve: bool) -> SimpleNamespace:
+    """The ``loaddist`` options the case stands for."""
+    life = case.life
+    return SimpleNamespace(out=folder, limiting_curve=curve, s0=case.study.s0 if curve else 1.0,
+                           p0_limit_MPa=(case.study.p0_limit_MPa or None) if curve else None,
+                           rotating_ring=None if life.rotating_ring == "none" else life.rotating_ring,
+                           speed_rpm=None if life.rotating_ring == "none" else life.speed_rpm, json=True)
+
+
+def _figures(summary: dict, out) -> None:
+    """Key figures of the loaddist summary into the run's summary and report."""
+    cases = summary.get("load_cases", [summary])
+    worst = max((r["max_load_N"] for c in cases for r in c["rows"]), default=math.nan)
+    s0 = min((c["static_safety"]["s0"] for c in cases if c.get("static_safety")), default=None)
+    out.summary.update(largest_element_load_N=worst, s0_min=s0, load_cases=len(cases), rings=summary.get("rings"))
+    out.note(f"{len(cases)} load case(s): largest element load {worst:.0f} N" + (f", s0 {s0:.3g}" if s0 else ""))
+    ratio = summary.get("limiting_load_curve_modal_over_rigid")
+    if ratio and ratio.get("rays_compared"):
+        out.summary["limiting_curve_modal_over_rigid_min"] = ratio["min_ratio"]
+        out.note(f"limiting load curve with modal rings: {ratio['min_ratio']:.3f} … {ratio['max_ratio']:.3f} of the "
+                 "rigid-ring one along its rays")
+    for c in cases:
+        out.warn(c.get("warnings", ()), f"load case {c.get('case', 1)}")
+
+
+def _run(curve: bool):
+    def run(case: DescribedCase, out, progress=None) -> None:
+        name, desc = bearing_description(case.bearing.file)
+        solver = bearing_solver(desc, rigid=case.bearing.rings == "rigid")
+        loads = desc.load_cases
+        results = [solver.solve(load) for load in (progress(loads, "load cases") if progress else loads)]
+        summary = loaddist_outputs(_options(case, str(out.path("loaddist")), curve), name, desc, results,
+                                   desc.time_share, solver)
+        _figures(summary, out)
+    return run
+
+
+_LIFE = "the rating life needs life.rotating_ring"
+STUDIES = {
+    "load-distribution": StudyEntry(run=_run(False)),
+    "limiting-curve": StudyEntry(run=_run(True), sweeps=("s0", "p0_limit_MPa")),
+}
+
+
+def case_unused_keys(case: DescribedCase) -> dict[str, str]:
+    """Every key of ``case`` its study does not read → what does its job."""
+    out = unused_keys(case.study.kind, STUDIES, {}, ())
+    if case.life.rotating_ring == "none":
+        out["life.speed_rpm"] = _LIFE
+    return out
+
+
+def uses_dynamics(case: DescribedCase) -> bool:
+    return False
+
+
+def run_study(case: DescribedCase, out, progress=None) -> None:
+    STUDIES[case.study.kind].run(case, out, progress)
