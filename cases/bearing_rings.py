@@ -36,6 +36,7 @@ from mbd_core.quasistatic.flexible import FlexibleRing
 from mbd_core.quasistatic.rows import RollerRow
 
 from .config import CaseError, from_mapping
+from .mesh_budget import check_model_size
 from .ring_sections import box_section, match_raceways, raceway_places
 
 __all__ = ["RingKeys", "BoltKeys", "RingModel", "ring_models", "ring_profile", "reduce_ring", "flexible_rings",
@@ -244,7 +245,13 @@ def ring_models(bearing: Bearing, moving_ring: str, tables: dict, materials: dic
         if keys.material not in materials:
             raise CaseError(f"{where}.material: unknown material {keys.material!r}; known: {', '.join(sorted(materials))}")
         side, profile, raceways, places = ring_profile(bearing, ring, moving_ring, keys, where, base_dir)
-        out[ring] = RingModel(ring, side, profile, raceways, places, keys, materials[keys.material])
+        model = RingModel(ring, side, profile, raceways, places, keys, materials[keys.material])
+        try:  # the mesh can give the modes and fits in memory (estimated before any meshing)
+            check_model_size(profile, _mesh_spec(model).size_m, keys.n_modes, f"{where}.element_size_m",
+                             f"{where}.n_modes", n_rigid=0)
+        except ValueError as exc:
+            raise CaseError(str(exc)) from None
+        out[ring] = model
     return out
 
 

@@ -182,6 +182,8 @@ def test_bolt_patches_are_washer_discs(desc):
     (("n_modes = 12\nraceway_harmonics = 4\nelement_size_m = 0.03\nclamped", "n_modes = 0\nclamped"),
      "rings.outer.n_modes: must lie in 1"),
     (("[rings.inner]", "[rings.middle]\n[rings.inner]"), "rings.middle: unknown ring"),
+    (("element_size_m = 0.03\n[rings.inner.bolts]", "element_size_m = 0.0005\n[rings.inner.bolts]"),
+     "rings.inner.element_size_m = 0.0005 would give"),
 ])
 def test_bad_ring_tables_name_the_key(change, message):
     text = SMALL.replace(*change, 1)
