@@ -90,6 +90,7 @@ class RingKeys:
     n_modes: int = 20
     raceway_harmonics: int = 8
     element_size_m: float | None = None
+    element: Literal["hex27", "tet10"] = "hex27"
 
     def __post_init__(self) -> None:
         for key in ("inner_diameter_m", "outer_diameter_m", "z_min_m", "z_max_m", "element_size_m"):
@@ -258,7 +259,7 @@ def ring_models(bearing: Bearing, moving_ring: str, tables: dict, materials: dic
 def _mesh_spec(m: RingModel) -> MeshSpec:
     r0, r1, z0, z1 = m.profile.bounds_m
     size = m.keys.element_size_m or min(r1 - r0, z1 - z0) / 3.0
-    return MeshSpec(size, "hex27")
+    return MeshSpec(size, m.keys.element)
 
 
 def _support(m: RingModel) -> InterfaceSpec:
@@ -280,6 +281,10 @@ def reduce_ring(m: RingModel, bearing: Bearing):
     spec = ReductionSpec(n_modes=m.keys.n_modes, interfaces=(_support(m),), raceways=raceways)
     try:
         return reduced_body(m.profile, _mesh_spec(m), m.material, spec, name=f"{bearing.name}: {m.name} ring")
+    except RuntimeError as exc:
+        if "quadrilaterals only" not in str(exc):
+            raise
+        raise CaseError(f"rings.{m.name}.element: {exc} (element = \"tet10\" in [rings.{m.name}])") from None
     except ValueError as exc:
         if not str(exc).startswith("interface "):
             raise
@@ -305,5 +310,5 @@ def ring_part_of(desc, ring: str):
         given = ", ".join(desc.rings) or "none"
         raise ValueError(f"--ring {ring}: the description file gives no [rings.{ring}] table (rings given: {given})")
     m = desc.rings[ring]
-    return RingPart(f"{desc.name}: {ring} ring", lambda: (m.profile, None), m.material, _mesh_spec(m).size_m, "hex27",
-                    f"{ring} ring of {desc.name} ({m.keys.section} section)")
+    return RingPart(f"{desc.name}: {ring} ring", lambda: (m.profile, None), m.material, _mesh_spec(m).size_m,
+                    m.keys.element, f"{ring} ring of {desc.name} ({m.keys.section} section)")

@@ -296,3 +296,4 @@ def test_load_steps_reach_the_same_equilibrium(desc, solver):
     assert np.max(np.abs(stepped.displacement - direct.displacement)) <= 1e-9 * np.max(np.abs(direct.displacement))
     for a, b in zip(stepped.modal_coordinates, direct.modal_coordinates):
         assert np.max(np.abs(a - b)) <= 1e-9 * np.max(np.abs(b))
+
