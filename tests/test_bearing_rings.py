@@ -147,9 +147,11 @@ def test_very_stiff_modal_rings_give_the_rigid_ring_loads(desc, solver):
     rigid = solve_load_distribution(desc.bearing, load)
     qf, qr = flex.rows[0].contact_load_N, rigid.rows[0].contact_load_N
     assert np.max(np.abs(qf - qr)) <= 1e-4 * qr.max()
-    # and the real (soft) rings do change the loads: the test would see a coupling that does nothing
-    soft = solver.solve(load).rows[0].contact_load_N
-    assert np.max(np.abs(soft - qr)) >= 1e-3 * qr.max()
+    # and soft rings (E / 100) do change the loads: the test would see a coupling that does nothing
+    # (the real rings of this small bearing are too stiff to tell: their bending moves Q_max ~0.1 %)
+    soft = tuple(FlexibleRing(r.name, with_stiffness_scaled(r.body, 1e-2), r.ring, dict(r.raceways)) for r in solver.rings)
+    q_soft = solve_flexible_load_distribution(build_flexible_model(desc.bearing, soft), load).rows[0].contact_load_N
+    assert np.max(np.abs(q_soft - qr)) >= 1e-2 * qr.max()
 
 
 def test_bolt_patches_are_washer_discs(desc):
