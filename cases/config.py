@@ -26,7 +26,7 @@ from typing import Any, Literal, Union, get_args, get_origin, get_type_hints
 
 import tomli_w
 
-__all__ = ["CaseError", "FAMILY_KEY", "dumps_case", "from_mapping", "loads_case", "parse_toml", "qualified_message",
+__all__ = ["CaseTables", "CaseError", "FAMILY_KEY", "dumps_case", "from_mapping", "loads_case", "parse_toml", "qualified_message",
            "read_case", "read_toml", "to_mapping", "with_overrides", "write_case"]
 
 _TYPE_NAMES = {int: "an integer", bool: "true or false", str: "a string"}
@@ -312,3 +312,11 @@ def with_overrides(obj: Any, assignments: Sequence[str]) -> Any:
                 raise CaseError(f"{where}: expected a table, got {_show(node)}")
         node[parts[-1]] = _parse_value(rhs.strip(), ".".join(parts))
     return from_mapping(type(obj), data)
+
+
+class CaseTables:
+    """What every case family's top dataclass shares: :meth:`with_`, a copy with some tables changed."""
+
+    def with_(self, **tables):
+        """A copy with some tables changed: ``case.with_(study={"kind": "static"}, top={"n_modes": 12})``."""
+        return dataclasses.replace(self, **{k: dataclasses.replace(getattr(self, k), **v) for k, v in tables.items()})

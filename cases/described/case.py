@@ -22,8 +22,10 @@ Example (``family = "bearing"`` first)::
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import ClassVar, Literal
+
+from ..config import CaseTables
 
 __all__ = ["Source", "Life", "Study", "DescribedCase"]
 
@@ -73,7 +75,7 @@ class Study:
 
 
 @dataclass(frozen=True)
-class DescribedCase:
+class DescribedCase(CaseTables):
     """A run of a described bearing (module docstring)."""
 
     FAMILY: ClassVar[str] = "bearing"  # the ``family`` key of its case files
@@ -89,6 +91,3 @@ class DescribedCase:
 
         return {} if self.bearing.file in BUILTIN_BEARINGS else {"bearing.file": self.bearing.file}
 
-    def with_(self, **tables) -> "DescribedCase":
-        """A copy with some tables changed: ``case.with_(study={"s0": 2.0})``."""
-        return replace(self, **{k: replace(getattr(self, k), **v) for k, v in tables.items()})

@@ -29,11 +29,13 @@ work on the free–free elastic modes; the ring bends under the ball reactions o
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import ClassVar, Literal
 
 from fem_rings.sections import SlewingSection
 from mbd_core.contact.friction import Coulomb
+
+from ..config import CaseTables
 
 __all__ = ["VARIANTS", "Geometry", "Load", "Undulation", "Thermal", "Contact", "BodyFidelity", "Analysis",
            "Study", "SlewingCase", "UNDULATION_PROFILE_DEG_MM", "THESIS_CONTACT_STIFFNESS_N_PER_M1P5", "THESIS_CONTACT_DAMPING_N_S_PER_M",
@@ -302,7 +304,7 @@ class Study:
 
 
 @dataclass(frozen=True)
-class SlewingCase:
+class SlewingCase(CaseTables):
     """A run of the slewing ring (module docstring)."""
 
     FAMILY: ClassVar[str] = "slewing"  # the ``family`` key of its case files
@@ -355,6 +357,3 @@ class SlewingCase:
     def dead_load_N(self) -> float:
         return 1000.0 * self.dead_load_t * self.load.gravity_m_s2
 
-    def with_(self, **tables) -> "SlewingCase":
-        """A copy with some tables changed: ``case.with_(top={"kind": "modal"}, undulation={"scale": 1})``."""
-        return replace(self, **{k: replace(getattr(self, k), **v) for k, v in tables.items()})

@@ -15,10 +15,12 @@ under the loads applied at its centre; the outer ring with the nose is fixed.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import ClassVar, Literal
 
 from mbd_core.contact.friction import Coulomb
+
+from ..config import CaseTables
 
 __all__ = ["Rollers", "Bodies", "Contact", "Loads", "Analysis", "Study", "WindCase", "ADAMS_CONTACT",
            "INNER_RING_MASS_KG", "OUTER_RING_MASS_KG", "RADIAL_CAGE_MASS_KG", "THRUST_CAGE_MASS_KG"]
@@ -211,7 +213,7 @@ class Study:
 
 
 @dataclass(frozen=True)
-class WindCase:
+class WindCase(CaseTables):
     """A run of the wind main bearing (module docstring)."""
 
     FAMILY: ClassVar[str] = "wind"  # the ``family`` key of its case files
@@ -248,6 +250,3 @@ class WindCase:
         """The files the case reads, by key (checked when a run is resolved)."""
         return {"loads.csv_path": self.loads.csv_path} if self.loads.source == "csv" else {}
 
-    def with_(self, **tables) -> "WindCase":
-        """A copy with some tables changed: ``case.with_(analysis={"speed_rpm": 20})``."""
-        return replace(self, **{k: replace(getattr(self, k), **v) for k, v in tables.items()})
