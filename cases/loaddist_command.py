@@ -5,6 +5,7 @@ from __future__ import annotations
 import logging
 import math
 import os
+from dataclasses import dataclass
 
 from mbd_core.bearing.distribution_case_depth import case_depth_bearing_life_Mrev, row_case_depth_factors
 from mbd_core.bearing.distribution_life import rating_life, spectrum_rating_life
@@ -19,8 +20,22 @@ from .catalog import BUILTIN_BEARINGS
 from .report import format_table, load_distribution_table, write_load_distribution
 from .results import output_units
 
-__all__ = ["LOAD_NAMES", "add_loaddist_parser", "bearing_description", "cases_table", "check_loaddist_options",
+__all__ = ["LOAD_NAMES", "LoaddistOptions", "add_loaddist_parser", "bearing_description", "cases_table", "check_loaddist_options",
            "chosen_loads", "loaddist_outputs"]
+
+
+@dataclass(frozen=True)
+class LoaddistOptions:
+    """The options of ``loaddist`` that shape its outputs (the parsed command line has the same
+    attributes; a ``flexbearing run`` of a described bearing builds these from its case)."""
+
+    out: str | None = None
+    limiting_curve: bool = False
+    s0: float = 1.0
+    p0_limit_MPa: float | None = None
+    rotating_ring: str | None = None
+    speed_rpm: float | None = None
+    json: bool = False
 
 
 def add_loaddist_parser(sub, func) -> None:

@@ -3,20 +3,19 @@
 from __future__ import annotations
 
 import math
-from types import SimpleNamespace
 
 from ..bearing_solver import bearing_solver
-from ..loaddist_command import bearing_description, loaddist_outputs
+from ..loaddist_command import LoaddistOptions, bearing_description, loaddist_outputs
 from ..overrides import StudyEntry, unused_keys
 from .case import DescribedCase
 
 __all__ = ["STUDIES", "case_unused_keys", "uses_dynamics", "run_study"]
 
 
-def _options(case: DescribedCase, folder: str, curve: bool) -> SimpleNamespace:
-    """The ``loaddist`` options the case stands for."""
+def _options(case: DescribedCase, folder: str, curve: bool) -> LoaddistOptions:
+    """The ``loaddist`` options the case stands for (printing left to the run's report)."""
     life = case.life
-    return SimpleNamespace(out=folder, limiting_curve=curve, s0=case.study.s0 if curve else 1.0,
+    return LoaddistOptions(out=folder, limiting_curve=curve, s0=case.study.s0 if curve else 1.0,
                            p0_limit_MPa=(case.study.p0_limit_MPa or None) if curve else None,
                            rotating_ring=None if life.rotating_ring == "none" else life.rotating_ring,
                            speed_rpm=None if life.rotating_ring == "none" else life.speed_rpm, json=True)
