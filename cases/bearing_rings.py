@@ -26,9 +26,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
 
+from cms_reduction.craig_bampton import InterfaceError
 from cms_reduction.pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, reduced_body
 from fem_rings.dxf_section import profile_from_dxf
-from fem_rings.mesh import MeshSpec
+from fem_rings.mesh import MeshSpec, QuadMeshError
 from fem_rings.profile import Arc, Line, Profile, ProfileError
 from foundation.materials import ElasticMaterial
 from mbd_core.quasistatic import Bearing
@@ -281,16 +282,12 @@ def reduce_ring(m: RingModel, bearing: Bearing):
     spec = ReductionSpec(n_modes=m.keys.n_modes, interfaces=(_support(m),), raceways=raceways)
     try:
         return reduced_body(m.profile, _mesh_spec(m), m.material, spec, name=f"{bearing.name}: {m.name} ring")
-    except RuntimeError as exc:
-        if "quadrilaterals only" not in str(exc):
-            raise
+    except QuadMeshError as exc:
         raise CaseError(f"rings.{m.name}.element: {exc} (element = \"tet10\" in [rings.{m.name}])") from None
-    except ValueError as exc:
-        if not str(exc).startswith("interface "):
-            raise
+    except InterfaceError as exc:
         key = "bolts.washer_diameter_m" if m.keys.bolts is not None else "clamped_face"
-        raise CaseError(f"rings.{m.name}.{key}: the support holds too few nodes of the mesh ({exc}); give a larger "
-                        f"washer or a smaller element_size_m (now {_mesh_spec(m).size_m * 1e3:.4g} mm)") from None
+        raise CaseError(f"rings.{m.name}.{key}: the support cannot be built on this mesh ({exc}); change the washer "
+                        f"or element_size_m (now {_mesh_spec(m).size_m * 1e3:.4g} mm)") from None
 
 
 def flexible_rings(models: dict[str, RingModel], bearing: Bearing) -> tuple[FlexibleRing, ...]:

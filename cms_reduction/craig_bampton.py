@@ -62,6 +62,11 @@ RHS_BLOCK = 24
 DEPENDENCE_RTOL = 1e-8
 
 
+class InterfaceError(ValueError):
+    """An interface that cannot be built on the mesh: no nodes, nodes on one line, or nodes shared
+    with another interface (a support patch too small or too large for the mesh)."""
+
+
 @dataclass(frozen=True)
 class Interface:
     """A patch of nodes condensed to one 6-DOF master node.
@@ -91,7 +96,7 @@ class Interface:
 
     def __post_init__(self) -> None:
         if len(self.nodes) == 0:
-            raise ValueError(f"interface {self.name!r}: node set is empty")
+            raise InterfaceError(f"interface {self.name!r}: node set is empty")
         if self.kind not in ("rigid", "averaging"):
             raise ValueError(f"interface {self.name!r}: kind must be 'rigid' or 'averaging', got {self.kind!r}")
 
@@ -108,7 +113,7 @@ class Interface:
             G[:, :, 3 + a] = np.cross(e, d)
         sv = np.linalg.svd(G[:, :, 3:].reshape(-1, 3), compute_uv=False)
         if sv[-1] <= 1e-8 * max(sv[0], 1e-300):
-            raise ValueError(f"interface {self.name!r}: its {len(self.nodes)} nodes lie on one line, so a "
+            raise InterfaceError(f"interface {self.name!r}: its {len(self.nodes)} nodes lie on one line, so a "
                              "rotation about that line moves none of them; widen the patch")
         return G.reshape(-1, 6)
 
@@ -190,7 +195,7 @@ def rbe2_transform(model: FEModel, interfaces) -> tuple[sp.csr_matrix, np.ndarra
     slave = np.zeros(n, dtype=bool)
     for itf in interfaces:
         if slave[itf.nodes].any():
-            raise ValueError(f"interface {itf.name!r} shares nodes with another interface")
+            raise InterfaceError(f"interface {itf.name!r} shares nodes with another interface")
         slave[itf.nodes] = itf.kind == "rigid"
     retained = np.flatnonzero(~slave)
     rows = [(3 * retained[:, None] + np.arange(3)).ravel()]

@@ -20,7 +20,7 @@ from foundation.materials import ElasticMaterial
 from foundation.progress import phase
 
 from .body import ReducedBody
-from .craig_bampton import Augmentation, CentrifugalAugmentation, Interface, reduce_model
+from .craig_bampton import Augmentation, CentrifugalAugmentation, Interface, InterfaceError, reduce_model
 from .invariants import compute_invariants
 from .persist import cached_body
 from .sampling import pocket_contact_points, sample_across, sample_points, sample_raceway, sample_to_arrays
@@ -104,6 +104,14 @@ class ReductionSpec:
             raise ValueError(f"reduction spec: damping_ratio must lie in [0, 1), got {self.damping_ratio}")
 
 
+def _patch(ring, spec: InterfaceSpec, angle_deg: float):
+    """The nodes of one interface patch; InterfaceError when the patch holds no node of the mesh."""
+    try:
+        return patch_nodes(ring, spec.facet_set, angle_deg, spec.half_width_m, at_radius_m=spec.pitch_radius_m)
+    except ValueError as exc:
+        raise InterfaceError(f"interface {spec.facet_set}@{angle_deg:g}°: {exc}") from None
+
+
 def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMaterial, spec: ReductionSpec,
                  pockets=None, *, name: str | None = None, use_cache: bool = True) -> ReducedBody:
     """Build (or load from the cache) the reduced body of a ring."""
@@ -115,9 +123,7 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
 
     def _build() -> ReducedBody:
         model = build_model(profile, mesh_spec, material, pockets, use_cache=use_cache)
-        interfaces = [Interface(f"{i.facet_set}@{a:g}°", patch_nodes(model.ring, i.facet_set, a, i.half_width_m,
-                                                                       at_radius_m=i.pitch_radius_m),
-                                grounded=i.grounded, kind=i.kind)
+        interfaces = [Interface(f"{i.facet_set}@{a:g}°", _patch(model.ring, i, a), grounded=i.grounded, kind=i.kind)
                       for i in spec.interfaces for a in i.angles_deg]
         curves = [raceway_curve(model.ring, r.segment, r.n_theta, r.at_rz_m) for r in spec.raceways]
         aug = [Augmentation(c, r.directions, r.n_max) for c, r in zip(curves, spec.raceways) if r.n_max >= 0]

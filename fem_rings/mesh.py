@@ -52,6 +52,10 @@ ELEMENT_TYPES = {"tet10": "tetra10", "hex27": "hexahedron27"}
 _GMSH_LOCK = threading.Lock()
 
 
+class QuadMeshError(RuntimeError):
+    """A section that gmsh cannot mesh with quadrilaterals only (hex27 needs them; tet10 does not)."""
+
+
 @dataclass(frozen=True)
 class MeshSpec:
     """How to mesh a profile.
@@ -371,7 +375,7 @@ def _quadrilateral_section(gmsh) -> None:
         if not set(gmsh.model.mesh.getElementTypes(2)) & {2, 9}:   # 3-node / 6-node triangles
             return
         gmsh.model.mesh.clear()
-    raise RuntimeError("the section could not be meshed with quadrilaterals only; use element='tet10'")
+    raise QuadMeshError("the section could not be meshed with quadrilaterals only; use element='tet10'")
 
 
 def _read_volume_mesh(path: Path, cell_type: str) -> skfem.Mesh:

@@ -299,3 +299,11 @@ def test_load_steps_reach_the_same_equilibrium(desc, solver):
     for a, b in zip(stepped.modal_coordinates, direct.modal_coordinates):
         assert np.max(np.abs(a - b)) <= 1e-9 * np.max(np.abs(b))
 
+
+
+def test_a_washer_too_small_for_the_mesh_names_its_key():
+    """A 1 mm washer on 30 mm elements holds no node (or nodes on a line): one line naming the key."""
+    text = SMALL.replace('face = "top"', 'face = "top"\nwasher_diameter_m = 0.001', 1)
+    with pytest.raises(CaseError) as err:
+        bearing_solver(loads_bearing(text))
+    assert str(err.value).startswith("rings.inner.bolts.washer_diameter_m: the support cannot be built on this mesh")
