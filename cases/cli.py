@@ -41,6 +41,7 @@ from .outdir import check_output_target
 from .parts import RING_PARTS, ring_part
 from .progress_display import terminal_progress
 from .report import format_table
+from .fidelity import parse_tolerance
 from .results import output_units
 
 __all__ = ["main"]
@@ -289,12 +290,22 @@ def cmd_run(args) -> dict:
     if args.list or args.case is None:
         print(format_table([(n, d) for n, d in CASES.items()], ("case", "what it runs")))
         return {}
+    tolerance = parse_tolerance(args.tolerance) if args.tolerance is not None else None
     _check_out(args)
     case = resolve_case(args.case, args.quick, args.set)
     source = case_source(args.case)
     out_dir = args.out if args.out is not None else default_out_dir(case, source)
+    choice = None
+    if tolerance is not None:
+        from .tradeoff import choose_fidelity
+
+        check_output_target(out_dir)
+        case, choice = choose_fidelity(case, tolerance, progress=track)
+        print(f"fidelity: {choice['model']} (rung {choice['rung']} of the {choice['ladder']} ladder), expected "
+              f"error of the {choice['primary_quantity']} {100 * choice['expected_error']:.3g} %: {choice['why']}")
     print(f"{case.name}: {case.description}" if case.description else case.name)
-    out = run_case(case, out_dir, progress=track, resume=args.resume, source=source)
+    out = run_case(case, out_dir, progress=track, resume=args.resume, source=source,
+                   summary_extra={"fidelity_choice": choice} if choice else None)
     for line in out.report:
         print(f"  {line}")
     entries = sorted({f"*{p.suffix}" for p in out.folder.iterdir() if p.is_file() and not p.name.startswith(".")})
@@ -302,6 +313,31 @@ def cmd_run(args) -> dict:
     print(f"wall time {out.summary['wall_time_s']:.1f} s, peak memory {out.summary['peak_rss_mb']:.0f} MB; "
           f"results in {out.folder}/ ({', '.join(entries)})")
     return out.summary
+
+
+def cmd_tradeoff(args) -> dict:
+    from pathlib import Path
+
+    from .run import case_source, resolve_case
+    from .tradeoff import family_ladder, write_tradeoff
+
+    _check_out(args)
+    case = resolve_case(args.case, False, args.set)
+    family_ladder(case)  # a family without a ladder stops here, before any work
+    out_dir = args.out if args.out is not None else str(Path("results") / f"tradeoff-{case.name}")
+    check_output_target(out_dir)
+    summary, result = write_tradeoff(case, out_dir, args.quick, progress=track, source=case_source(args.case))
+    print(f"{case.name}: {summary['scene']}; errors of the {summary['primary_quantity']} against the reference "
+          f"({summary['reference']['model']})" + (" — ladder from the cache" if result.cached else ""))
+    rows = [(r["rung"], r["model"], f"{r['wall_s']:.1f}", f"{r['peak_rss_mb']:.0f}",
+             f"{100 * r[result.ladder.primary]:.3g}", "*" if r["rung"] in summary["pareto_front"] else "")
+            for r in result.rows]
+    print(format_table(rows, ("rung", "model", "wall s", "peak MB", "error %", "Pareto")))
+    for key, c in summary["convergence"].items():
+        p = c["observed_order"]
+        print(f"  {key}: observed order {p:.2f}" if p is not None else f"  {key}: order not measurable")
+    print(f"results in {out_dir}/ (tradeoff.csv, ball_loads.csv, summary.json, tradeoff_pareto.png, convergence_*.png)")
+    return summary
 
 
 def _add_material(p: argparse.ArgumentParser) -> None:
@@ -361,9 +397,20 @@ def build_parser() -> argparse.ArgumentParser:
                     "which is not replaced when it holds the results of another named case or case file)")
     rn.add_argument("--list", action="store_true", help="list the named cases")
     rn.add_argument("--json", action="store_true", help="print summary.json to stdout at the end")
+    rn.add_argument("--tolerance", default=None, metavar="ERR",
+                    help="relative error allowed on the case's primary quantity (e.g. 1%% or 0.01): the case runs "
+                    "at the cheapest rung of its fidelity ladder that meets it (flexbearing tradeoff)")
     rn.add_argument("--resume", action="store_true",
                     help="continue an interrupted run of the same case into the same folder from its last checkpoint")
     rn.set_defaults(func=cmd_run)
+
+    to = sub.add_parser("tradeoff", help="speed against accuracy: run a case's fidelity ladder against its reference")
+    to.add_argument("case", help="case name (see run --list) or a case .toml file")
+    to.add_argument("--quick", action="store_true", help="the short ladder (a few rungs on a coarse mesh)")
+    to.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="change one case entry first")
+    to.add_argument("--out", default=None, help="results folder (default results/tradeoff-<case name>)")
+    to.add_argument("--json", action="store_true", help="print summary.json to stdout at the end")
+    to.set_defaults(func=cmd_tradeoff)
 
     md = sub.add_parser("modes", help="free–free natural modes of a ring or cage (solid finite elements)")
     md.add_argument("part", help=f"built-in ring or cage ({', '.join(sorted(RING_PARTS))}), or a bearing "

@@ -200,8 +200,11 @@ def default_out_dir(case, source: str) -> Path:
     return out
 
 
-def run_case(case, out_dir, progress=None, resume: bool = False, source: str | None = None) -> RunOutput:
+def run_case(case, out_dir, progress=None, resume: bool = False, source: str | None = None,
+             summary_extra: dict | None = None) -> RunOutput:
     """Run ``case`` into ``out_dir`` (replaced only when the run completes); returns the output.
+
+    ``summary_extra``: entries added to ``summary.json`` (e.g. the fidelity chosen for a tolerance).
 
     ``source``: what the case comes from (:func:`case_source`), recorded in the folder's marker.
 
@@ -225,7 +228,7 @@ def run_case(case, out_dir, progress=None, resume: bool = False, source: str | N
             out.path("case.toml").write_text(text)
             studies.run_study(case, out, progress)
             out.summary = output_units({"case": case.name, "study": case.study.kind, "description": case.description,
-                                        **out.summary, "wall_time_s": time.perf_counter() - t0,
+                                        **out.summary, **(summary_extra or {}), "wall_time_s": time.perf_counter() - t0,
                                         "peak_rss_mb": _peak_rss_mb()})
             out.write_summary()
     except BaseException:

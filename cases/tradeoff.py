@@ -1,0 +1,272 @@
+"""``flexbearing tradeoff``: run a case's fidelity ladder and measure what each rung's accuracy costs.
+
+Each rung runs in a fresh worker process (spawned, one rung per process) with an empty temporary
+model cache, so its wall time, CPU time and peak memory are those of a first run of that model on
+this machine (meshing and reduction included); the same worker then repeats the solve with its
+bodies cached (``warm_wall_s``: what a second run of that model costs). Errors are measured against
+the ladder's reference rung (:func:`cases.fidelity.rung_errors`).
+
+A finished ladder is kept in the cache (``tradeoff/`` under ``$FLEXBEARING_CACHE``), keyed by the
+case's scene with its knobs at the ladder's base values, the ladder and this module's version, so
+``flexbearing run … --tolerance`` and a second ``tradeoff`` reuse it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import logging
+import multiprocessing
+import os
+import resource
+import tempfile
+import time
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from fem_rings.cache import atomic_path, cache_dir, input_hash
+
+from .config import CaseError, dumps_case
+from .fidelity import (ERROR_NAMES, Ladder, Outcome, Rung, choose_rung, observed_order, rung_errors, rungs,
+                       sweep_members)
+from .outdir import atomic_folder
+from .results import RunOutput, output_units
+from .slewing import fidelity as slewing_fidelity
+from .slewing.case import SlewingCase
+from .tradeoff_plots import plot_convergence, plot_pareto
+
+__all__ = ["LADDERS", "LadderResult", "family_ladder", "run_ladder", "write_tradeoff", "pareto_front", "choose_fidelity"]
+
+log = logging.getLogger(__name__)
+
+#: case class → the module that declares its ladder (``ladder``, ``scene``, ``rung_case``,
+#: ``measure``, ``describe``)
+LADDERS = {SlewingCase: slewing_fidelity}
+#: part of the ladder cache key: bump when what a rung measures changes
+TRADEOFF_VERSION = 1
+
+
+def family_ladder(case):
+    """The module declaring ``case``'s ladder; CaseError naming the families that have one."""
+    module = LADDERS.get(type(case))
+    if module is None:
+        have = ", ".join(sorted(c.FAMILY for c in LADDERS))
+        raise CaseError(f"no fidelity ladder is declared for {type(case).FAMILY} cases yet; tradeoff and "
+                        f"--tolerance take {have} cases")
+    return module
+
+
+def _peak_rss_mb() -> float:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def _measure_rung(module_name: str, case, settings: dict) -> dict:
+    """In a fresh worker: the rung cold (empty cache), then warm; times, peak memory, outcome."""
+    import importlib
+
+    module = importlib.import_module(module_name)
+    rung_case = module.rung_case(case, settings)
+    with tempfile.TemporaryDirectory(prefix="fb-rung-") as cache:
+        os.environ["FLEXBEARING_CACHE"] = cache
+        w0, c0 = time.perf_counter(), time.process_time()
+        outcome = module.measure(rung_case)
+        wall, cpu = time.perf_counter() - w0, time.process_time() - c0
+        w1 = time.perf_counter()
+        module.measure(rung_case)
+        warm = time.perf_counter() - w1
+    return {"outcome": outcome, "wall_s": wall, "cpu_s": cpu, "warm_wall_s": warm, "peak_rss_mb": _peak_rss_mb()}
+
+
+def _in_worker(module_name: str, case, settings: dict) -> dict:
+    ctx = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(max_workers=1, mp_context=ctx) as pool:
+        return pool.submit(_measure_rung, module_name, case, settings).result()
+
+
+@dataclass
+class LadderResult:
+    """The rungs of a ladder, their measurements (``rows``, one dict per rung) and outcomes."""
+
+    ladder: Ladder
+    rungs: list[Rung]
+    rows: list[dict]
+    outcomes: dict[str, Outcome]
+    cached: bool = False
+
+    def row(self, name: str) -> dict:
+        return next(r for r in self.rows if r["rung"] == name)
+
+
+def _cache_key(case, module, ladder: Ladder, quick: bool) -> str:
+    base = module.rung_case(case, dict(ladder.base))
+    text = dumps_case(dataclasses.replace(base, name="tradeoff", description=""))
+    return input_hash("tradeoff", TRADEOFF_VERSION, text, repr(ladder.knobs), sorted(ladder.reference.items()),
+                      sorted((k, sorted(v.items())) for k, v in ladder.combined.items()), quick)
+
+
+def _cache_file(key: str) -> Path:
+    return cache_dir() / "tradeoff" / f"{key}.json"
+
+
+def _to_json(result: LadderResult) -> dict:
+    return {"rows": result.rows,
+            "outcomes": {k: {"load_N": o.load_N.tolist(), "contact_angle_rad": o.contact_angle_rad.tolist(),
+                             "tau_max_Pa": o.tau_max_Pa, "unloaded_share": o.unloaded_share}
+                         for k, o in result.outcomes.items()}}
+
+
+def _load_cached(path: Path, ladder: Ladder, all_rungs: list[Rung]) -> LadderResult | None:
+    try:
+        data = json.loads(path.read_text())
+        outcomes = {k: Outcome(np.array(v["load_N"]), np.array(v["contact_angle_rad"]), float(v["tau_max_Pa"]),
+                               float(v["unloaded_share"])) for k, v in data["outcomes"].items()}
+        rows = data["rows"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    if {r["rung"] for r in rows} != {r.name for r in all_rungs}:
+        return None
+    return LadderResult(ladder, all_rungs, rows, outcomes, cached=True)
+
+
+def run_ladder(case, quick: bool = False, progress=None, use_cache: bool = True) -> LadderResult:
+    """Every rung of ``case``'s ladder, measured (or read from the ladder cache)."""
+    module = family_ladder(case)
+    try:
+        ladder = module.ladder(case, quick)
+        all_rungs = rungs(ladder)
+        for r in all_rungs:  # every rung is a valid case before any work
+            module.rung_case(case, dict(r.settings))
+    except ValueError as exc:
+        raise CaseError(str(exc)) from None
+    path = _cache_file(_cache_key(case, module, ladder, quick))
+    if use_cache and path.is_file():
+        cached = _load_cached(path, ladder, all_rungs)
+        if cached is not None:
+            return cached
+    measured = {}
+    items = list(all_rungs)
+    for r in (progress(items, "rungs") if progress else items):
+        log.info("rung %s: %s", r.name, module.describe(dict(r.settings)))
+        measured[r.name] = _in_worker(module.__name__, case, dict(r.settings))
+    ref = measured["reference"]["outcome"]
+    rows = []
+    for r in all_rungs:
+        m = measured[r.name]
+        o = m["outcome"]
+        rows.append({"rung": r.name, "knob": r.knob or "", "model": module.describe(dict(r.settings)),
+                     **{k: v for k, v in r.settings.items()},
+                     "wall_s": m["wall_s"], "cpu_s": m["cpu_s"], "warm_wall_s": m["warm_wall_s"],
+                     "peak_rss_mb": m["peak_rss_mb"], "max_load_N": float(o.load_N.max()), "unloaded_elements": o.unloaded,
+                     **rung_errors(o, ref)})
+    result = LadderResult(ladder, all_rungs, rows, {k: v["outcome"] for k, v in measured.items()})
+    if use_cache:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with atomic_path(path) as tmp:
+            Path(tmp).write_text(json.dumps(_to_json(result)))
+    return result
+
+
+def pareto_front(rows: list[dict], primary: str) -> list[str]:
+    """Rungs (not the reference) that no other rung beats in both wall time and ``primary`` error."""
+    rs = [r for r in rows if r["rung"] != "reference"]
+    front = []
+    for r in rs:
+        dominated = any(o is not r and o["wall_s"] <= r["wall_s"] and o[primary] <= r[primary]
+                        and (o["wall_s"] < r["wall_s"] or o[primary] < r[primary]) for o in rs)
+        if not dominated:
+            front.append(r["rung"])
+    return sorted(front, key=lambda n: next(r["wall_s"] for r in rs if r["rung"] == n))
+
+
+def convergence(result: LadderResult) -> dict[str, dict]:
+    """Per knob with a resolution: its rungs, values, the primary quantity and its observed order."""
+    out = {}
+    for knob in result.ladder.knobs:
+        if knob.resolution is None:
+            continue
+        members = sweep_members(result.ladder, result.rungs, knob)
+        if len(members) < 2:
+            continue
+        values = [m.settings[knob.key] for m in members]
+        res = [float(knob.resolution(v)) for v in values]
+        q = [result.row(m.name)["max_load_N"] for m in members]
+        errors = [result.row(m.name)[result.ladder.primary] for m in members]
+        out[knob.key] = {"label": knob.label, "values": values, "resolution": res, "rungs": [m.name for m in members],
+                         "max_load_N": q, "error": errors, "observed_order": observed_order(res, q)}
+    return out
+
+
+def write_tradeoff(case, out_dir, quick: bool = False, progress=None, source: str | None = None):
+    """Run (or reuse) the ladder and write tradeoff.csv, ball_loads.csv, summary.json and the plots;
+    returns (summary, ladder result)."""
+    t0 = time.perf_counter()
+    result = run_ladder(case, quick, progress)
+    ladder = result.ladder
+    front = pareto_front(result.rows, ladder.primary)
+    conv = convergence(result)
+    with atomic_folder(out_dir, f"tradeoff-{case.name}", source) as tmp:
+        out = RunOutput(tmp)
+        knob_keys = [k.key for k in ladder.knobs]
+        header = ["rung", "knob", "model", *knob_keys, "wall_s", "cpu_s", "warm_wall_s", "peak_rss_mb", "max_load_N",
+                  "unloaded_elements", *ERROR_NAMES, "pareto"]
+        out.write_csv("tradeoff.csv", [h.replace(".", "_") for h in header],
+                      [[r[h] if h != "pareto" else r["rung"] in front for h in header] for r in result.rows])
+        names = [r.name for r in result.rungs]
+        az = np.degrees(2.0 * np.pi * np.arange(len(result.outcomes["reference"].load_N))
+                        / len(result.outcomes["reference"].load_N))
+        out.write_csv("ball_loads.csv", ["element", "azimuth_from_first_deg", *[f"{n}_N" for n in names]],
+                      [(i + 1, az[i], *(result.outcomes[n].load_N[i] for n in names)) for i in range(len(az))])
+        out.save_figure(plot_pareto(result.rows, front, ladder.primary, ladder.primary_label, case.name), "tradeoff_pareto.png")
+        for key, c in conv.items():
+            out.save_figure(plot_convergence(key, c, ladder.primary_label), f"convergence_{key.replace('.', '_')}.png")
+        ref = result.row("reference")
+        out.summary = output_units({
+            "case": case.name, "scene": ladder.scene, "quick": quick, "primary": ladder.primary,
+            "primary_quantity": ladder.primary_label, "errors": ERROR_NAMES,
+            "reference": {"model": ref["model"], "wall_s": ref["wall_s"], "max_load_N": ref["max_load_N"]},
+            "rungs": result.rows, "pareto_front": front,
+            "convergence": {k: {kk: v for kk, v in c.items() if kk != "label"} for k, c in conv.items()},
+            "ladder_from_cache": result.cached, "wall_time_s": time.perf_counter() - t0,
+            "ladder_wall_s": float(sum(r["wall_s"] + r["warm_wall_s"] for r in result.rows)),
+        })
+        out.write_summary()
+    return out.summary, result
+
+
+def choose_fidelity(case, tolerance: float, progress=None, say=print):
+    """``case`` at the cheapest rung of its ladder meeting ``tolerance`` on the family's primary
+    quantity, and the choice (rung, model, expected error, why, which ladder) for ``summary.json``.
+
+    The ladder comes from the cache (the full one when it exists, else the quick one); without
+    either, the quick ladder runs first and ``say`` tells the user. Raises
+    :class:`cases.fidelity.ToleranceError` when no rung the case's study can run meets it.
+    """
+    module = family_ladder(case)
+    result = None
+    for quick in (False, True):
+        ladder = module.ladder(case, quick)
+        path = _cache_file(_cache_key(case, module, ladder, quick))
+        if path.is_file():
+            result = _load_cached(path, ladder, rungs(ladder))
+            if result is not None:
+                which = "quick" if quick else "full"
+                break
+    if result is None:
+        n = len(rungs(module.ladder(case, True)))
+        say(f"no fidelity ladder of this case is cached: running the quick ladder first ({n} rungs, each a "
+            f"first run from an empty cache; about a minute per rung on a laptop)")
+        result, which = run_ladder(case, quick=True, progress=progress), "quick"
+    overrides = {r.name: module.rung_overrides(case, dict(r.settings)) for r in result.rungs}
+    rows = [r for r in result.rows if overrides[r["rung"]] is not None]
+    chosen, why = choose_rung(rows, tolerance, result.ladder.primary)
+    run = case.with_(**overrides[chosen["rung"]])
+    said = f"fidelity for a tolerance of {100 * tolerance:g} %: {chosen['model']}"
+    run = dataclasses.replace(run, description="; ".join(x for x in (case.description, said) if x))
+    choice = {"tolerance": tolerance, "rung": chosen["rung"], "model": chosen["model"],
+              "expected_error": float(chosen[result.ladder.primary]), "primary": result.ladder.primary,
+              "primary_quantity": result.ladder.primary_label, "why": why, "ladder": which,
+              "ladder_scene": result.ladder.scene, "ladder_wall_s_of_rung": float(chosen["wall_s"])}
+    return run, choice
