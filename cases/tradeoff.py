@@ -103,7 +103,7 @@ class LadderResult:
 def _cache_key(case, module, ladder: Ladder, quick: bool) -> str:
     base = module.rung_case(case, dict(ladder.base))
     text = dumps_case(dataclasses.replace(base, name="tradeoff", description=""))
-    return input_hash("tradeoff", TRADEOFF_VERSION, text, repr(ladder.knobs), sorted(ladder.reference.items()),
+    return input_hash("tradeoff", TRADEOFF_VERSION, text, [(k.key, k.values) for k in ladder.knobs], sorted(ladder.reference.items()),
                       sorted((k, sorted(v.items())) for k, v in ladder.combined.items()), quick)
 
 
