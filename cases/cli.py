@@ -320,6 +320,7 @@ def cmd_tradeoff(args) -> dict:
 
     from .run import case_source, resolve_case
     from .tradeoff import family_ladder, write_tradeoff
+    from .tradeoff_plots import order_text
 
     _check_out(args)
     case = resolve_case(args.case, False, args.set)
@@ -334,8 +335,7 @@ def cmd_tradeoff(args) -> dict:
             for r in result.rows]
     print(format_table(rows, ("rung", "model", "wall s", "peak MB", "error %", "Pareto")))
     for key, c in summary["convergence"].items():
-        p = c["observed_order"]
-        print(f"  {key}: observed order {p:.2f}" if p is not None else f"  {key}: order not measurable")
+        print(f"  {key}: {order_text(c['observed_order'])}")
     print(f"results in {out_dir}/ (tradeoff.csv, ball_loads.csv, summary.json, tradeoff_pareto.png, convergence_*.png)")
     return summary
 

@@ -46,12 +46,13 @@ class ToleranceError(ValueError):
 class Knob:
     """A dotted case key and its values, cheap → expensive. ``resolution`` maps a value to a
     positive number that grows with fidelity (modes: n; element size: 1/h), for convergence
-    orders; None for a knob without one (rigid / modal)."""
+    orders, and ``resolution_label`` says what it is; None for a knob without one (rigid / modal)."""
 
     key: str
     values: tuple
     label: str
     resolution: object = None
+    resolution_label: str = ""
 
     def __post_init__(self) -> None:
         if len(self.values) < 1 or len(set(self.values)) != len(self.values):

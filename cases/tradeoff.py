@@ -194,7 +194,7 @@ def convergence(result: LadderResult) -> dict[str, dict]:
         res = [float(knob.resolution(v)) for v in values]
         q = [result.row(m.name)["max_load_N"] for m in members]
         errors = [result.row(m.name)[result.ladder.primary] for m in members]
-        out[knob.key] = {"label": knob.label, "values": values, "resolution": res, "rungs": [m.name for m in members],
+        out[knob.key] = {"label": knob.label, "resolution_label": knob.resolution_label, "values": values, "resolution": res, "rungs": [m.name for m in members],
                          "max_load_N": q, "error": errors, "observed_order": observed_order(res, q)}
     return out
 
@@ -228,7 +228,7 @@ def write_tradeoff(case, out_dir, quick: bool = False, progress=None, source: st
             "primary_quantity": ladder.primary_label, "errors": ERROR_NAMES,
             "reference": {"model": ref["model"], "wall_s": ref["wall_s"], "max_load_N": ref["max_load_N"]},
             "rungs": result.rows, "pareto_front": front,
-            "convergence": {k: {kk: v for kk, v in c.items() if kk != "label"} for k, c in conv.items()},
+            "convergence": {k: {kk: v for kk, v in c.items() if "label" not in kk} for k, c in conv.items()},
             "ladder_from_cache": result.cached, "wall_time_s": time.perf_counter() - t0,
             "ladder_wall_s": float(sum(r["wall_s"] + r["warm_wall_s"] for r in result.rows)),
         })

@@ -7,12 +7,21 @@ import numpy as np
 
 from .results import plt
 
-__all__ = ["plot_pareto", "plot_convergence", "ERROR_FLOOR"]
+__all__ = ["plot_pareto", "plot_convergence", "order_text", "ERROR_FLOOR"]
 
 #: errors below this are drawn at it (log axes; a rung identical to the reference has error 0)
 ERROR_FLOOR = 1e-7
 #: wall times below this are drawn at it (a rigid ring's equilibrium takes milliseconds)
 TIME_FLOOR_S = 1e-3
+
+
+def order_text(p: float | None) -> str:
+    """The observed order in words: a negative or missing one means the knob does not converge."""
+    if p is None:
+        return "observed order: not measurable (fewer than three values, or no change)"
+    if p <= 0.0:
+        return f"not converging (observed order p ≈ {p:.2f})"
+    return f"observed order p ≈ {p:.2f}"
 
 
 def plot_pareto(rows: list[dict], front: list[str], primary: str, primary_label: str, title: str):
@@ -53,9 +62,8 @@ def plot_convergence(key: str, conv: dict, primary_label: str):
     for v, xi, ei in zip(conv["values"], x, e):
         ax.annotate(f"{v:g}", (xi, ei), textcoords="offset points", xytext=(4, 4), fontsize=8)
     p = conv["observed_order"]
-    ax.text(0.03, 0.05, f"observed order p ≈ {p:.2f}" if p is not None else "observed order: not measurable",
-            transform=ax.transAxes, fontsize=10, bbox={"fc": "white", "ec": "0.7"})
-    ax.set_xlabel(f"{conv['label']} ({key}; resolution)")
+    ax.text(0.03, 0.05, order_text(p), transform=ax.transAxes, fontsize=10, bbox={"fc": "white", "ec": "0.7"})
+    ax.set_xlabel(f"{conv['resolution_label']} — {conv['label']} ({key})")
     ax.set_ylabel(f"relative error of the {primary_label}")
     ax.set_title(f"convergence along {key}")
     ax.grid(True, which="both", alpha=0.3)

@@ -48,17 +48,18 @@ def ladder(case: SlewingCase, quick: bool = False) -> Ladder:
     """The ladder of ``case``'s variant (``quick``: a short one — rigid, 5 or 20 modes, with or
     without load shapes, coarse mesh — against 40 modes and harmonic 32 on the same mesh)."""
     coarse, default, fine = _sizes(case)
-    modes = Knob("top.n_modes", (5, 20) if quick else (5, 10, 20, 40, 80), "normal modes", float)
+    modes = Knob("top.n_modes", (5, 20) if quick else (5, 10, 20, 40, 80), "normal modes", float, "normal modes n")
     shapes = Knob("top.groove_harmonics", (-1, 16) if quick else (-1, 4, 8, 16, 32),
-                  "groove load shapes up to harmonic", lambda n: n + 2.0)
+                  "groove load shapes up to harmonic", lambda n: n + 2.0,
+                  "highest harmonic + 2 (none: 1)")
     kind = Knob("top.kind", ("rigid", "modal"), "top structure")
     scene_text = "one quasi-static equilibrium: " + describe_scene(case)
     if quick:
-        mesh = Knob("top.element_size_m", (coarse,), "element size (m)", lambda h: 1.0 / h)
+        mesh = Knob("top.element_size_m", (coarse,), "element size (m)", lambda h: 1.0 / h, "1 / element size (1/m)")
         base = {"top.kind": "modal", "top.n_modes": 20, "top.groove_harmonics": 16, "top.element_size_m": coarse}
         return Ladder((kind, modes, shapes, mesh), base, {"top.n_modes": 40, "top.groove_harmonics": 32},
                       primary="max_load", primary_label="largest ball load", scene=scene_text)
-    mesh = Knob("top.element_size_m", (coarse, default, fine), "element size (m)", lambda h: 1.0 / h)
+    mesh = Knob("top.element_size_m", (coarse, default, fine), "element size (m)", lambda h: 1.0 / h, "1 / element size (1/m)")
     base = {"top.kind": "modal", "top.n_modes": 20, "top.groove_harmonics": 16, "top.element_size_m": default}
     combined = {"coarse": {"top.n_modes": 10, "top.groove_harmonics": 8, "top.element_size_m": coarse},
                 "fine": {"top.n_modes": 40, "top.groove_harmonics": 32, "top.element_size_m": default}}
