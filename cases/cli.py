@@ -304,8 +304,8 @@ def cmd_run(args) -> dict:
         print(f"fidelity: {choice['model']} (rung {choice['rung']} of the {choice['ladder']} ladder), expected "
               f"error of the {choice['primary_quantity']} {100 * choice['expected_error']:.3g} %: {choice['why']}")
     print(f"{case.name}: {case.description}" if case.description else case.name)
-    out = run_case(case, out_dir, progress=track, resume=args.resume, source=source,
-                   summary_extra={"fidelity_choice": choice} if choice else None)
+    extra = {"summary_extra": {"fidelity_choice": choice}} if choice else {}
+    out = run_case(case, out_dir, progress=track, resume=args.resume, source=source, **extra)
     for line in out.report:
         print(f"  {line}")
     entries = sorted({f"*{p.suffix}" for p in out.folder.iterdir() if p.is_file() and not p.name.startswith(".")})
