@@ -131,11 +131,19 @@ class Augmentation:
         contact line for a groove at its contact point), ``"axial"``, ``"radial"``.
     n_max : int
         Highest circumferential harmonic.
+    patch : tuple of (RacewayCurve, float)
+        Empty: each load acts on ``curve`` itself. Else (from
+        :func:`fem_rings.nodesets.raceway_patch`) each load is spread over the patch circles, circle
+        k carrying w_k of its force per radian (per unit length: w_k q r₀ / r_k, r₀ the radius of
+        ``curve``), in the direction it has on ``curve``: the transpose of the patch-averaged
+        sampling (:func:`cms_reduction.sampling.sample_raceway`), so the generalized force of a
+        load shape stays work-consistent with the sampled mode shapes.
     """
 
     curve: RacewayCurve
     directions: tuple = ("normal",)
     n_max: int = 8
+    patch: tuple = ()
 
     def __post_init__(self) -> None:
         bad = set(self.directions) - {"normal", "axial", "radial"}
@@ -152,7 +160,8 @@ class Augmentation:
         axial = np.tile([0.0, 0.0, 1.0], (len(th), 1))
         dirs = {"radial": radial, "axial": axial,
                 "normal": -(c.normal_rz[0] * radial + c.normal_rz[1] * axial)}
-        load = line_load_operator(model, c.points_m, closed=full_circle)
+        load = (line_load_operator(model, c.points_m, closed=full_circle) if not self.patch
+                else _patch_load_operator(model, c, self.patch, full_circle))
         out = []
         for name in self.directions:
             d = dirs[name]
@@ -160,6 +169,19 @@ class Augmentation:
                 for trig in ((np.cos,) if n == 0 else (np.cos, np.sin)):
                     out.append(load(trig(n * th)[:, None] * d))
         return np.column_stack(out)
+
+
+def _patch_load_operator(model: FEModel, curve: RacewayCurve, patch, full_circle: bool):
+    """q ↦ Σ_k (w_k r₀ / r_k) F_k(q): a line load on ``curve`` spread over the patch circles with
+    the same force per radian times their weights (F_k the consistent loads on circle k)."""
+    r0 = float(curve.rz_m[0])
+    parts = [(wk * r0 / float(ck.rz_m[0]), line_load_operator(model, ck.points_m, closed=full_circle))
+             for ck, wk in patch]
+
+    def apply(force_per_length_N_m) -> np.ndarray:
+        return sum(a * op(force_per_length_N_m) for a, op in parts)
+
+    return apply
 
 
 @dataclass(frozen=True)

@@ -9,12 +9,13 @@ by a hash of every input, so a second run loads it in a fraction of a second.
 from __future__ import annotations
 
 import logging
+import math
 from dataclasses import dataclass, replace
 
 from fem_rings.cache import input_hash
 from fem_rings.mesh import MeshSpec
 from fem_rings.model import build_model
-from fem_rings.nodesets import patch_nodes, raceway_curve
+from fem_rings.nodesets import patch_nodes, raceway_curve, raceway_patch
 from fem_rings.profile import Profile
 from foundation.materials import ElasticMaterial
 from foundation.progress import phase
@@ -73,7 +74,11 @@ class RacewaySpec:
     ``at_rz_m`` is the contact point in the section (e.g. the nominal ball contact on a groove);
     ``directions``/``n_max`` set the augmentation harmonics (``n_max < 0``: no augmentation);
     ``n_across > 0`` samples a (θ, s) grid of that many circles across a straight raceway (roller
-    slices) instead of one circle.
+    slices) instead of one circle. ``spread_m > 0`` averages the sampled mode shapes over a patch
+    of the section of that size around the contact point and spreads the load shapes' line loads
+    over the same patch (:func:`fem_rings.nodesets.raceway_patch`): a sampling that converges with
+    the mesh and the harmonics, where the line itself (0, the default) sits on the log-singular
+    displacement of its own line load.
     """
 
     segment: str
@@ -82,6 +87,15 @@ class RacewaySpec:
     directions: tuple = ("normal",)
     n_max: int = 8
     n_across: int = 0
+    spread_m: float = 0.0
+
+    def __post_init__(self) -> None:
+        s = float(self.spread_m)
+        if not (math.isfinite(s) and s >= 0.0):
+            raise ValueError(f"raceway {self.segment!r}: spread_m must be ≥ 0 and finite, got {self.spread_m!r}")
+        if s > 0.0 and self.n_across > 0:
+            raise ValueError(f"raceway {self.segment!r}: spread_m applies to one circle of samples; "
+                             f"it cannot be combined with n_across = {self.n_across}")
 
 
 @dataclass(frozen=True)
@@ -126,7 +140,10 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
         interfaces = [Interface(f"{i.facet_set}@{a:g}°", _patch(model.ring, i, a), grounded=i.grounded, kind=i.kind)
                       for i in spec.interfaces for a in i.angles_deg]
         curves = [raceway_curve(model.ring, r.segment, r.n_theta, r.at_rz_m) for r in spec.raceways]
-        aug = [Augmentation(c, r.directions, r.n_max) for c, r in zip(curves, spec.raceways) if r.n_max >= 0]
+        patches = [tuple(raceway_patch(c, model.ring, r.spread_m)) if r.spread_m > 0 else ()
+                   for c, r in zip(curves, spec.raceways)]
+        aug = [Augmentation(c, r.directions, r.n_max, patch=pt)
+               for c, r, pt in zip(curves, spec.raceways, patches) if r.n_max >= 0]
         if spec.centrifugal:
             aug.append(CentrifugalAugmentation())
         body = reduce_model(model, spec.n_modes, interfaces, aug, damping_ratio=spec.damping_ratio,
@@ -134,9 +151,9 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
         with phase("inertia invariants"):
             extras = dict(compute_invariants(model.M, body.nodes_m, body.shapes).to_arrays())
         with phase("sampling raceways", total=len(spec.raceways) + (pockets is not None and spec.sample_pockets)) as p:
-            for c, r in zip(curves, spec.raceways):
+            for c, r, pt in zip(curves, spec.raceways, patches):
                 samples = (sample_across(body, model.ring, r.segment, r.n_theta, r.n_across) if r.n_across > 0
-                           else [sample_raceway(body, c, mesh_spec.full_circle)])
+                           else [sample_raceway(body, c, mesh_spec.full_circle, pt)])
                 for smp in samples:
                     extras.update(sample_to_arrays(smp))
                 p.advance()

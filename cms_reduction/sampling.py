@@ -76,9 +76,25 @@ def sample_points(body: ReducedBody, name: str, points_m: np.ndarray, theta_rad:
     return RacewaySample(name, np.asarray(theta_rad, float), pts, disp, rot, bool(periodic))
 
 
-def sample_raceway(body: ReducedBody, curve: RacewayCurve, full_circle: bool) -> RacewaySample:
-    """Sample the body's modes at the points of ``curve`` (from :func:`fem_rings.nodesets.raceway_curve`)."""
-    return sample_points(body, curve.name, curve.points_m, curve.theta_rad, full_circle)
+def sample_raceway(body: ReducedBody, curve: RacewayCurve, full_circle: bool, patch=()) -> RacewaySample:
+    """Sample the body's modes at the points of ``curve`` (from :func:`fem_rings.nodesets.raceway_curve`).
+
+    With ``patch`` (the (circle, weight) pairs of :func:`fem_rings.nodesets.raceway_patch`) the
+    displacement and rotation at each point are the weighted averages Σ w_k D(p_k), Σ w_k Ω(p_k)
+    over the patch circles at the same θ (RBE3-type weighted-average interpolation); the sample
+    keeps the points of ``curve``. A force f at θ then does the work Σ w_k f·D(p_k) η: the patch
+    load of :class:`cms_reduction.craig_bampton.Augmentation` is its transpose. Empty: the values
+    on ``curve`` itself.
+    """
+    if not patch:
+        return sample_points(body, curve.name, curve.points_m, curve.theta_rad, full_circle)
+    pts = np.concatenate([c.points_m for c, _ in patch])
+    s = sample_points(body, curve.name, pts, curve.theta_rad, full_circle)
+    w = np.array([wk for _, wk in patch])
+    n = len(curve.theta_rad)
+    disp = np.einsum("k,knjm->njm", w, s.displacement.reshape(len(w), n, 3, -1))
+    rot = np.einsum("k,knjm->njm", w, s.rotation.reshape(len(w), n, 3, -1))
+    return RacewaySample(curve.name, s.theta_rad, np.asarray(curve.points_m, float), disp, rot, s.periodic)
 
 
 def interp_index(theta_grid: np.ndarray, theta: float, periodic: bool) -> tuple[int, int, float, float]:

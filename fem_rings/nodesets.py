@@ -24,6 +24,7 @@ __all__ = [
     "nodes_where",
     "facets_where",
     "raceway_curve",
+    "raceway_patch",
     "patch_nodes",
     "REL_TOL",
 ]
@@ -237,3 +238,106 @@ def _outward_normal(seg, rz: np.ndarray):
     # ccw arc with the solid on its left has the centre inside the solid (convex, e.g. a fillet);
     # a groove is traversed clockwise and its centre lies outside the solid.
     return (radial if seg.ccw else -radial), (None if seg.ccw else c.copy())
+
+
+def raceway_patch(curve: RacewayCurve, ring, spread_m: float, n_u: int = 4,
+                  n_v: int = 3) -> list[tuple[RacewayCurve, float]]:
+    """Circles through the Gauss points of a patch of the section around a raceway's contact point.
+
+    The patch spans arc length u ∈ [−s, s] along the raceway surface and depth v ∈ [0, s] into the
+    solid (against the outward normal), s = ``spread_m``: on a groove the points are
+    c + (R + v) e(u / R), e the unit vector from the curvature centre c rotated by u / R in the
+    (r, z) plane; on a straight raceway p + u t − v n. Every circle keeps the θ of ``curve``.
+
+    The weights are the Gauss–Legendre weights (``n_u`` × ``n_v`` points) times the area element
+    of the section ((R + v) / R on a groove, 1 on a line), normalised to sum 1: Σ w_k x_k is the
+    area centroid of the patch (exactly on a straight raceway; on a groove to the accuracy of the
+    Gauss rule in the angle). Averaging the mode shapes over the patch with these weights, and
+    spreading a raceway load over it by the same weights (the transpose), is the weighted-average
+    interpolation of an RBE3-type element (MSC Nastran Quick Reference Guide, RBE3). It is needed
+    because the displacement under a line load on an elastic solid grows like log(1/distance)
+    (Johnson, Contact Mechanics, 1985, §2.2 and §3.2), so a value sampled on the loaded line
+    itself depends on the mesh and on the harmonic of the load, while its average over a patch of
+    finite size converges.
+
+    Parameters
+    ----------
+    curve : RacewayCurve
+        The raceway circle (from :func:`raceway_curve`).
+    ring : RingMesh
+        The ring it lies on; its profile decides whether the points lie in the solid.
+    spread_m : float
+        Patch size s, m (> 0).
+    n_u, n_v : int
+        Gauss points along the surface and in depth.
+
+    Returns
+    -------
+    list of (RacewayCurve, float)
+        One circle per patch point (named ``"<raceway>~<k>"``, normal and centre of ``curve``)
+        with its weight.
+
+    Raises
+    ------
+    ValueError
+        Naming ``spread_m`` and the raceway, when s is not positive and finite or a patch point
+        leaves the solid (the patch runs past the raceway's edges or through the section).
+    """
+    s = float(spread_m)
+    if not (math.isfinite(s) and s > 0.0):
+        raise ValueError(f"raceway {curve.name!r}: spread_m must be positive and finite, got {spread_m!r}")
+    xu, wu = np.polynomial.legendre.leggauss(int(n_u))
+    xv, wv = np.polynomial.legendre.leggauss(int(n_v))
+    u, v = np.meshgrid(s * xu, 0.5 * s * (xv + 1.0), indexing="ij")
+    w = np.outer(wu, wv)
+    n = np.asarray(curve.normal_rz, float)
+    if curve.center_rz_m is None:
+        t = np.array([-n[1], n[0]])
+        rz = curve.rz_m + u[..., None] * t - v[..., None] * n
+        foot = curve.rz_m + u[:, 0, None] * t
+    else:
+        c = np.asarray(curve.center_rz_m, float)
+        R = float(np.linalg.norm(curve.rz_m - c))
+        e0 = (curve.rz_m - c) / R
+        phi = u / R
+        e = np.cos(phi)[..., None] * e0 + np.sin(phi)[..., None] * np.array([-e0[1], e0[0]])
+        rz = c + (R + v)[..., None] * e
+        foot = c + R * e[:, 0]
+        w = w * (R + v) / R
+    rz, w = rz.reshape(-1, 2), (w / w.sum()).ravel()
+    _check_patch(curve, ring, spread_m, rz, foot)
+    out = []
+    for k, (p, wk) in enumerate(zip(rz, w)):
+        pts = np.column_stack((p[0] * np.cos(curve.theta_rad), p[0] * np.sin(curve.theta_rad),
+                               np.full(len(curve.theta_rad), p[1])))
+        out.append((RacewayCurve(f"{curve.name}~{k}", curve.theta_rad, pts, p, curve.normal_rz,
+                                 curve.center_rz_m), float(wk)))
+    return out
+
+
+def _check_patch(curve: RacewayCurve, ring, spread_m: float, rz: np.ndarray, foot: np.ndarray) -> None:
+    """ValueError unless every patch point lies strictly inside the section and every surface foot
+    point on the raceway's own segment."""
+    profile = ring.profile
+    tol = REL_TOL * profile.size_m
+    segs = [seg for seg in profile.segments if seg.name == curve.name]
+    on_raceway = np.min([point_segment_distance(foot, seg) for seg in segs], axis=0) < tol
+    poly, _ = profile.polyline(256)
+    inside = _inside_polygon(rz, poly)
+    if not (on_raceway.all() and inside.all()):
+        bad = rz[np.argmin(inside)] if not inside.all() else foot[np.argmin(on_raceway)]
+        raise ValueError(
+            f"raceway {curve.name!r}: spread_m = {spread_m:g} m is too large: its patch reaches "
+            f"(r, z) = ({bad[0]:.6g}, {bad[1]:.6g}) m, "
+            + ("outside the section" if not inside.all() else "past the edge of the raceway"))
+
+
+def _inside_polygon(q: np.ndarray, poly: np.ndarray) -> np.ndarray:
+    """Points (n, 2) strictly inside a closed polygon (m, 2), by the crossing-number rule
+    (O'Rourke, Computational Geometry in C, 2nd ed., 1998, §7.4)."""
+    a, b = poly, np.roll(poly, -1, axis=0)
+    x, y = q[:, 0, None], q[:, 1, None]
+    straddle = (a[None, :, 1] > y) != (b[None, :, 1] > y)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xc = a[None, :, 0] + (y - a[None, :, 1]) * (b[None, :, 0] - a[None, :, 0]) / (b[None, :, 1] - a[None, :, 1])
+    return (np.count_nonzero(straddle & (x < xc), axis=1) % 2) == 1

@@ -217,7 +217,10 @@ class Contact:
 class BodyFidelity:
     """How a ring is modelled: ``rigid`` or ``modal`` (n_modes normal modes + raceway load shapes up
     to harmonic ``groove_harmonics``, −1: none). ``E_Pa`` is its Young's modulus (the thesis'
-    reduced-stiffness ring: 1.5975 GPa); ``element_size_m`` None takes a size from the variant."""
+    reduced-stiffness ring: 1.5975 GPa); ``element_size_m`` None takes a size from the variant.
+    ``raceway_spread_m`` > 0 samples the groove averaged over a patch of that size around the
+    contact point, and spreads the load shapes' line loads over it (:class:`cms_reduction.RacewaySpec`);
+    0 samples on the contact line itself."""
 
     kind: Literal["rigid", "modal"] = "rigid"
     n_modes: int = 20
@@ -227,6 +230,7 @@ class BodyFidelity:
     element_size_m: float | None = None
     include_tmr: bool = True      # top structure only: TMR bolted to the top race as one body
     bolts: int = 12               # bottom race only: bolt patches on the support when modal
+    raceway_spread_m: float = 0.0
 
     def __post_init__(self) -> None:
         if self.n_modes < 1:
@@ -238,6 +242,8 @@ class BodyFidelity:
             raise ValueError(f"damping_ratio must lie in [0, 1), got {self.damping_ratio}")
         if self.bolts < 3:
             raise ValueError(f"bolts must be ≥ 3, got {self.bolts}")
+        if not (math.isfinite(self.raceway_spread_m) and self.raceway_spread_m >= 0.0):
+            raise ValueError(f"raceway_spread_m must be a finite number ≥ 0, got {self.raceway_spread_m!r}")
 
 
 @dataclass(frozen=True)

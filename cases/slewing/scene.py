@@ -126,7 +126,9 @@ def _mesh(case: SlewingCase, fidelity) -> MeshSpec:
 
 def _groove_spec(case: SlewingCase, race: str, harmonics: int) -> RacewaySpec:
     groove = case.geometry.section().groove(race, case.geometry.pitch_diameter_m)
-    return RacewaySpec("groove", N_THETA, at_rz_m=tuple(groove.contact_point_m), n_max=harmonics)
+    spread_m = getattr(case, race).raceway_spread_m
+    return RacewaySpec("groove", N_THETA, at_rz_m=tuple(groove.contact_point_m), n_max=harmonics,
+                       spread_m=spread_m)
 
 
 def top_body(case: SlewingCase):
