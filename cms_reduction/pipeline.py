@@ -140,7 +140,7 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
         interfaces = [Interface(f"{i.facet_set}@{a:g}°", _patch(model.ring, i, a), grounded=i.grounded, kind=i.kind)
                       for i in spec.interfaces for a in i.angles_deg]
         curves = [raceway_curve(model.ring, r.segment, r.n_theta, r.at_rz_m) for r in spec.raceways]
-        patches = [tuple(raceway_patch(c, model.ring, r.spread_m)) if r.spread_m > 0 else ()
+        patches = [tuple(raceway_patch(c, model.ring.profile, r.spread_m)) if r.spread_m > 0 else ()
                    for c, r in zip(curves, spec.raceways)]
         aug = [Augmentation(c, r.directions, r.n_max, patch=pt)
                for c, r, pt in zip(curves, spec.raceways, patches) if r.n_max >= 0]

@@ -24,6 +24,7 @@ __all__ = [
     "nodes_where",
     "facets_where",
     "raceway_curve",
+    "section_raceway_curve",
     "raceway_patch",
     "patch_nodes",
     "REL_TOL",
@@ -195,12 +196,21 @@ def raceway_curve(ring, segment: str, n_theta: int, at_rz_m=None) -> RacewayCurv
         Point to project on the segment (e.g. the nominal ball contact point); default the
         middle of the segment.
     """
-    segs = [s for s in ring.profile.segments if s.name == segment]
-    if not segs:
-        raise ValueError(f"profile {ring.profile.name!r} has no segment {segment!r}; "
-                         f"it has {list(ring.profile.names)}")
-    if segment not in ring.facet_sets:
+    if segment in ring.profile.names and segment not in ring.facet_sets:
         raise ValueError(f"segment {segment!r} has no facets in the mesh (fully cut away?)")
+    if ring.spec.full_circle:
+        th = np.linspace(0.0, 2.0 * math.pi, n_theta, endpoint=False)
+    else:
+        th = np.linspace(0.0, ring.spec.sector_rad, n_theta)
+    return section_raceway_curve(ring.profile, segment, th, at_rz_m)
+
+
+def section_raceway_curve(profile: Profile, segment: str, theta_rad: np.ndarray, at_rz_m=None) -> RacewayCurve:
+    """The circle of :func:`raceway_curve` at given angles, from the section alone (no mesh)."""
+    segs = [s for s in profile.segments if s.name == segment]
+    if not segs:
+        raise ValueError(f"profile {profile.name!r} has no segment {segment!r}; "
+                         f"it has {list(profile.names)}")
     if at_rz_m is None:
         seg = segs[0]
         rz = np.asarray(seg.midpoint if isinstance(seg, Arc) else seg.points(np.array([0.5]))[0])
@@ -209,11 +219,8 @@ def raceway_curve(ring, segment: str, n_theta: int, at_rz_m=None) -> RacewayCurv
         seg = min(segs, key=lambda s: float(point_segment_distance(q, s)[0]))
         rz = _project(q, seg)
     normal, center = _outward_normal(seg, rz)
-    if ring.spec.full_circle:
-        th = np.linspace(0.0, 2.0 * math.pi, n_theta, endpoint=False)
-    else:
-        th = np.linspace(0.0, ring.spec.sector_rad, n_theta)
-    pts = np.column_stack((rz[0] * np.cos(th), rz[0] * np.sin(th), np.full(n_theta, rz[1])))
+    th = np.asarray(theta_rad, dtype=float)
+    pts = np.column_stack((rz[0] * np.cos(th), rz[0] * np.sin(th), np.full(len(th), rz[1])))
     return RacewayCurve(segment, th, pts, rz, normal, center)
 
 
@@ -240,7 +247,7 @@ def _outward_normal(seg, rz: np.ndarray):
     return (radial if seg.ccw else -radial), (None if seg.ccw else c.copy())
 
 
-def raceway_patch(curve: RacewayCurve, ring, spread_m: float, n_u: int = 4,
+def raceway_patch(curve: RacewayCurve, profile: Profile, spread_m: float, n_u: int = 4,
                   n_v: int = 3) -> list[tuple[RacewayCurve, float]]:
     """Circles through the Gauss points of a patch of the section around a raceway's contact point.
 
@@ -264,8 +271,8 @@ def raceway_patch(curve: RacewayCurve, ring, spread_m: float, n_u: int = 4,
     ----------
     curve : RacewayCurve
         The raceway circle (from :func:`raceway_curve`).
-    ring : RingMesh
-        The ring it lies on; its profile decides whether the points lie in the solid.
+    profile : Profile
+        The section of the ring it lies on: decides whether the points lie in the solid.
     spread_m : float
         Patch size s, m (> 0).
     n_u, n_v : int
@@ -305,7 +312,7 @@ def raceway_patch(curve: RacewayCurve, ring, spread_m: float, n_u: int = 4,
         foot = c + R * e[:, 0]
         w = w * (R + v) / R
     rz, w = rz.reshape(-1, 2), (w / w.sum()).ravel()
-    _check_patch(curve, ring, spread_m, rz, foot)
+    _check_patch(curve, profile, spread_m, rz, foot)
     out = []
     for k, (p, wk) in enumerate(zip(rz, w)):
         pts = np.column_stack((p[0] * np.cos(curve.theta_rad), p[0] * np.sin(curve.theta_rad),
@@ -315,10 +322,9 @@ def raceway_patch(curve: RacewayCurve, ring, spread_m: float, n_u: int = 4,
     return out
 
 
-def _check_patch(curve: RacewayCurve, ring, spread_m: float, rz: np.ndarray, foot: np.ndarray) -> None:
+def _check_patch(curve: RacewayCurve, profile: Profile, spread_m: float, rz: np.ndarray, foot: np.ndarray) -> None:
     """ValueError unless every patch point lies strictly inside the section and every surface foot
     point on the raceway's own segment."""
-    profile = ring.profile
     tol = REL_TOL * profile.size_m
     segs = [seg for seg in profile.segments if seg.name == curve.name]
     on_raceway = np.min([point_segment_distance(foot, seg) for seg in segs], axis=0) < tol

@@ -1,7 +1,6 @@
 """Raceway sampling averaged over a patch of the section (``RacewaySpec.spread_m``) and its transpose."""
 
 import math
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -46,7 +45,7 @@ def test_patch_average_of_a_linear_field_is_its_value_at_the_centroid(ring_model
     body = _linear_body(model, A, b)
     s = 0.02
     curve = raceway_curve(model.ring, "top", 24)
-    patch = raceway_patch(curve, model.ring, s)
+    patch = raceway_patch(curve, model.ring.profile, s)
     assert len(patch) == 12 and sum(w for _, w in patch) == pytest.approx(1.0, abs=1e-15)
     smp = sample_raceway(body, curve, True, patch)
     th = curve.theta_rad
@@ -78,7 +77,7 @@ def test_groove_patch_centroid_is_the_annular_sector_centroid():
     # (Gauss–Legendre error bound, Abramowitz & Stegun 25.4.30): tolerance 1e-8 of R.
     profile, arc, curve = _groove_curve()
     R, s = arc.radius_m, 0.03
-    patch = raceway_patch(curve, SimpleNamespace(profile=profile), s)
+    patch = raceway_patch(curve, profile, s)
     w = np.array([wk for _, wk in patch])
     mean = w @ np.array([pc.rz_m for pc, _ in patch])
     alpha = s / R
@@ -91,9 +90,9 @@ def test_a_patch_past_the_groove_edge_is_refused_naming_spread_m():
     # The groove of the 95.25 mm ball ends 36° (32 mm of arc) beyond the 60° contact point: the
     # outer Gauss points of a 50 mm patch (0.86 rad) leave the section.
     profile, _, curve = _groove_curve()
-    raceway_patch(curve, SimpleNamespace(profile=profile), 0.03)
+    raceway_patch(curve, profile, 0.03)
     with pytest.raises(ValueError) as err:
-        raceway_patch(curve, SimpleNamespace(profile=profile), 0.05)
+        raceway_patch(curve, profile, 0.05)
     assert "spread_m" in str(err.value) and "groove" in str(err.value)
 
 
@@ -104,7 +103,7 @@ def test_patch_sample_is_the_transpose_of_point_loads_on_the_patch(ring_model):
     model = ring_model
     body = reduce_model(model, 6)
     curve = raceway_curve(model.ring, "top", 24)
-    patch = raceway_patch(curve, model.ring, 0.02)
+    patch = raceway_patch(curve, model.ring.profile, 0.02)
     smp = sample_raceway(body, curve, True, patch)
     f = np.array([0.3, -0.5, 0.8])
     for j in (0, 5, 17):
@@ -121,7 +120,7 @@ def test_patch_load_keeps_the_line_load_resultant(ring_model):
     # 2π r₀ q times the chord factor of the polygon, the same on every circle (rounding only).
     model = ring_model
     curve = raceway_curve(model.ring, "top", 36)
-    patch = tuple(raceway_patch(curve, model.ring, 0.02))
+    patch = tuple(raceway_patch(curve, model.ring.profile, 0.02))
     spread = Augmentation(curve, ("axial",), 0, patch=patch).load_vectors(model, True)[:, 0].reshape(-1, 3)
     line = Augmentation(curve, ("axial",), 0).load_vectors(model, True)[:, 0].reshape(-1, 3)
     chord = 36 * 2.0 * math.sin(math.pi / 36)        # polygon perimeter / r
@@ -145,3 +144,31 @@ def test_zero_spread_is_the_sample_and_load_on_the_line(ring_model):
     load = line_load_operator(model, curve.points_m, closed=True)
     d = -np.tile([0.0, 0.0, 1.0], (24, 1))
     np.testing.assert_array_equal(vec[:, 2], load(np.sin(curve.theta_rad)[:, None] * d))  # cos 0, cos 1, sin 1
+
+
+def test_largest_groove_patch_is_set_by_the_outer_gauss_point():
+    # Reference: the outer of 4 Gauss–Legendre points sits at u = 0.8611363 s, so the patch stays
+    # on the groove while 0.8611363 s / R is below the angle from the contact point to the nearer
+    # groove edge (measured here from the arc's end points). 1 % either side of that limit.
+    profile, arc, curve = _groove_curve()
+    c, R = curve.center_rz_m, arc.radius_m
+    e0 = (curve.rz_m - c) / R
+    to_edge = min(math.acos(np.clip(e0 @ (np.asarray(p) - c) / R, -1.0, 1.0)) for p in (arc.start, arc.end))
+    s_max = R * to_edge / 0.8611363115940526
+    raceway_patch(curve, profile, 0.99 * s_max)
+    with pytest.raises(ValueError, match="past the edge of the raceway"):
+        raceway_patch(curve, profile, 1.01 * s_max)
+
+
+def test_slewing_case_checks_the_spread_naming_the_key():
+    # Bad input is refused when the case is made, before meshing, naming the key.
+    from cases.slewing.presets import PRESETS
+    from cases.slewing.scene import _groove_spec
+
+    base = PRESETS["slewing-undulation"]
+    for bad in (-0.01, float("nan"), 0.05):
+        with pytest.raises(ValueError, match="raceway_spread_m"):
+            base.with_(top={"raceway_spread_m": bad})
+    case = base.with_(top={"raceway_spread_m": 0.03})
+    assert _groove_spec(case, "top", 16).spread_m == 0.03
+    assert _groove_spec(base, "top", 16).spread_m == 0.0

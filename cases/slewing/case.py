@@ -213,6 +213,17 @@ class Contact:
         return Coulomb(self.mu_static, self.mu_dynamic, self.v_static_m_s, self.v_dynamic_m_s)
 
 
+def _check_spread(profile, contact_rz_m, spread_m: float, key: str) -> None:
+    """The groove patch of ``spread_m`` lies in the section (checked before anything is meshed)."""
+    from fem_rings.nodesets import raceway_patch, section_raceway_curve
+
+    curve = section_raceway_curve(profile, "groove", (0.0,), contact_rz_m)
+    try:
+        raceway_patch(curve, profile, spread_m)
+    except ValueError as exc:
+        raise ValueError(f"{key}.raceway_spread_m: {exc}") from None
+
+
 @dataclass(frozen=True)
 class BodyFidelity:
     """How a ring is modelled: ``rigid`` or ``modal`` (n_modes normal modes + raceway load shapes up
@@ -352,8 +363,11 @@ class SlewingCase(CaseTables):
                                  f"samples round the ring resolve no higher harmonic; got {fidelity.groove_harmonics}")
             if modal:
                 size = fidelity.element_size_m or DEFAULT_ELEMENT_SIZE_M[g.variant]
-                check_model_size(cached_profile(make, g.pitch_diameter_m, g.section()), size, fidelity.n_modes,
-                                 f"{key}.element_size_m", f"{key}.n_modes")
+                profile = cached_profile(make, g.pitch_diameter_m, g.section())
+                check_model_size(profile, size, fidelity.n_modes, f"{key}.element_size_m", f"{key}.n_modes")
+                if fidelity.raceway_spread_m > 0.0:
+                    _check_spread(profile, g.section().groove(key, g.pitch_diameter_m).contact_point_m,
+                                  fidelity.raceway_spread_m, key)
 
     @property
     def dead_load_t(self) -> float:
