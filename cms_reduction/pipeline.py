@@ -77,8 +77,8 @@ class RacewaySpec:
     slices) instead of one circle. ``spread_m > 0`` averages the sampled mode shapes over a patch
     of the section of that size around the contact point and spreads the load shapes' line loads
     over the same patch (:func:`fem_rings.nodesets.raceway_patch`): a sampling that converges with
-    the mesh and the harmonics, where the line itself (0, the default) sits on the log-singular
-    displacement of its own line load.
+    the mesh, where the line itself (0, the default) sits on the log-singular displacement of its
+    own line load. (The harmonics still matter: a ball's load needs many of them to be resolved.)
     """
 
     segment: str
