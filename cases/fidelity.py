@@ -46,13 +46,16 @@ class ToleranceError(ValueError):
 class Knob:
     """A dotted case key and its values, cheap → expensive. ``resolution`` maps a value to a
     positive number that grows with fidelity (modes: n; element size: 1/h), for convergence
-    orders, and ``resolution_label`` says what it is; None for a knob without one (rigid / modal)."""
+    orders, and ``resolution_label`` says what it is; None for a knob without one (rigid / modal).
+    ``implies``: value → other knob settings that value needs (e.g. element load shapes need a
+    raceway patch), applied with it in the knob's sweep."""
 
     key: str
     values: tuple
     label: str
     resolution: object = None
     resolution_label: str = ""
+    implies: Mapping = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if len(self.values) < 1 or len(set(self.values)) != len(self.values):
@@ -130,7 +133,7 @@ def rungs(ladder: Ladder) -> list[Rung]:
     add("base", {})
     for k in ladder.knobs:
         for v in k.values:
-            add(f"{k.key}={v}", {k.key: v}, k.key)
+            add(f"{k.key}={v}", {k.key: v, **k.implies.get(v, {})}, k.key)
     for name, settings in ladder.combined.items():
         add(name, settings)
     ref_key = tuple(sorted({**ladder.base, **ladder.reference}.items()))
@@ -145,7 +148,8 @@ def sweep_members(ladder: Ladder, all_rungs: list[Rung], knob: Knob) -> list[Run
     """The rungs of one knob's sweep in the order of its values (the base sits at its value)."""
     by_value = {}
     for r in all_rungs:
-        others_base = all(r.settings[k] == v for k, v in ladder.base.items() if k != knob.key)
+        implied = knob.implies.get(r.settings[knob.key], {})
+        others_base = all(r.settings[k] == implied.get(k, v) for k, v in ladder.base.items() if k != knob.key)
         if others_base and r.name != "reference":
             by_value.setdefault(r.settings[knob.key], r)
     return [by_value[v] for v in knob.values if v in by_value]

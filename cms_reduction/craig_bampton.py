@@ -41,12 +41,13 @@ from fem_rings.modal_basis import (body_length_m, canonical_modes, deflated_eigs
                                    mass_centre_m, rigid_body_fields, unheld_rigid_combinations)
 from fem_rings.model import FEModel
 from fem_rings.nodesets import RacewayCurve
-from fem_rings.solve import line_load_operator, solver_threads
+from fem_rings.solve import solver_threads
 from foundation.progress import phase
 
+from .augmentation import Augmentation, CentrifugalAugmentation, ElementAugmentation
 from .body import ReducedBody
 
-__all__ = ["Interface", "Augmentation", "reduce_model", "rbe2_transform", "averaging_constraints"]
+__all__ = ["Interface", "Augmentation", "ElementAugmentation", "reduce_model", "rbe2_transform", "averaging_constraints"]
 
 log = logging.getLogger(__name__)
 
@@ -116,87 +117,6 @@ class Interface:
             raise InterfaceError(f"interface {self.name!r}: its {len(self.nodes)} nodes lie on one line, so a "
                              "rotation about that line moves none of them; widen the patch")
         return G.reshape(-1, 6)
-
-
-@dataclass(frozen=True)
-class Augmentation:
-    """Static load shapes of unit raceway line loads q(θ) = cos nθ, sin nθ (N/m), n = 0…n_max.
-
-    Parameters
-    ----------
-    curve : RacewayCurve
-        Raceway points (from :func:`fem_rings.nodesets.raceway_curve`).
-    directions : tuple of str
-        Load directions in the section: ``"normal"`` (into the raceway surface, i.e. along the
-        contact line for a groove at its contact point), ``"axial"``, ``"radial"``.
-    n_max : int
-        Highest circumferential harmonic.
-    patch : tuple of (RacewayCurve, float)
-        Empty: each load acts on ``curve`` itself. Else (from
-        :func:`fem_rings.nodesets.raceway_patch`) each load is spread over the patch circles, circle
-        k carrying w_k of its force per radian (per unit length: w_k q r₀ / r_k, r₀ the radius of
-        ``curve``), in the direction it has on ``curve``: the transpose of the patch-averaged
-        sampling (:func:`cms_reduction.sampling.sample_raceway`), so the generalized force of a
-        load shape stays work-consistent with the sampled mode shapes.
-    """
-
-    curve: RacewayCurve
-    directions: tuple = ("normal",)
-    n_max: int = 8
-    patch: tuple = ()
-
-    def __post_init__(self) -> None:
-        bad = set(self.directions) - {"normal", "axial", "radial"}
-        if bad:
-            raise ValueError(f"augmentation directions must be 'normal', 'axial' or 'radial', got {sorted(bad)}")
-        if int(self.n_max) < 0:
-            raise ValueError(f"augmentation n_max must be ≥ 0, got {self.n_max}")
-
-    def load_vectors(self, model: FEModel, full_circle: bool) -> np.ndarray:
-        """Consistent nodal force vectors (3N, k) of all harmonics and directions."""
-        c = self.curve
-        th = c.theta_rad
-        radial = np.column_stack((np.cos(th), np.sin(th), np.zeros_like(th)))
-        axial = np.tile([0.0, 0.0, 1.0], (len(th), 1))
-        dirs = {"radial": radial, "axial": axial,
-                "normal": -(c.normal_rz[0] * radial + c.normal_rz[1] * axial)}
-        load = (line_load_operator(model, c.points_m, closed=full_circle) if not self.patch
-                else _patch_load_operator(model, c, self.patch, full_circle))
-        out = []
-        for name in self.directions:
-            d = dirs[name]
-            for n in range(int(self.n_max) + 1):
-                for trig in ((np.cos,) if n == 0 else (np.cos, np.sin)):
-                    out.append(load(trig(n * th)[:, None] * d))
-        return np.column_stack(out)
-
-
-def _patch_load_operator(model: FEModel, curve: RacewayCurve, patch, full_circle: bool):
-    """q ↦ Σ_k (w_k r₀ / r_k) F_k(q): a line load on ``curve`` spread over the patch circles with
-    the same force per radian times their weights (F_k the consistent loads on circle k)."""
-    r0 = float(curve.rz_m[0])
-    parts = [(wk * r0 / float(ck.rz_m[0]), line_load_operator(model, ck.points_m, closed=full_circle))
-             for ck, wk in patch]
-
-    def apply(force_per_length_N_m) -> np.ndarray:
-        return sum(a * op(force_per_length_N_m) for a, op in parts)
-
-    return apply
-
-
-@dataclass(frozen=True)
-class CentrifugalAugmentation:
-    """Static load shape of the centrifugal body force of a spin about the body's z axis.
-
-    The load per unit Ω² is ρ (x, y, 0) per unit volume; its consistent nodal vector is M (x, y, 0)
-    (M the FE mass matrix, nodal positions interleaved). Its static response is the stretch of a ring
-    spinning about its axis, which raceway load shapes reproduce only roughly.
-    """
-
-    def load_vectors(self, model: FEModel, full_circle: bool) -> np.ndarray:
-        field = model.nodes_m.copy()
-        field[:, 2] = 0.0
-        return np.asarray(model.M @ field.reshape(-1))[:, None]
 
 
 def rbe2_transform(model: FEModel, interfaces) -> tuple[sp.csr_matrix, np.ndarray, np.ndarray]:

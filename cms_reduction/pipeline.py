@@ -21,7 +21,8 @@ from foundation.materials import ElasticMaterial
 from foundation.progress import phase
 
 from .body import ReducedBody
-from .craig_bampton import Augmentation, CentrifugalAugmentation, Interface, InterfaceError, reduce_model
+from .augmentation import Augmentation, CentrifugalAugmentation, ElementAugmentation
+from .craig_bampton import Interface, InterfaceError, reduce_model
 from .invariants import compute_invariants
 from .persist import cached_body
 from .sampling import pocket_contact_points, sample_across, sample_points, sample_raceway, sample_to_arrays
@@ -74,7 +75,10 @@ class RacewaySpec:
     ``at_rz_m`` is the contact point in the section (e.g. the nominal ball contact on a groove);
     ``directions``/``n_max`` set the augmentation harmonics (``n_max < 0``: no augmentation);
     ``n_across > 0`` samples a (θ, s) grid of that many circles across a straight raceway (roller
-    slices) instead of one circle. ``spread_m > 0`` averages the sampled mode shapes over a patch
+    slices) instead of one circle. ``element_angles_deg`` adds the static shapes of radial and axial
+    forces at those angles (the rolling elements' places in a scene), each spread over the patch
+    and over ±``spread_m`` along the circumference (:class:`.augmentation.ElementAugmentation`).
+    ``spread_m > 0`` averages the sampled mode shapes over a patch
     of the section of that size around the contact point and spreads the load shapes' line loads
     over the same patch (:func:`fem_rings.nodesets.raceway_patch`): a sampling that converges with
     the mesh, where the line itself (0, the default) sits on the log-singular displacement of its
@@ -88,11 +92,15 @@ class RacewaySpec:
     n_max: int = 8
     n_across: int = 0
     spread_m: float = 0.0
+    element_angles_deg: tuple = ()
 
     def __post_init__(self) -> None:
         s = float(self.spread_m)
         if not (math.isfinite(s) and s >= 0.0):
             raise ValueError(f"raceway {self.segment!r}: spread_m must be ≥ 0 and finite, got {self.spread_m!r}")
+        if self.element_angles_deg and s <= 0.0:
+            raise ValueError(f"raceway {self.segment!r}: element_angles_deg needs spread_m > 0 (a force at a "
+                             "point of a solid has an unbounded displacement there)")
         if s > 0.0 and self.n_across > 0:
             raise ValueError(f"raceway {self.segment!r}: spread_m applies to one circle of samples; "
                              f"it cannot be combined with n_across = {self.n_across}")
@@ -144,6 +152,8 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
                    for c, r in zip(curves, spec.raceways)]
         aug = [Augmentation(c, r.directions, r.n_max, patch=pt)
                for c, r, pt in zip(curves, spec.raceways, patches) if r.n_max >= 0]
+        aug += [ElementAugmentation(c, tuple(math.radians(a) for a in r.element_angles_deg), pt, r.spread_m)
+                for c, r, pt in zip(curves, spec.raceways, patches) if r.element_angles_deg]
         if spec.centrifugal:
             aug.append(CentrifugalAugmentation())
         body = reduce_model(model, spec.n_modes, interfaces, aug, damping_ratio=spec.damping_ratio,

@@ -172,3 +172,35 @@ def test_slewing_case_checks_the_spread_naming_the_key():
     case = base.with_(top={"raceway_spread_m": 0.03})
     assert _groove_spec(case, "top", 16).spread_m == 0.03
     assert _groove_spec(base, "top", 16).spread_m == 0.0
+
+
+def test_element_load_shapes_carry_unit_forces_at_the_elements(ring_model):
+    # Reference: the consistent nodal forces Pᵀf of point forces sum to the sum of the forces
+    # (the quadratic shape functions are a partition of unity). A unit radial force at ψ spread by
+    # Gauss weights over ±s along the circumference at radius r0 sums to (cos ψ, sin ψ, 0) times
+    # the Gauss average of cos(s x / r0), i.e. 1 − (s/r0)²/6 to O((s/r0)⁴); an axial one to (0, 0, 1).
+    from cms_reduction.augmentation import ElementAugmentation
+
+    curve = raceway_curve(ring_model.ring, "top", 360)
+    s = 0.02
+    patch = tuple(raceway_patch(curve, ring_model.ring.profile, s))
+    psi = (0.3, 2.0)
+    F = ElementAugmentation(curve, psi, patch, s).load_vectors(ring_model, True)
+    assert F.shape[1] == 2 * len(psi)
+    resultants = F.reshape(-1, 3, F.shape[1]).sum(axis=0).T      # (columns, 3)
+    r0 = float(curve.rz_m[0])
+    shrink = 1.0 - (s / r0) ** 2 / 6.0
+    for i, p in enumerate(psi):
+        np.testing.assert_allclose(resultants[2 * i], shrink * np.array([math.cos(p), math.sin(p), 0.0]), atol=1e-6)
+        np.testing.assert_allclose(resultants[2 * i + 1], [0.0, 0.0, 1.0], atol=1e-12)
+
+
+def test_element_load_shapes_need_a_patch(ring_model):
+    from cms_reduction.augmentation import ElementAugmentation
+    from cms_reduction.pipeline import RacewaySpec
+
+    curve = raceway_curve(ring_model.ring, "top", 36)
+    with pytest.raises(ValueError, match="patch"):
+        ElementAugmentation(curve, (0.0,), (), 0.01)
+    with pytest.raises(ValueError, match="element_angles_deg needs spread_m > 0"):
+        RacewaySpec("groove", element_angles_deg=(0.0, 90.0))

@@ -5,7 +5,10 @@ thesis' reduced modulus 1.5975 GPa (study (c)), where the ring's bending decides
 Checks against references:
 - the reference rung's errors are zero and every error column is its definition applied to the
   written ball loads (ball_loads.csv, an output written separately from tradeoff.csv);
-- convergence: the error falls from 5 to 20 modes and from no load shapes to harmonic 16;
+- convergence: the error falls from 5 to 20 modes and from no load shapes to harmonic 16; with the
+  ball load shapes the equilibrium is the FE solution of the ring under the ball forces, which
+  normal modes do not change: 20 and 40 modes agree within 0.5 % (Ritz: the exact static response
+  lies in both bases);
 - physics: the flexible top structure follows the undulation, so its largest ball load lies below
   the rigid one's (thesis ch. 4, study (c): 12 t flexible against 16.7 t rigid);
 - ``--tolerance`` runs the case at the rung it names, so the run's largest ball load is that rung's
@@ -47,7 +50,8 @@ def _rows(path):
 
 def test_quick_ladder_outputs_and_errors(ladder_folder):
     rows = {r["rung"]: r for r in _rows(ladder_folder / "tradeoff.csv")}
-    assert set(rows) == {"base", "top.kind=rigid", "top.n_modes=5", "top.groove_harmonics=-1", "reference"}
+    assert set(rows) == {"base", "top.kind=rigid", "top.n_modes=5", "top.groove_harmonics=-1",
+                         "top.ball_load_shapes=True", "reference"}
     for name in ("max_load", "load_max", "load_rms", "tau_max", "contact_angle_deg", "unloaded"):
         assert float(rows["reference"][name]) == 0.0
     loads = {r: np.array([float(x[f"{r}_N"]) for x in _rows(ladder_folder / "ball_loads.csv")]) for r in rows}
@@ -59,9 +63,10 @@ def test_quick_ladder_outputs_and_errors(ladder_folder):
     err = {k: float(r["max_load"]) for k, r in rows.items()}
     assert err["top.n_modes=5"] > err["base"]
     assert err["top.groove_harmonics=-1"] > err["base"]
+    assert err["top.ball_load_shapes=True"] < 0.005
     assert loads["reference"].max() < loads["top.kind=rigid"].max()
     summary = json.loads((ladder_folder / "summary.json").read_text())
-    assert summary["primary"] == "max_load" and summary["reference"]["model"].startswith("modal top structure: 40 modes")
+    assert summary["primary"] == "max_load" and summary["reference"]["model"].startswith("modal top structure: ball load shapes + 40 modes")
     assert set(summary["pareto_front"]) <= set(rows) - {"reference"}
     for png in ("tradeoff_pareto.png", "convergence_top_n_modes.png", "convergence_top_groove_harmonics.png"):
         assert (ladder_folder / png).stat().st_size > 10_000

@@ -231,7 +231,9 @@ class BodyFidelity:
     reduced-stiffness ring: 1.5975 GPa); ``element_size_m`` None takes a size from the variant.
     ``raceway_spread_m`` > 0 samples the groove averaged over a patch of that size around the
     contact point, and spreads the load shapes' line loads over it (:class:`cms_reduction.RacewaySpec`);
-    0 samples on the contact line itself."""
+    0 samples on the contact line itself. ``ball_load_shapes`` (needs a spread) adds the static
+    shapes of radial and axial forces at the load balls' places of the first position: with them an
+    equilibrium there is the finite-element solution of the ring under the ball forces."""
 
     kind: Literal["rigid", "modal"] = "rigid"
     n_modes: int = 20
@@ -242,6 +244,7 @@ class BodyFidelity:
     include_tmr: bool = True      # top structure only: TMR bolted to the top race as one body
     bolts: int = 12               # bottom race only: bolt patches on the support when modal
     raceway_spread_m: float = 0.0
+    ball_load_shapes: bool = False
 
     def __post_init__(self) -> None:
         if self.n_modes < 1:
@@ -255,6 +258,9 @@ class BodyFidelity:
             raise ValueError(f"bolts must be ≥ 3, got {self.bolts}")
         if not (math.isfinite(self.raceway_spread_m) and self.raceway_spread_m >= 0.0):
             raise ValueError(f"raceway_spread_m must be a finite number ≥ 0, got {self.raceway_spread_m!r}")
+        if self.ball_load_shapes and not self.raceway_spread_m > 0.0:
+            raise ValueError("ball_load_shapes needs raceway_spread_m > 0: a ball force on a line or a point of "
+                             "the ring has an unbounded displacement there")
 
 
 @dataclass(frozen=True)

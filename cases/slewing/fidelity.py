@@ -6,12 +6,18 @@ Knobs (keys of :class:`.case.BodyFidelity` of the top structure, cheap → expen
 - ``top.kind``: rigid, modal;
 - ``top.n_modes``: free–free normal modes kept, 5 … 80;
 - ``top.groove_harmonics``: raceway load shapes (inertia relief) up to this harmonic, −1 (none) … 32;
-- ``top.element_size_m``: 1.4×, 1×, 0.7× the variant's default element size (hex27).
+- ``top.element_size_m``: 1.4×, 1×, 0.7× the variant's default element size (hex27);
+- ``top.raceway_spread_m``: 0 (the groove sampled on the contact line) or the semi-major axis a of
+  the Hertz contact at the nominal ball load (sampled and loaded over a patch of that size,
+  :func:`fem_rings.nodesets.raceway_patch`);
+- ``top.ball_load_shapes``: with it, the static shapes of radial and axial ball forces at the balls'
+  places (on a patch of size a), so that the equilibrium is the finite-element solution of the
+  top structure under the ball forces.
 
-Reference: 80 modes, load shapes to harmonic 32 on the finest mesh — the most accurate model of the
-top structure this machine reduces in a few minutes. It is the same kind of model as the rungs (its
-ball loads act on the reduced ring through the sampled raceway), so the ladder measures truncation
-(modes, load shapes) and discretisation (mesh), not the error of the raceway load model itself.
+Reference: ball load shapes on the contact patch, 80 modes, load shapes to harmonic 32, the finest
+mesh: the finite-element model of the top structure under the Hertz ball forces (each spread over
+its contact patch), at the most the machine affords. Combined rungs show its own convergence in the
+mesh, and the cheaper models a user would pick.
 
 Scene: one quasi-static equilibrium of the case (the balls at their first azimuths). A study that
 sweeps values gives its most demanding single scene: the undulation ×1 (or its largest scale) on
@@ -23,6 +29,8 @@ from __future__ import annotations
 
 import numpy as np
 
+import math
+
 from foundation.materials import BEARING_STEEL
 from mbd_core.contact import ball_on_groove
 from mbd_core.contact.subsurface import subsurface_shear
@@ -30,7 +38,7 @@ from mbd_core.contact.subsurface import subsurface_shear
 from ..fidelity import Knob, Ladder, Outcome
 from . import scene as scene_mod
 from .case import SlewingCase
-from .quasistatic import equilibrium
+from .quasistatic import equilibrium, nominal_ball_load_N
 from .studies import UNLOADED_SHARE
 
 __all__ = ["ladder", "scene", "measure"]
@@ -44,10 +52,23 @@ def _sizes(case: SlewingCase) -> tuple[float, ...]:
     return tuple(round(f * h, 4) for f in MESH_FACTORS)
 
 
+def contact_patch_m(case: SlewingCase) -> float:
+    """Semi-major axis a of the Hertz contact ellipse of a load ball at the nominal load
+    W / (Z sin α0), on the top groove (Harris & Kotzalas, 5th ed., ch. 6), rounded to 0.1 mm."""
+    g = case.geometry
+    c = ball_on_groove(g.ball_diameter_m, g.conformity, g.pitch_diameter_m, math.radians(g.contact_angle_deg),
+                       "inner", BEARING_STEEL, BEARING_STEEL)
+    return round(float(c.semi_axes_m(nominal_ball_load_N(case))[0]), 4)
+
+
 def ladder(case: SlewingCase, quick: bool = False) -> Ladder:
-    """The ladder of ``case``'s variant (``quick``: a short one — rigid, 5 or 20 modes, with or
-    without load shapes, coarse mesh — against 40 modes and harmonic 32 on the same mesh)."""
+    """The ladder of ``case``'s variant (``quick``: a short one on the coarse mesh — rigid, 5 or 20
+    modes, with or without load shapes, with ball load shapes — against the ball load shapes with
+    40 modes)."""
     coarse, default, fine = _sizes(case)
+    a = contact_patch_m(case)
+    patch = Knob("top.raceway_spread_m", (0.0,) if quick else (0.0, a), "raceway patch (m)")
+    balls = Knob("top.ball_load_shapes", (False, True), "ball load shapes", implies={True: {"top.raceway_spread_m": a}})
     modes = Knob("top.n_modes", (5, 20) if quick else (5, 10, 20, 40, 80), "normal modes", float, "normal modes n")
     shapes = Knob("top.groove_harmonics", (-1, 16) if quick else (-1, 4, 8, 16, 32),
                   "groove load shapes up to harmonic", lambda n: n + 2.0,
@@ -56,15 +77,24 @@ def ladder(case: SlewingCase, quick: bool = False) -> Ladder:
     scene_text = "one quasi-static equilibrium: " + describe_scene(case)
     if quick:
         mesh = Knob("top.element_size_m", (coarse,), "element size (m)", lambda h: 1.0 / h, "1 / element size (1/m)")
-        base = {"top.kind": "modal", "top.n_modes": 20, "top.groove_harmonics": 16, "top.element_size_m": coarse}
-        return Ladder((kind, modes, shapes, mesh), base, {"top.n_modes": 40, "top.groove_harmonics": 32},
-                      primary="max_load", primary_label="largest ball load", scene=scene_text)
+        base = {"top.kind": "modal", "top.n_modes": 20, "top.groove_harmonics": 16, "top.element_size_m": coarse,
+                "top.raceway_spread_m": 0.0, "top.ball_load_shapes": False}
+        reference = {"top.n_modes": 40, "top.raceway_spread_m": a, "top.ball_load_shapes": True}
+        return Ladder((kind, modes, shapes, mesh, patch, balls), base, reference, primary="max_load",
+                      primary_label="largest ball load", scene=scene_text)
     mesh = Knob("top.element_size_m", (coarse, default, fine), "element size (m)", lambda h: 1.0 / h, "1 / element size (1/m)")
-    base = {"top.kind": "modal", "top.n_modes": 20, "top.groove_harmonics": 16, "top.element_size_m": default}
+    base = {"top.kind": "modal", "top.n_modes": 20, "top.groove_harmonics": 16, "top.element_size_m": default,
+            "top.raceway_spread_m": 0.0, "top.ball_load_shapes": False}
+    on_patch = {"top.raceway_spread_m": a, "top.ball_load_shapes": True}
     combined = {"coarse": {"top.n_modes": 10, "top.groove_harmonics": 8, "top.element_size_m": coarse},
-                "fine": {"top.n_modes": 40, "top.groove_harmonics": 32, "top.element_size_m": default}}
-    reference = {"top.n_modes": 80, "top.groove_harmonics": 32, "top.element_size_m": fine}
-    return Ladder((kind, modes, shapes, mesh), base, reference, combined, primary="max_load",
+                "fine": {"top.n_modes": 40, "top.groove_harmonics": 32, "top.element_size_m": default},
+                "balls-coarse": {**on_patch, "top.element_size_m": coarse},
+                "balls-fine": {**on_patch, "top.n_modes": 40, "top.groove_harmonics": 32},
+                "reference-mesh-coarse": {**on_patch, "top.n_modes": 80, "top.groove_harmonics": 32,
+                                          "top.element_size_m": coarse},
+                "reference-mesh-default": {**on_patch, "top.n_modes": 80, "top.groove_harmonics": 32}}
+    reference = {**on_patch, "top.n_modes": 80, "top.groove_harmonics": 32, "top.element_size_m": fine}
+    return Ladder((kind, modes, shapes, mesh, patch, balls), base, reference, combined, primary="max_load",
                   primary_label="largest ball load", scene=scene_text)
 
 
@@ -138,8 +168,11 @@ def describe(settings: dict) -> str:
     """A rung in words, as a user would set it."""
     if settings.get("top.kind") == "rigid":
         return "rigid top structure"
-    return (f"modal top structure: {settings['top.n_modes']} modes, load shapes to harmonic "
-            f"{settings['top.groove_harmonics']}, element {1e3 * settings['top.element_size_m']:g} mm")
+    spread = settings.get("top.raceway_spread_m", 0.0)
+    where = f"on a {1e3 * spread:g} mm patch" if spread else "on the contact line"
+    balls = "ball load shapes + " if settings.get("top.ball_load_shapes") else ""
+    return (f"modal top structure: {balls}{settings['top.n_modes']} modes, load shapes to harmonic "
+            f"{settings['top.groove_harmonics']}, element {1e3 * settings['top.element_size_m']:g} mm, {where}")
 
 
 
@@ -155,6 +188,5 @@ def rung_overrides(case: SlewingCase, settings: dict) -> dict | None:
         return None
     top = {} if study_sets_kind else {"kind": kind}
     if kind == "modal":
-        top.update(n_modes=settings["top.n_modes"], groove_harmonics=settings["top.groove_harmonics"],
-                   element_size_m=settings["top.element_size_m"])
+        top.update({key.split(".")[1]: v for key, v in settings.items() if key != "top.kind"})
     return {"top": top}

@@ -126,9 +126,11 @@ def _mesh(case: SlewingCase, fidelity) -> MeshSpec:
 
 def _groove_spec(case: SlewingCase, race: str, harmonics: int) -> RacewaySpec:
     groove = case.geometry.section().groove(race, case.geometry.pitch_diameter_m)
-    spread_m = getattr(case, race).raceway_spread_m
+    fidelity = getattr(case, race)
+    balls = tuple(360.0 * i / case.geometry.n_balls for i in range(case.geometry.n_balls)) \
+        if fidelity.ball_load_shapes else ()  # the load balls at the first position (ball_row, phase 0)
     return RacewaySpec("groove", N_THETA, at_rz_m=tuple(groove.contact_point_m), n_max=harmonics,
-                       spread_m=spread_m)
+                       spread_m=fidelity.raceway_spread_m, element_angles_deg=balls)
 
 
 def top_body(case: SlewingCase):

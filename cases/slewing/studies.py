@@ -309,7 +309,8 @@ STUDIES = {
 
 
 #: fidelity keys of a ring that only a modal ring reads
-_MODAL_KEYS = ("n_modes", "groove_harmonics", "E_Pa", "damping_ratio", "element_size_m")
+_MODAL_KEYS = ("n_modes", "groove_harmonics", "E_Pa", "damping_ratio", "element_size_m", "raceway_spread_m",
+               "ball_load_shapes")
 
 
 def modal_top(case: SlewingCase) -> bool:
