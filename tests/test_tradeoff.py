@@ -58,8 +58,8 @@ def test_quick_ladder_outputs_and_errors(ladder_folder):
     ref = loads["reference"]
     for name, q in loads.items():
         d = q - ref
-        assert float(rows[name]["max_load"]) == pytest.approx(abs(q.max() - ref.max()) / ref.max(), rel=1e-6, abs=1e-9)  # CSV: 9 digits
-        assert float(rows[name]["load_rms"]) == pytest.approx(np.sqrt(np.mean(d * d)) / ref.max(), rel=1e-6, abs=1e-9)  # CSV: 9 digits
+        assert float(rows[name]["max_load"]) == pytest.approx(abs(q.max() - ref.max()) / ref.max(), rel=1e-6, abs=1e-8)  # CSV: 9 digits (±0.5e-4 N on each load)
+        assert float(rows[name]["load_rms"]) == pytest.approx(np.sqrt(np.mean(d * d)) / ref.max(), rel=1e-6, abs=1e-8)  # CSV: 9 digits (±0.5e-4 N on each load)
     err = {k: float(r["max_load"]) for k, r in rows.items()}
     assert err["top.n_modes=5"] > err["base"]
     assert err["top.groove_harmonics=-1"] > err["base"]
