@@ -9,7 +9,8 @@ ParaView series and pictures.
 """
 
 from .body import ReducedBody
-from .craig_bampton import Augmentation, Interface, reduce_model
+from .augmentation import Augmentation
+from .craig_bampton import Interface, reduce_model
 from .invariants import Invariants, compute_invariants
 from .persist import load_body, save_body
 from .pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, reduced_body

@@ -40,14 +40,12 @@ from fem_rings.linalg import factorize_spd, shift_invert_operator
 from fem_rings.modal_basis import (body_length_m, canonical_modes, deflated_eigsh, m_orthonormal,
                                    mass_centre_m, rigid_body_fields, unheld_rigid_combinations)
 from fem_rings.model import FEModel
-from fem_rings.nodesets import RacewayCurve
 from fem_rings.solve import solver_threads
 from foundation.progress import phase
 
-from .augmentation import Augmentation, CentrifugalAugmentation, ElementAugmentation
 from .body import ReducedBody
 
-__all__ = ["Interface", "Augmentation", "ElementAugmentation", "reduce_model", "rbe2_transform", "averaging_constraints"]
+__all__ = ["Interface", "reduce_model", "rbe2_transform", "averaging_constraints"]
 
 log = logging.getLogger(__name__)
 
@@ -315,7 +313,7 @@ def reduce_model(
         Fixed-interface (or, without interfaces, free–free elastic) normal modes to compute.
     interfaces : sequence of Interface
         Condensed patches; grounded ones are held, the others keep constraint modes.
-    augmentation : sequence of Augmentation
+    augmentation : sequence of load shapes (:mod:`.augmentation`)
         Raceway load shapes added to the basis.
     floating : bool, optional
         Remove rigid-body modes (the reference frame carries rigid motion). Default: True when

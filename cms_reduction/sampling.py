@@ -83,7 +83,7 @@ def sample_raceway(body: ReducedBody, curve: RacewayCurve, full_circle: bool, pa
     displacement and rotation at each point are the weighted averages Σ w_k D(p_k), Σ w_k Ω(p_k)
     over the patch circles at the same θ (RBE3-type weighted-average interpolation); the sample
     keeps the points of ``curve``. A force f at θ then does the work Σ w_k f·D(p_k) η: the patch
-    load of :class:`cms_reduction.craig_bampton.Augmentation` is its transpose. Empty: the values
+    load of :class:`cms_reduction.augmentation.Augmentation` is its transpose. Empty: the values
     on ``curve`` itself.
     """
     if not patch:

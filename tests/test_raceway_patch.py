@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from cms_reduction import ReducedBody, reduce_model
-from cms_reduction.craig_bampton import Augmentation
+from cms_reduction.augmentation import Augmentation
 from cms_reduction.sampling import raceway_modal_force, sample_points, sample_raceway
 from fem_rings import MeshSpec, build_model
 from fem_rings.nodesets import RacewayCurve, raceway_curve, raceway_patch
