@@ -99,12 +99,15 @@ class Rung:
 @dataclass(frozen=True)
 class Outcome:
     """What a rung computes, per rolling element (Z of them): normal load (N), loaded contact
-    angle (rad), and the peak subsurface shear stress under the largest load (Pa)."""
+    angle (rad), and the peak subsurface shear stress under the largest load (Pa); and the error
+    the run estimates for itself (``error_estimates``), to compare with its true error."""
 
     load_N: np.ndarray
     contact_angle_rad: np.ndarray
     tau_max_Pa: float
     unloaded_share: float = 1e-3
+    #: the run's own estimate of its ``primary`` error without the reference (None: none)
+    estimated_error: float | None = None
 
     @property
     def unloaded(self) -> int:

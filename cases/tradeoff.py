@@ -46,7 +46,7 @@ log = logging.getLogger(__name__)
 #: ``measure``, ``describe``)
 LADDERS = {SlewingCase: slewing_fidelity}
 #: part of the ladder cache key: bump when what a rung measures changes
-TRADEOFF_VERSION = 1
+TRADEOFF_VERSION = 2
 
 
 def family_ladder(case):
@@ -114,7 +114,8 @@ def _cache_file(key: str) -> Path:
 def _to_json(result: LadderResult) -> dict:
     return {"rows": result.rows,
             "outcomes": {k: {"load_N": o.load_N.tolist(), "contact_angle_rad": o.contact_angle_rad.tolist(),
-                             "tau_max_Pa": o.tau_max_Pa, "unloaded_share": o.unloaded_share}
+                             "tau_max_Pa": o.tau_max_Pa, "unloaded_share": o.unloaded_share,
+                             "estimated_error": o.estimated_error}
                          for k, o in result.outcomes.items()}}
 
 
@@ -122,7 +123,7 @@ def _load_cached(path: Path, ladder: Ladder, all_rungs: list[Rung]) -> LadderRes
     try:
         data = json.loads(path.read_text())
         outcomes = {k: Outcome(np.array(v["load_N"]), np.array(v["contact_angle_rad"]), float(v["tau_max_Pa"]),
-                               float(v["unloaded_share"])) for k, v in data["outcomes"].items()}
+                               float(v["unloaded_share"]), v["estimated_error"]) for k, v in data["outcomes"].items()}
         rows = data["rows"]
     except (OSError, ValueError, KeyError, TypeError):
         return None
@@ -160,7 +161,7 @@ def run_ladder(case, quick: bool = False, progress=None, use_cache: bool = True)
                      **{k: v for k, v in r.settings.items()},
                      "wall_s": m["wall_s"], "cpu_s": m["cpu_s"], "warm_wall_s": m["warm_wall_s"],
                      "peak_rss_mb": m["peak_rss_mb"], "max_load_N": float(o.load_N.max()), "unloaded_elements": o.unloaded,
-                     **rung_errors(o, ref)})
+                     **rung_errors(o, ref), "estimated_error": o.estimated_error})
     result = LadderResult(ladder, all_rungs, rows, {k: v["outcome"] for k, v in measured.items()})
     if use_cache:
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -199,6 +200,25 @@ def convergence(result: LadderResult) -> dict[str, dict]:
     return out
 
 
+def _cell(row: dict, name: str, front: list[str]):
+    if name == "pareto":
+        return row["rung"] in front
+    value = row.get(name)
+    return "" if value is None else value
+
+
+def estimate_tracking(rows: list[dict], primary: str) -> dict:
+    """How the runs' own error estimates track their true ``primary`` errors: per rung with both
+    (true error > 0), the ratio estimate / true, and its range."""
+    ratios = {r["rung"]: r["estimated_error"] / r[primary] for r in rows
+              if r.get("estimated_error") is not None and r["rung"] != "reference" and r[primary] > 0.0}
+    out = {"ratio_estimated_to_true": ratios}
+    if ratios:
+        out.update(min_ratio=min(ratios.values()), max_ratio=max(ratios.values()),
+                   within_factor_3=sorted(k for k, v in ratios.items() if 1 / 3 <= v <= 3))
+    return out
+
+
 def write_tradeoff(case, out_dir, quick: bool = False, progress=None, source: str | None = None):
     """Run (or reuse) the ladder and write tradeoff.csv, ball_loads.csv, summary.json and the plots;
     returns (summary, ladder result)."""
@@ -211,9 +231,9 @@ def write_tradeoff(case, out_dir, quick: bool = False, progress=None, source: st
         out = RunOutput(tmp)
         knob_keys = [k.key for k in ladder.knobs]
         header = ["rung", "knob", "model", *knob_keys, "wall_s", "cpu_s", "warm_wall_s", "peak_rss_mb", "max_load_N",
-                  "unloaded_elements", *ERROR_NAMES, "pareto"]
+                  "unloaded_elements", *ERROR_NAMES, "estimated_error", "pareto"]
         out.write_csv("tradeoff.csv", [h.replace(".", "_") for h in header],
-                      [[r[h] if h != "pareto" else r["rung"] in front for h in header] for r in result.rows])
+                      [[_cell(r, h, front) for h in header] for r in result.rows])
         names = [r.name for r in result.rungs]
         az = np.degrees(2.0 * np.pi * np.arange(len(result.outcomes["reference"].load_N))
                         / len(result.outcomes["reference"].load_N))
@@ -227,7 +247,7 @@ def write_tradeoff(case, out_dir, quick: bool = False, progress=None, source: st
             "case": case.name, "scene": ladder.scene, "quick": quick, "primary": ladder.primary,
             "primary_quantity": ladder.primary_label, "errors": ERROR_NAMES,
             "reference": {"model": ref["model"], "wall_s": ref["wall_s"], "max_load_N": ref["max_load_N"]},
-            "rungs": result.rows, "pareto_front": front,
+            "rungs": result.rows, "pareto_front": front, "estimate_tracking": estimate_tracking(result.rows, ladder.primary),
             "convergence": {k: {kk: v for kk, v in c.items() if "label" not in kk} for k, c in conv.items()},
             "ladder_from_cache": result.cached, "wall_time_s": time.perf_counter() - t0,
             "ladder_wall_s": float(sum(r["wall_s"] + r["warm_wall_s"] for r in result.rows)),

@@ -303,6 +303,7 @@ def reduce_model(
     damping_ratio: float | np.ndarray = 0.0,
     name: str | None = None,
     backend: str = "auto",
+    probes=(),
 ) -> ReducedBody:
     """Reduce an FE ring model to a modal body.
 
@@ -320,6 +321,10 @@ def reduce_model(
         no interface is grounded.
     damping_ratio : float or (m,) array
         Modal damping ratio of every kept mode.
+    probes : sequence of load shapes (:mod:`.augmentation`)
+        Loads whose static response is measured but not added: the body's metadata gets
+        ``residual_compliance_m_per_N``, the (k, k) compliance fᵀK⁻¹f of the k probe loads that
+        the basis does not hold (:func:`residual_compliance`). Free bodies only.
     """
     interfaces = tuple(interfaces)
     augmentation = tuple(augmentation)
@@ -343,6 +348,12 @@ def reduce_model(
     KII, MII = (_block(A, interior) for A in (Kq, Mq))
     loads_q = np.column_stack([T.T @ a.load_vectors(model, model.ring.spec.full_circle) for a in augmentation]) \
         if augmentation else np.zeros((nq, 0))
+    probe_q = np.column_stack([T.T @ a.load_vectors(model, model.ring.spec.full_circle) for a in probes]) \
+        if probes else np.zeros((nq, 0))
+    free_body = len(master_cols) == 0 and C_avg.shape[0] == 0
+    if probe_q.shape[1] and not (free_body and floating):
+        raise ValueError("residual-compliance probes are measured on free floating bodies only")
+    probe_compliance = None
     Rq = rigid_fields_q(model, interfaces, retained)
     held_rigid = np.vstack((Rq[held], C_avg[np.flatnonzero(avg_grounded)] @ Rq[interior]))
     length_m = body_length_m(model.nodes_m, mass_centre_m(model.M, model.nodes_m))
@@ -359,10 +370,13 @@ def reduce_model(
             sigma = -(2.0 * math.pi) ** 2
             op, factor = shift_invert_operator(KII, MII, sigma, backend=backend)
             interior_blocks.append(deflated_eigsh(KII, MII, int(n_modes), sigma, op, rigid_q)[1])
+            MR = MII @ rigid_q
             if loads_q.shape[1]:
-                MR = MII @ rigid_q
                 U = solve_in_blocks(factor.solve, loads_q - MR @ (rigid_q.T @ loads_q), "load shapes")
                 interior_blocks.append(U - rigid_q @ (MR.T @ U))
+            if probe_q.shape[1]:
+                U = factor.solve(probe_q - MR @ (rigid_q.T @ probe_q))
+                probe_compliance = probe_q.T @ (U - rigid_q @ (MR.T @ U))
         else:
             # interior rows: retained-node DOFs (rigid-interface masters excluded), which are also
             # the first columns of q, so the averaging constraints apply to them directly
@@ -391,6 +405,9 @@ def reduce_model(
         # a floating body's reference frame carries its rigid motion: the modes are cleared of it
         with phase(f"orthonormalising the basis ({sum(b.shape[1] for b in blocks)} vectors)"):
             Vq, w2, dropped = _modal_form(Kq, Mq, blocks, rigid_q)
+    metadata = {}
+    if probe_compliance is not None:
+        metadata["residual_compliance_m_per_N"] = residual_compliance(probe_compliance, Vq, w2, probe_q, sigma).tolist()
     shapes = np.asarray(T @ Vq)
     freqs = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * math.pi)
     zeta = np.broadcast_to(np.asarray(damping_ratio, dtype=float), freqs.shape).copy()
@@ -408,5 +425,30 @@ def reduce_model(
         mesh_doflocs=model.mesh.doflocs.copy(),
         mesh_t=model.mesh.t.copy(),
         metadata={"n_normal_modes": int(n_modes), "n_augmentation_vectors": int(loads_q.shape[1]),
-                  "interfaces": [i.name for i in interfaces], "grounded": grounded},
+                  "interfaces": [i.name for i in interfaces], "grounded": grounded, **metadata},
     )
+
+
+def residual_compliance(full_compliance, shapes, omega2, loads, sigma: float = 0.0) -> np.ndarray:
+    """The static compliance of ``loads`` that a modal basis does not hold (residual flexibility).
+
+    Parameters
+    ----------
+    full_compliance : (k, k)
+        Fᵀ(K − σM)⁻¹F of the loads F on the body's elastic motions (inertia relief on a floating body).
+    shapes : (n, m)
+        M-orthonormal basis with ``shapes``ᵀ K ``shapes`` = diag(``omega2``), cleared of rigid motion.
+    omega2 : (m,)
+    loads : (n, k)
+    sigma : float
+        The shift of the factorisation that gave ``full_compliance``.
+
+    The Ritz (Galerkin) compliance on the basis is Σ_j (φ_jᵀF)ᵀ(φ_jᵀF) / (ω_j² − σ), a lower bound of
+    the full one (Rayleigh–Ritz: the basis holds part of the static response); the difference is
+    the residual flexibility of the truncation (Craig & Kurdila, Fundamentals of Structural
+    Dynamics, 2nd ed. 2006, §17.4), positive semi-definite up to round-off.
+    """
+    P = shapes.T @ loads
+    modal = P.T @ (P / (np.asarray(omega2, float) - sigma)[:, None])
+    R = np.asarray(full_compliance, float) - modal
+    return 0.5 * (R + R.T)

@@ -83,6 +83,11 @@ class RacewaySpec:
     over the same patch (:func:`fem_rings.nodesets.raceway_patch`): a sampling that converges with
     the mesh, where the line itself (0, the default) sits on the log-singular displacement of its
     own line load. (The harmonics still matter: a ball's load needs many of them to be resolved.)
+    ``probe_spread_m > 0`` measures the residual flexibility of the basis at θ = 0: the compliance
+    to unit radial and axial forces spread over a patch of that size (as ``element_angles_deg``)
+    that the kept modes and shapes do not hold (metadata ``residual_compliance_m_per_N``, radial
+    then axial, m/N; :func:`.craig_bampton.residual_compliance`), an estimate of the truncation
+    error that costs two solves with the factor the reduction has.
     """
 
     segment: str
@@ -93,8 +98,12 @@ class RacewaySpec:
     n_across: int = 0
     spread_m: float = 0.0
     element_angles_deg: tuple = ()
+    probe_spread_m: float = 0.0
 
     def __post_init__(self) -> None:
+        p = float(self.probe_spread_m)
+        if not (math.isfinite(p) and p >= 0.0):
+            raise ValueError(f"raceway {self.segment!r}: probe_spread_m must be ≥ 0 and finite, got {self.probe_spread_m!r}")
         s = float(self.spread_m)
         if not (math.isfinite(s) and s >= 0.0):
             raise ValueError(f"raceway {self.segment!r}: spread_m must be ≥ 0 and finite, got {self.spread_m!r}")
@@ -156,8 +165,10 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
                 for c, r, pt in zip(curves, spec.raceways, patches) if r.element_angles_deg]
         if spec.centrifugal:
             aug.append(CentrifugalAugmentation())
+        probes = [ElementAugmentation(c, (0.0,), tuple(raceway_patch(c, model.ring.profile, r.probe_spread_m)),
+                                      r.probe_spread_m) for c, r in zip(curves, spec.raceways) if r.probe_spread_m > 0]
         body = reduce_model(model, spec.n_modes, interfaces, aug, damping_ratio=spec.damping_ratio,
-                            name=name or profile.name)
+                            name=name or profile.name, probes=probes)
         with phase("inertia invariants"):
             extras = dict(compute_invariants(model.M, body.nodes_m, body.shapes).to_arrays())
         with phase("sampling raceways", total=len(spec.raceways) + (pockets is not None and spec.sample_pockets)) as p:

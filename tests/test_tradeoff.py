@@ -64,6 +64,12 @@ def test_quick_ladder_outputs_and_errors(ladder_folder):
     assert err["top.n_modes=5"] > err["base"]
     assert err["top.groove_harmonics=-1"] > err["base"]
     assert err["top.ball_load_shapes=True"] < 0.005
+    # the runs' own truncation estimates (error_estimates): with the ball load shapes the basis holds
+    # the static response of the probe's ball force (Ritz: its residual compliance is round-off, so
+    # the estimate is ≤ 1e-6); without them the missing flexibility is there (> 1 %); rigid: none
+    est = {k: r["estimated_error"] for k, r in rows.items()}
+    assert abs(float(est["top.ball_load_shapes=True"])) < 1e-6 and abs(float(est["reference"])) < 1e-6
+    assert float(est["base"]) > 0.01 and est["top.kind=rigid"] == ""
     assert loads["reference"].max() < loads["top.kind=rigid"].max()
     summary = json.loads((ladder_folder / "summary.json").read_text())
     assert summary["primary"] == "max_load" and summary["reference"]["model"].startswith("modal top structure: ball load shapes + 40 modes")

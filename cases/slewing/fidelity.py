@@ -44,7 +44,7 @@ from mbd_core.contact.subsurface import subsurface_shear
 from ..fidelity import Knob, Ladder, Outcome
 from . import scene as scene_mod
 from .case import SlewingCase
-from .quasistatic import equilibrium
+from .quasistatic import equilibrium, error_estimates
 from .studies import UNLOADED_SHARE
 
 __all__ = ["ladder", "scene", "measure"]
@@ -62,13 +62,7 @@ def _sizes(case: SlewingCase) -> tuple[float, ...]:
     return tuple(round(f * h, 4) for f in MESH_FACTORS)
 
 
-#: size of the groove patch as a share of the ball diameter (module docstring)
-GROOVE_PATCH_SHARE = 0.3
-
-
-def contact_patch_m(case: SlewingCase) -> float:
-    """The groove patch size s = 0.3·D of the ladder (module docstring), rounded to 0.1 mm."""
-    return round(GROOVE_PATCH_SHARE * case.geometry.ball_diameter_m, 4)
+contact_patch_m = scene_mod.groove_patch_m
 
 
 def ladder(case: SlewingCase, quick: bool = False) -> Ladder:
@@ -162,8 +156,9 @@ def measure(case: SlewingCase) -> Outcome:
     row = res.rows[0]
     k = int(np.argmax(row.load_N))
     tau = _tau_max_Pa(c, float(row.load_N[k]), float(row.contact_angle_rad[k]))
+    est = error_estimates(c, bodies, res)["modal_truncation"]
     return Outcome(np.asarray(row.load_N, float), np.asarray(row.contact_angle_rad, float), tau,
-                   unloaded_share=UNLOADED_SHARE)
+                   unloaded_share=UNLOADED_SHARE, estimated_error=None if est is None else est["max_load"])
 
 
 def rung_case(case: SlewingCase, settings: dict) -> SlewingCase:

@@ -21,13 +21,14 @@ from scipy.optimize import brentq
 from mbd_core.contact import ball_on_groove
 
 from mbd_core.quasistatic import Bearing, RingLoad
+from mbd_core.quasistatic.estimates import truncation_estimate
 from mbd_core.quasistatic.flexible import build_flexible_model
 from mbd_core.quasistatic.flexible_solve import solve_flexible_load_distribution
 
 from . import scene
 from .case import SlewingCase
 
-__all__ = ["Travel", "equilibrium", "travel", "analytic_ball_load_N", "nominal_ball_load_N"]
+__all__ = ["Travel", "equilibrium", "travel", "analytic_ball_load_N", "nominal_ball_load_N", "error_estimates"]
 
 
 def nominal_ball_load_N(case: SlewingCase) -> float:
@@ -71,6 +72,26 @@ def equilibrium(case: SlewingCase, bodies: scene.Bodies, top_rotation_rad: float
                                  scene.groove_offsets(case, top_rotation_rad))
     return solve_flexible_load_distribution(model, RingLoad(Fz_N=-case.dead_load_N),
                                             initial_displacement=initial_displacement)
+
+
+def error_estimates(case: SlewingCase, bodies: scene.Bodies, res) -> dict:
+    """``error_estimates`` of one equilibrium: the top structure's modal truncation at its most
+    loaded ball (:func:`mbd_core.quasistatic.estimates.truncation_estimate`, from the residual
+    compliance its reduction measured), or why there is none."""
+    top = bodies.top
+    if top is None:
+        return {"modal_truncation": None, "why_none": "rigid top structure (no modes to truncate)"}
+    R = top.metadata.get("residual_compliance_m_per_N")
+    if R is None:
+        return {"modal_truncation": None, "why_none": "the top structure's reduction measured no residual compliance"}
+    row = res.rows[0]
+    groove = case.geometry.section().groove("top", case.geometry.pitch_diameter_m)
+    n = np.array([groove.direction(math.degrees(a)) for a in row.contact_angle_rad])
+    est = truncation_estimate(R, n, row.load_N, row.approach_m)
+    est["ball"] = est.pop("element") + 1
+    return {"modal_truncation": est, "what": "estimated relative error of the largest ball load from the "
+            "top structure's residual flexibility at the most loaded ball (η = 1.5·r/δ, error ≈ η/(1+η); "
+            "an upper scale when the ring is soft, see flexbearing tradeoff)"}
 
 
 @dataclass(frozen=True)

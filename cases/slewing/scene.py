@@ -124,13 +124,24 @@ def _mesh(case: SlewingCase, fidelity) -> MeshSpec:
     return MeshSpec(size, "hex27")
 
 
+#: the groove region a ball spans, as a share of the ball diameter: the patch of the ball load
+#: shapes in the fidelity ladder and of the residual-flexibility probe (:mod:`.fidelity`)
+GROOVE_PATCH_SHARE = 0.3
+
+
+def groove_patch_m(case: SlewingCase) -> float:
+    """The groove patch s = 0.3·D (:data:`GROOVE_PATCH_SHARE`), rounded to 0.1 mm."""
+    return round(GROOVE_PATCH_SHARE * case.geometry.ball_diameter_m, 4)
+
+
 def _groove_spec(case: SlewingCase, race: str, harmonics: int) -> RacewaySpec:
     groove = case.geometry.section().groove(race, case.geometry.pitch_diameter_m)
     fidelity = getattr(case, race)
     balls = tuple(360.0 * i / case.geometry.n_balls for i in range(case.geometry.n_balls)) \
         if fidelity.ball_load_shapes else ()  # the load balls at the first position (ball_row, phase 0)
+    probe = groove_patch_m(case) if race == "top" else 0.0  # the floating top structure's truncation estimate
     return RacewaySpec("groove", N_THETA, at_rz_m=tuple(groove.contact_point_m), n_max=harmonics,
-                       spread_m=fidelity.raceway_spread_m, element_angles_deg=balls)
+                       spread_m=fidelity.raceway_spread_m, element_angles_deg=balls, probe_spread_m=probe)
 
 
 def top_body(case: SlewingCase):

@@ -21,7 +21,7 @@ from .case import SlewingCase
 from .life import plot_subsurface_shear, worst_ball_life
 from ..results import plural, share_ylim
 from .plots import plot_ball_loads, plot_static, plot_travel
-from .quasistatic import analytic_ball_load_N, equilibrium, nominal_ball_load_N, travel
+from .quasistatic import analytic_ball_load_N, equilibrium, error_estimates, nominal_ball_load_N, travel
 
 __all__ = ["RUN_KEYS", "STUDIES", "case_unused_keys", "modal_top", "run_study", "runs_of"]
 
@@ -117,7 +117,8 @@ def study_undulation(case: SlewingCase, out, progress=None) -> None:
         out.warn(res.warnings, f"E {E / 1e9:g} GPa, undulation ×{h:g}")
         fig = _distribution_figures(res)
         curves[(E, h)] = res.rows[0].load_N
-        table.append({"top_E_Pa": E, "undulation_scale": h, **fig})
+        table.append({"top_E_Pa": E, "undulation_scale": h, **fig,
+                      "error_estimates": error_estimates(c, bodies, res)})
         out.note(f"E {E / 1e9:7.4g} GPa, undulation ×{h:g}: max ball load {fig['max_ball_load_N']:.0f} N, "
                  f"{plural(fig['unloaded_balls'], 'ball')} unloaded")
         _write_top_vtu(out, f"top_E{E / 1e9:g}GPa_x{h:g}.vtu", bodies, res.modal("top"))
@@ -379,7 +380,7 @@ def run_study(case: SlewingCase, out, progress=None) -> None:
     res = equilibrium(case, bodies)
     out.warn(res.warnings)
     out.summary.update(_distribution_figures(res), nominal_ball_load_N=nominal_ball_load_N(case),
-                       ball_load_N=res.rows[0].load_N)
+                       ball_load_N=res.rows[0].load_N, error_estimates=error_estimates(case, bodies, res))
     _write_balls_vtu(out, "balls.vtu", case, res.rows[0].azimuth_rad, res.rows[0].load_N)
     if bodies.top is not None:
         _write_top_vtu(out, "top_structure.vtu", bodies, res.modal("top"))
