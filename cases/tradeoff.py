@@ -38,7 +38,8 @@ from .slewing import fidelity as slewing_fidelity
 from .slewing.case import SlewingCase
 from .tradeoff_plots import plot_convergence, plot_pareto
 
-__all__ = ["LADDERS", "LadderResult", "family_ladder", "run_ladder", "write_tradeoff", "pareto_front", "choose_fidelity"]
+__all__ = ["LADDERS", "LadderResult", "family_ladder", "run_ladder", "write_tradeoff", "pareto_front", "choose_fidelity",
+           "measure_cold"]
 
 log = logging.getLogger(__name__)
 
@@ -80,7 +81,9 @@ def _measure_rung(module_name: str, case, settings: dict) -> dict:
     return {"outcome": outcome, "wall_s": wall, "cpu_s": cpu, "warm_wall_s": warm, "peak_rss_mb": _peak_rss_mb()}
 
 
-def _in_worker(module_name: str, case, settings: dict) -> dict:
+def measure_cold(module_name: str, case, settings: dict) -> dict:
+    """``case`` at ``settings`` measured by ``module_name`` in a fresh spawned process, cold then
+    warm (:func:`_measure_rung`): outcome, wall and CPU time, warm wall time, peak memory."""
     ctx = multiprocessing.get_context("spawn")
     with ProcessPoolExecutor(max_workers=1, mp_context=ctx) as pool:
         return pool.submit(_measure_rung, module_name, case, settings).result()
@@ -151,7 +154,7 @@ def run_ladder(case, quick: bool = False, progress=None, use_cache: bool = True)
     items = list(all_rungs)
     for r in (progress(items, "rungs") if progress else items):
         log.info("rung %s: %s", r.name, module.describe(dict(r.settings)))
-        measured[r.name] = _in_worker(module.__name__, case, dict(r.settings))
+        measured[r.name] = measure_cold(module.__name__, case, dict(r.settings))
     ref = measured["reference"]["outcome"]
     rows = []
     for r in all_rungs:

@@ -127,7 +127,8 @@ def with_stiffness_scaled(body: ReducedBody, factor: float) -> ReducedBody:
     if "stress_modes" in extras:
         extras["stress_modes"] = extras["stress_modes"] * factor
     metadata = {**body.metadata, "stiffness_factor": float(factor) * float(body.metadata.get("stiffness_factor", 1.0))}
-    if "residual_compliance_m_per_N" in metadata:  # a compliance scales with 1/E
-        metadata["residual_compliance_m_per_N"] = (np.asarray(metadata["residual_compliance_m_per_N"]) / factor).tolist()
+    for key in ("residual_compliance_m_per_N", "probe_compliance_m_per_N"):  # a compliance scales with 1/E
+        if key in metadata:
+            metadata[key] = (np.asarray(metadata[key]) / factor).tolist()
     return replace(body, frequencies_Hz=np.asarray(body.frequencies_Hz) * math.sqrt(factor), extras=extras,
                    metadata=metadata)

@@ -323,8 +323,9 @@ def reduce_model(
         Modal damping ratio of every kept mode.
     probes : sequence of load shapes (:mod:`.augmentation`)
         Loads whose static response is measured but not added: the body's metadata gets
-        ``residual_compliance_m_per_N``, the (k, k) compliance fᵀK⁻¹f of the k probe loads that
-        the basis does not hold (:func:`residual_compliance`). Free bodies only.
+        ``probe_compliance_m_per_N``, the (k, k) compliance FᵀK⁻¹F of the k probe loads on the
+        elastic motion (inertia relief), and ``residual_compliance_m_per_N``, the part of it the
+        basis does not hold (:func:`residual_compliance`). Free bodies only.
     """
     interfaces = tuple(interfaces)
     augmentation = tuple(augmentation)
@@ -408,6 +409,7 @@ def reduce_model(
     metadata = {}
     if probe_compliance is not None:
         metadata["residual_compliance_m_per_N"] = residual_compliance(probe_compliance, Vq, w2, probe_q, sigma).tolist()
+        metadata["probe_compliance_m_per_N"] = (0.5 * (probe_compliance + probe_compliance.T)).tolist()
     shapes = np.asarray(T @ Vq)
     freqs = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * math.pi)
     zeta = np.broadcast_to(np.asarray(damping_ratio, dtype=float), freqs.shape).copy()

@@ -59,8 +59,10 @@ def test_residual_compliance_is_the_exact_one_less_the_modal_one(ring):
     F = probe.load_vectors(model, True)
     w2 = (2.0 * math.pi * np.asarray(body.frequencies_Hz)) ** 2
     P = body.shapes.T @ F
-    expected = _exact_compliance(model, F) - P.T @ (P / w2[:, None])
+    exact = _exact_compliance(model, F)
+    expected = exact - P.T @ (P / w2[:, None])
     assert body.frequencies_Hz[0] > 100.0
+    np.testing.assert_allclose(body.metadata["probe_compliance_m_per_N"], exact, rtol=1e-3)
     np.testing.assert_allclose(R, expected, rtol=1e-3, atol=1e-3 * np.abs(expected).max())
     assert np.all(np.linalg.eigvalsh(R) > 0.0)  # 12 modes miss part of a local load's response
 
@@ -79,13 +81,13 @@ def test_more_modes_leave_less_residual_and_the_load_shape_leaves_none(ring):
     assert np.abs(full).max() < 1e-8 * np.abs(exact).max()
 
 
-def test_a_softer_ring_scales_the_residual_by_1_over_E(ring):
+def test_a_softer_ring_scales_the_compliances_by_1_over_E(ring):
     # Reference: K ∝ E at fixed M, so every compliance scales with 1/E.
     model, probe = ring
     body = reduce_model(model, 6, probes=[probe])
     soft = with_stiffness_scaled(body, 0.25)
-    np.testing.assert_allclose(soft.metadata["residual_compliance_m_per_N"],
-                               4.0 * np.array(body.metadata["residual_compliance_m_per_N"]), rtol=1e-14)
+    for key in ("residual_compliance_m_per_N", "probe_compliance_m_per_N"):
+        np.testing.assert_allclose(soft.metadata[key], 4.0 * np.array(body.metadata[key]), rtol=1e-14)
 
 
 def test_probes_need_a_free_floating_body(ring):
@@ -95,16 +97,17 @@ def test_probes_need_a_free_floating_body(ring):
 
 
 def test_truncation_estimate_by_hand():
-    # Reference: hand values. R = [[4, 1], [1, 2]]·1e-9 m/N, contact direction at 60° (cos, sin):
+    # Reference: hand values. R = [[4, 1], [1, 2]]·1e-9 m/N, C = 5·R, contact direction at 60°:
     # nᵀRn = (4·0.25 + 2·0.866·0.5·1 + 2·0.75)·1e-9 = 3.3660254e-9 m/N; at Q = 30 kN, r = 1.0098e-4 m;
-    # δ = 0.1 mm: η = 1.5·r/δ = 1.5147, error η/(1+η) = 0.60234.
-    R = [[4e-9, 1e-9], [1e-9, 2e-9]]
+    # δ = 0.1 mm: η = 1.5·r/δ = 1.5147, κ = 5η = 7.5735, error η/(1+κ) = 0.17667.
+    R = np.array([[4e-9, 1e-9], [1e-9, 2e-9]])
     n = np.array([[math.cos(math.radians(60)), math.sin(math.radians(60))]] * 3)
-    est = truncation_estimate(R, n, [10e3, 30e3, 20e3], [0.05e-3, 0.1e-3, 0.08e-3])
+    est = truncation_estimate(5.0 * R, R, n, [10e3, 30e3, 20e3], [0.05e-3, 0.1e-3, 0.08e-3])
     g = 1e-9 * (4 * 0.25 + 2 * math.cos(math.radians(60)) * math.sin(math.radians(60)) + 2 * 0.75)
     eta = 1.5 * g * 30e3 / 0.1e-3
     assert est["element"] == 1
     assert est["residual_deflection_m"] == pytest.approx(g * 30e3, rel=1e-12)
     assert est["stiffness_ratio"] == pytest.approx(eta, rel=1e-12)
-    assert est["max_load"] == pytest.approx(eta / (1 + eta), rel=1e-12)
-    assert est["max_load"] == pytest.approx(0.60234, rel=1e-4)
+    assert est["ring_stiffness_ratio"] == pytest.approx(5 * eta, rel=1e-12)
+    assert est["max_load"] == pytest.approx(eta / (1 + 5 * eta), rel=1e-12)
+    assert est["max_load"] == pytest.approx(0.17667, rel=1e-4)

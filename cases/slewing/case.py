@@ -227,7 +227,8 @@ def _check_spread(profile, contact_rz_m, spread_m: float, key: str) -> None:
 @dataclass(frozen=True)
 class BodyFidelity:
     """How a ring is modelled: ``rigid`` or ``modal`` (n_modes normal modes + raceway load shapes up
-    to harmonic ``groove_harmonics``, −1: none). ``E_Pa`` is its Young's modulus (the thesis'
+    to harmonic ``groove_harmonics``, −1: none), or (top structure, one quasi-static equilibrium)
+    ``auto``: a cheap pass chooses rigid or modal and the modal keys, and says why (:mod:`.auto`). ``E_Pa`` is its Young's modulus (the thesis'
     reduced-stiffness ring: 1.5975 GPa); ``element_size_m`` None takes a size from the variant.
     ``raceway_spread_m`` > 0 samples the groove averaged over a patch of that size around the
     contact point, and spreads the load shapes' line loads over it (:class:`cms_reduction.RacewaySpec`);
@@ -235,7 +236,7 @@ class BodyFidelity:
     shapes of radial and axial forces at the load balls' places of the first position: with them an
     equilibrium there is the finite-element solution of the ring under the ball forces."""
 
-    kind: Literal["rigid", "modal"] = "rigid"
+    kind: Literal["rigid", "modal", "auto"] = "rigid"
     n_modes: int = 20
     groove_harmonics: int = 16
     E_Pa: float = 200e9
@@ -347,7 +348,27 @@ class SlewingCase(CaseTables):
     def __post_init__(self) -> None:
         if not self.name or not all(c.isalnum() or c in "-_." for c in self.name):
             raise ValueError(f"name must be a non-empty word of letters, digits, '-', '_' or '.', got {self.name!r}")
+        self._check_auto()
         self._check_model_sizes()
+
+    def _check_auto(self) -> None:
+        """``auto`` only where its cheap pass can decide (:mod:`.auto`)."""
+        if self.bottom.kind == "auto":
+            raise ValueError('bottom.kind: "auto" decides for the top structure only; the bottom race is "rigid" '
+                             'or "modal"')
+        if self.top.kind != "auto":
+            return
+        if self.study.kind != "single":
+            runs = f"the {self.study.kind} study"
+        elif self.analysis.type != "quasi_static":
+            runs = "the dynamics"
+        elif self.analysis.travel_steps:
+            runs = "a travel (analysis.travel_steps > 0)"
+        else:
+            return
+        raise ValueError('top.kind: "auto" decides the top structure for one quasi-static equilibrium with the '
+                         f'balls at their places (study single, no travel); this case runs {runs}: set top.kind '
+                         '= "rigid" or "modal"')
 
     def _check_model_sizes(self) -> None:
         """Each modal race can give its modes, fits in memory and has raceway load shapes its

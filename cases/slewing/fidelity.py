@@ -149,8 +149,13 @@ def _tau_max_Pa(case: SlewingCase, load_N: float, alpha_rad: float) -> float:
 
 
 def measure(case: SlewingCase) -> Outcome:
-    """Ball loads, contact angles and peak shear of the scene at the case's fidelity."""
+    """Ball loads, contact angles and peak shear of the scene at the case's fidelity (``auto``:
+    its decision's, the cheap pass included)."""
     c = scene(case)
+    if c.top.kind == "auto":
+        from .auto import resolve
+
+        c = resolve(c)[0]
     bodies = scene_mod.Bodies(scene_mod.top_body(c), scene_mod.bottom_body(c))
     res = equilibrium(c, bodies)
     row = res.rows[0]

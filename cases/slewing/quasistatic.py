@@ -81,17 +81,18 @@ def error_estimates(case: SlewingCase, bodies: scene.Bodies, res) -> dict:
     top = bodies.top
     if top is None:
         return {"modal_truncation": None, "why_none": "rigid top structure (no modes to truncate)"}
-    R = top.metadata.get("residual_compliance_m_per_N")
-    if R is None:
+    R, C = (top.metadata.get(k) for k in ("residual_compliance_m_per_N", "probe_compliance_m_per_N"))
+    if R is None or C is None:
         return {"modal_truncation": None, "why_none": "the top structure's reduction measured no residual compliance"}
     row = res.rows[0]
     groove = case.geometry.section().groove("top", case.geometry.pitch_diameter_m)
     n = np.array([groove.direction(math.degrees(a)) for a in row.contact_angle_rad])
-    est = truncation_estimate(R, n, row.load_N, row.approach_m)
+    est = truncation_estimate(C, R, n, row.load_N, row.approach_m)
     est["ball"] = est.pop("element") + 1
     return {"modal_truncation": est, "what": "estimated relative error of the largest ball load from the "
-            "top structure's residual flexibility at the most loaded ball (η = 1.5·r/δ, error ≈ η/(1+η); "
-            "an upper scale when the ring is soft, see flexbearing tradeoff)"}
+            "top structure's residual flexibility at the most loaded ball: η/(1 + κ), η = 1.5·r/δ the deflection "
+            "r its basis misses against the Hertz approach δ, κ the same for the ring's whole deflection "
+            "(mbd_core.quasistatic.estimates; its tracking of the true error: flexbearing tradeoff)"}
 
 
 @dataclass(frozen=True)

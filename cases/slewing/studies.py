@@ -21,6 +21,8 @@ from .case import SlewingCase
 from .life import plot_subsurface_shear, worst_ball_life
 from ..results import plural, share_ylim
 from .plots import plot_ball_loads, plot_static, plot_travel
+from .auto import CHOSEN_KEYS
+from .auto import resolve as resolve_auto
 from .quasistatic import analytic_ball_load_N, equilibrium, error_estimates, nominal_ball_load_N, travel
 
 __all__ = ["RUN_KEYS", "STUDIES", "case_unused_keys", "modal_top", "run_study", "runs_of"]
@@ -317,7 +319,7 @@ _MODAL_KEYS = ("n_modes", "groove_harmonics", "E_Pa", "damping_ratio", "element_
 def modal_top(case: SlewingCase) -> bool:
     """True when the study makes the top structure modal in some run (it sets ``top.kind``
     itself, or the case asks for it)."""
-    return case.top.kind == "modal" or "top.kind" in STUDIES[case.study.kind].unused
+    return case.top.kind in ("modal", "auto") or "top.kind" in STUDIES[case.study.kind].unused
 
 
 def _fidelity_unused(case: SlewingCase) -> dict[str, str]:
@@ -328,6 +330,8 @@ def _fidelity_unused(case: SlewingCase) -> dict[str, str]:
     if not modal_top(case):
         out.update({f"top.{k}": 'the top structure is rigid here; set top.kind = "modal"'
                     for k in (*_MODAL_KEYS, "include_tmr")})
+    elif case.top.kind == "auto":
+        out.update({f"top.{k}": 'top.kind = "auto" chooses it' for k in CHOSEN_KEYS})
     if case.contact.preset == "thesis":
         out["contact.damping_ratio"] = "the thesis preset takes the thesis' damping c = K/1000 s"
     if case.bottom.kind != "modal":
@@ -360,6 +364,10 @@ def uses_dynamics(case: SlewingCase) -> bool:
 
 def run_study(case: SlewingCase, out, progress=None) -> None:
     """Run the study the case names (``single`` with ``quasi_static``: one equilibrium or a travel)."""
+    if case.top.kind == "auto":
+        case, decision = resolve_auto(case)
+        out.summary["fidelity_decisions"] = [decision]
+        out.note(f"fidelity auto: {decision['choice']}, because {decision['reason']}")
     out.note(f"modelled: {case.geometry.variant} ring, {plural(case.geometry.n_balls, 'load ball')}, dead load "
              f"{case.dead_load_t:g} t ({case.dead_load_N:.0f} N); {_fidelity(case)}; contact {case.contact.preset}")
     if STUDIES[case.study.kind].run is not None:
