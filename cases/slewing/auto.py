@@ -73,8 +73,7 @@ def _settings_text(top: dict) -> str:
 def resolve(case: SlewingCase, tolerance: float = AUTO_TOLERANCE) -> tuple[SlewingCase, dict]:
     """``case`` with ``top.kind = "auto"`` replaced by the decision, and the decision
     (``summary.json`` ``fidelity_decisions``): body, choice, reason, the figures it rests on."""
-    s = case
-    row = _rigid_pass(s)
+    row = _rigid_pass(case)
     q = np.asarray(row.load_N, float)
     k = int(np.argmax(q))
     spread = float((q.max() - q.min()) / q.max())
@@ -86,7 +85,7 @@ def resolve(case: SlewingCase, tolerance: float = AUTO_TOLERANCE) -> tuple[Slewi
                   f"(< {100 * tolerance:g} %): a ring of revolution deforms alike under every ball, which leaves "
                   "the loads equal (W / (Z sin α)); rigid")
     else:
-        c = _probe_compliance_m_per_N(s, float(row.contact_angle_rad[k]))
+        c = _probe_compliance_m_per_N(case, float(row.contact_angle_rad[k]))
         dr = c * float(q.max() - q.min())
         eta = 1.5 * dr / float(row.approach_m[k])
         bound = eta / (1.0 + eta)
@@ -99,7 +98,7 @@ def resolve(case: SlewingCase, tolerance: float = AUTO_TOLERANCE) -> tuple[Slewi
             top = {"kind": "rigid"}
             reason = f"{where} (< {100 * tolerance:g} %): rigid"
         else:
-            top = {"kind": "modal", **MODAL_CHOICE, "raceway_spread_m": scene_mod.groove_patch_m(s)}
+            top = {"kind": "modal", **MODAL_CHOICE, "raceway_spread_m": scene_mod.groove_patch_m(case)}
             reason = (f"{where} (≥ {100 * tolerance:g} %): modal, with the static shapes of the ball forces at "
                       f"their places on a {1e3 * top['raceway_spread_m']:g} mm groove patch, which make the "
                       "equilibrium the finite-element solution of the ring under them; normal modes and "
