@@ -331,9 +331,11 @@ def cmd_tradeoff(args) -> dict:
     print(f"{case.name}: {summary['scene']}; errors of the {summary['primary_quantity']} against the reference "
           f"({summary['reference']['model']})" + (" — ladder from the cache" if result.cached else ""))
     rows = [(r["rung"], r["model"], f"{r['wall_s']:.1f}", f"{r['peak_rss_mb']:.0f}",
-             f"{100 * r[result.ladder.primary]:.3g}", "*" if r["rung"] in summary["pareto_front"] else "")
+             f"{100 * r[result.ladder.primary]:.3g}",
+             "" if r.get("estimated_error") is None else f"{100 * r['estimated_error']:.3g}",
+             "*" if r["rung"] in summary["pareto_front"] else "")
             for r in result.rows]
-    print(format_table(rows, ("rung", "model", "wall s", "peak MB", "error %", "Pareto")))
+    print(format_table(rows, ("rung", "model", "wall s", "peak MB", "error %", "estimate %", "Pareto")))
     for key, c in summary["convergence"].items():
         print(f"  {key}: {order_text(c['observed_order'])}")
     print(f"results in {out_dir}/ (tradeoff.csv, ball_loads.csv, summary.json, tradeoff_pareto.png, convergence_*.png)")
