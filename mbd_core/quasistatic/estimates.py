@@ -17,9 +17,10 @@ the neighbours' share Σ_{j≠i} C_ij ΔQ_j. Keeping the element's own term (one
 η the missing deflection r = g·Q_i against the approach (η = 1.5 r/δ) and κ the ring's whole
 deflection under that load against it: a ring much softer than the contact (κ ≫ 1) spreads the
 missing deflection over the neighbours and the load changes little. The neighbours' terms (the
-truncated harmonics of the whole distribution) are left out: the estimate tracks the true error
-within a factor 3 on the 2 m undulated slewing ring except where a basis lacks most harmonic load
-shapes, which it underestimates (``flexbearing tradeoff`` prints the comparison).
+truncated harmonics of the whole distribution) are left out. On the 2 m undulated slewing ring the
+estimate lay within a factor 3 of the true error on every truncated basis (0.42 … 2.9). It was
+lowest, below half, where a basis lacks most harmonic load shapes (``flexbearing tradeoff``
+prints the comparison).
 """
 
 from __future__ import annotations
