@@ -27,14 +27,14 @@ import dataclasses
 
 from cases.slewing import fidelity
 from cases.slewing.presets import PRESETS
-from cases.slewing.scene import DEFAULT_ELEMENT_SIZE_M
+from cases.slewing.scene import DEFAULT_ELEMENT_SIZE_M, groove_patch_m
 from cases.tradeoff import measure_cold
 
 
 def models(case, quick: bool) -> dict[str, dict]:
     h0 = DEFAULT_ELEMENT_SIZE_M[case.geometry.variant]
     h = round((fidelity.QUICK_MESH_FACTOR if quick else 1.0) * h0, 4)
-    patch = {"top.raceway_spread_m": fidelity.contact_patch_m(case), "top.ball_load_shapes": True}
+    patch = {"top.raceway_spread_m": groove_patch_m(case), "top.ball_load_shapes": True}
     ref = ({"top.n_modes": 40, "top.groove_harmonics": 16, "top.element_size_m": h} if quick else
            {"top.n_modes": 80, "top.groove_harmonics": 32, "top.element_size_m": round(0.7 * h0, 4)})
     return {"auto": {"top.kind": "auto", "top.element_size_m": h},

@@ -286,6 +286,13 @@ def rigid_fields_q(model: FEModel, interfaces, retained: np.ndarray) -> np.ndarr
     return np.vstack(rows)
 
 
+def _load_columns(model: FEModel, T, shapes) -> np.ndarray:
+    """(n_q, k) consistent load vectors of load shapes (:mod:`.augmentation`) in the reduced coordinates."""
+    if not shapes:
+        return np.zeros((T.shape[1], 0))
+    return np.column_stack([T.T @ a.load_vectors(model, model.ring.spec.full_circle) for a in shapes])
+
+
 def _block(A: sp.csr_matrix, index: np.ndarray) -> sp.csc_matrix:
     """A[index][:, index] in CSC (without the intermediate copies when ``index`` is every row)."""
     if len(index) == A.shape[0] and np.array_equal(index, np.arange(A.shape[0])):
@@ -347,10 +354,7 @@ def reduce_model(
     boundary = np.setdiff1d(master_cols, held)
     interior = np.setdiff1d(np.arange(nq), master_cols)
     KII, MII = (_block(A, interior) for A in (Kq, Mq))
-    loads_q = np.column_stack([T.T @ a.load_vectors(model, model.ring.spec.full_circle) for a in augmentation]) \
-        if augmentation else np.zeros((nq, 0))
-    probe_q = np.column_stack([T.T @ a.load_vectors(model, model.ring.spec.full_circle) for a in probes]) \
-        if probes else np.zeros((nq, 0))
+    loads_q, probe_q = (_load_columns(model, T, shapes) for shapes in (augmentation, probes))
     free_body = len(master_cols) == 0 and C_avg.shape[0] == 0
     if probe_q.shape[1] and not (free_body and floating):
         raise ValueError("residual-compliance probes are measured on free floating bodies only")
@@ -365,7 +369,7 @@ def reduce_model(
     interior_blocks, boundary_blocks = [], []     # q-rows: interior DOFs, free master DOFs
     with solver_threads():
         rigid_q = m_orthonormal(Rq, Mq) if floating else None
-        if len(master_cols) == 0 and C_avg.shape[0] == 0:
+        if free_body:
             # free body (q = u): free–free elastic modes, deflated of the rigid motions, and
             # inertia-relief load shapes from one factor of K − σM
             sigma = -(2.0 * math.pi) ** 2

@@ -62,15 +62,12 @@ def _sizes(case: SlewingCase) -> tuple[float, ...]:
     return tuple(round(f * h, 4) for f in MESH_FACTORS)
 
 
-contact_patch_m = scene_mod.groove_patch_m
-
-
 def ladder(case: SlewingCase, quick: bool = False) -> Ladder:
     """The ladder of ``case``'s variant (``quick``: a short one on a mesh twice as coarse as the
     default — rigid, 5 or 20 modes, with or without load shapes, with ball load shapes — against the
     ball load shapes with 40 modes on that mesh)."""
     coarse, default, fine = _sizes(case)
-    a = contact_patch_m(case)
+    a = scene_mod.groove_patch_m(case)
     patch = Knob("top.raceway_spread_m", (0.0,) if quick else (0.0, a), "raceway patch (m)")
     balls = Knob("top.ball_load_shapes", (False, True), "ball load shapes", implies={True: {"top.raceway_spread_m": a}})
     modes = Knob("top.n_modes", (5, 20) if quick else (5, 10, 20, 40, 80), "normal modes", float, "normal modes n")
