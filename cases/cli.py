@@ -338,7 +338,8 @@ def cmd_tradeoff(args) -> dict:
     print(format_table(rows, ("rung", "model", "wall s", "peak MB", "error %", "estimate %", "Pareto")))
     for key, c in summary["convergence"].items():
         print(f"  {key}: {order_text(c['observed_order'])}")
-    print(f"results in {out_dir}/ (tradeoff.csv, ball_loads.csv, summary.json, tradeoff_pareto.png, convergence_*.png)")
+    print(f"results in {out_dir}/ (tradeoff.csv, {family_ladder(case).LOADS_FILE}, summary.json, tradeoff_pareto.png, "
+          "convergence_*.png)")
     return summary
 
 

@@ -23,11 +23,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Knob", "Ladder", "Rung", "Outcome", "ToleranceError", "ERROR_NAMES", "rungs", "rung_errors",
+__all__ = ["Knob", "Ladder", "Rung", "Outcome", "ToleranceError", "ERROR_NAMES", "QUASI_STATIC_ERRORS", "FIGURE_ERRORS",
+           "rungs", "rung_errors",
            "choose_rung", "parse_tolerance", "observed_order"]
 
 #: error columns of a rung, with what they are (all relative to the reference's largest load
-#: except ``unloaded``, a count difference, and ``contact_angle_deg``, degrees)
+#: except ``unloaded``, a count difference, and ``contact_angle_deg``, degrees); the last five are
+#: those of dynamic scenes, each the largest over the rows (or bodies) of its :attr:`Outcome.figures`
 ERROR_NAMES = {
     "max_load": "|Q_max − Q_max,ref| / Q_max,ref",
     "load_max": "max over elements |Q − Q_ref| / Q_max,ref",
@@ -35,7 +37,16 @@ ERROR_NAMES = {
     "unloaded": "unloaded elements − those of the reference",
     "contact_angle_deg": "max over loaded elements |α − α_ref|, degrees",
     "tau_max": "|τ_max − τ_max,ref| / τ_max,ref at the largest load (peak subsurface shear)",
+    "roller_speed": "max over rows |ω − ω_ref| / ω_ref, ω the mean spin of the loaded rollers",
+    "cage_speed": "max over rows |Ω − Ω_ref| / Ω_ref, Ω the mean cage speed",
+    "cage_force_mean": "max over rows |F − F_ref| / F_ref, F the mean roller–pocket force",
+    "cage_force_peak": "max over rows |F − F_ref| / F_ref, F the peak roller–pocket force",
+    "ring_von_mises": "max over rings |σ − σ_ref| / σ_ref, σ the peak von Mises stress of a modal ring",
 }
+#: the errors of a quasi-static ladder (the default of :attr:`Ladder.errors`)
+QUASI_STATIC_ERRORS = ("max_load", "load_max", "load_rms", "unloaded", "contact_angle_deg", "tau_max")
+#: the errors that compare :attr:`Outcome.figures` (name → {row or body: value})
+FIGURE_ERRORS = ("roller_speed", "cage_speed", "cage_force_mean", "cage_force_peak", "ring_von_mises")
 
 
 class ToleranceError(ValueError):
@@ -74,6 +85,12 @@ class Ladder:
     primary: str = "max_load"
     primary_label: str = "largest element load"
     scene: str = ""
+    #: the error columns the ladder reports (keys of :data:`ERROR_NAMES`)
+    errors: tuple = QUASI_STATIC_ERRORS
+    #: what the rungs' own estimates (``Outcome.estimated_error``) estimate: None, the whole
+    #: ``primary`` error against the reference; a knob key, the part of it that knob's sweep
+    #: measures (the error against the rung of that sweep at its last, finest value)
+    estimate_of: str | None = None
 
     def __post_init__(self) -> None:
         keys = {k.key for k in self.knobs}
@@ -82,8 +99,12 @@ class Ladder:
                 raise ValueError(f"ladder {what}: {sorted(set(rung) - keys)} are no knobs of the ladder")
         if set(self.base) != keys:
             raise ValueError(f"ladder base must set every knob, missing {sorted(keys - set(self.base))}")
-        if self.primary not in ERROR_NAMES:
-            raise ValueError(f"ladder primary must be one of {sorted(ERROR_NAMES)}, got {self.primary!r}")
+        if set(self.errors) - set(ERROR_NAMES):
+            raise ValueError(f"ladder errors: {sorted(set(self.errors) - set(ERROR_NAMES))} are no error names")
+        if self.primary not in self.errors:
+            raise ValueError(f"ladder primary must be one of {list(self.errors)}, got {self.primary!r}")
+        if self.estimate_of is not None and self.estimate_of not in keys:
+            raise ValueError(f"ladder estimate_of: {self.estimate_of!r} is no knob of the ladder")
 
 
 @dataclass(frozen=True)
@@ -98,21 +119,41 @@ class Rung:
 
 @dataclass(frozen=True)
 class Outcome:
-    """What a rung computes, per rolling element (Z of them): normal load (N), loaded contact
-    angle (rad), and the peak subsurface shear stress under the largest load (Pa); and the error
-    the run estimates for itself (``error_estimates``), to compare with its true error."""
+    """What a rung computes, per rolling element (Z of them): normal load (N) and, for
+    quasi-static scenes, the loaded contact angle (rad) and the peak subsurface shear stress under
+    the largest load (Pa); for dynamic scenes ``figures`` (error name of :data:`FIGURE_ERRORS` →
+    {row or body: value}); and the error the run estimates for itself (``error_estimates``), to
+    compare with its true error."""
 
     load_N: np.ndarray
-    contact_angle_rad: np.ndarray
-    tau_max_Pa: float
+    contact_angle_rad: np.ndarray | None = None
+    tau_max_Pa: float | None = None
     unloaded_share: float = 1e-3
     #: the run's own estimate of its ``primary`` error without the reference (None: none)
     estimated_error: float | None = None
+    figures: Mapping = field(default_factory=dict)
 
     @property
     def unloaded(self) -> int:
         """Elements below ``unloaded_share`` of the mean load."""
         return int(np.sum(self.load_N < self.unloaded_share * self.load_N.mean()))
+
+    def to_json(self) -> dict:
+        def listed(x):
+            return None if x is None else np.asarray(x, float).tolist()
+
+        return {"load_N": listed(self.load_N), "contact_angle_rad": listed(self.contact_angle_rad),
+                "tau_max_Pa": self.tau_max_Pa, "unloaded_share": self.unloaded_share,
+                "estimated_error": self.estimated_error,
+                "figures": {k: {kk: float(vv) for kk, vv in v.items()} for k, v in self.figures.items()}}
+
+    @classmethod
+    def from_json(cls, d: Mapping) -> "Outcome":
+        angle = d["contact_angle_rad"]
+        tau = d["tau_max_Pa"]
+        return cls(np.array(d["load_N"], float), None if angle is None else np.array(angle, float),
+                   None if tau is None else float(tau), float(d["unloaded_share"]), d["estimated_error"],
+                   {k: dict(v) for k, v in d["figures"].items()})
 
 
 def _settings_name(settings: Mapping) -> str:
@@ -158,23 +199,41 @@ def sweep_members(ladder: Ladder, all_rungs: list[Rung], knob: Knob) -> list[Run
     return [by_value[v] for v in knob.values if v in by_value]
 
 
-def rung_errors(outcome: Outcome, reference: Outcome) -> dict[str, float]:
-    """The errors of :data:`ERROR_NAMES` of ``outcome`` against ``reference`` (same elements)."""
+def _figure_error(value: Mapping | None, reference: Mapping | None) -> float | None:
+    """Largest relative difference over the rows (bodies) both have; None when one has none."""
+    if not value or not reference:
+        return None
+    common = [k for k in reference if k in value and reference[k] != 0.0]
+    if not common:
+        return None
+    return max(abs(float(value[k]) - float(reference[k])) / abs(float(reference[k])) for k in common)
+
+
+def rung_errors(outcome: Outcome, reference: Outcome) -> dict[str, float | None]:
+    """The errors of :data:`ERROR_NAMES` of ``outcome`` against ``reference`` (same elements);
+    None for an error one of them cannot give (no contact angles, a rigid ring's stress)."""
     q, qr = np.asarray(outcome.load_N, float), np.asarray(reference.load_N, float)
     if q.shape != qr.shape:
         raise ValueError(f"a rung has {q.shape[0]} elements, the reference {qr.shape[0]}")
     qmax = float(qr.max())
     d = q - qr
-    loaded = (q > 0.0) | (qr > 0.0)
-    dalpha = np.abs(np.asarray(outcome.contact_angle_rad) - np.asarray(reference.contact_angle_rad))[loaded]
-    return {
+    out = {
         "max_load": abs(float(q.max()) - qmax) / qmax,
         "load_max": float(np.abs(d).max()) / qmax,
         "load_rms": float(np.sqrt(np.mean(d * d))) / qmax,
         "unloaded": float(outcome.unloaded - reference.unloaded),
-        "contact_angle_deg": float(np.degrees(dalpha.max())) if dalpha.size else 0.0,
-        "tau_max": abs(outcome.tau_max_Pa - reference.tau_max_Pa) / reference.tau_max_Pa,
+        "contact_angle_deg": None,
+        "tau_max": None,
     }
+    if outcome.contact_angle_rad is not None and reference.contact_angle_rad is not None:
+        loaded = (q > 0.0) | (qr > 0.0)
+        dalpha = np.abs(np.asarray(outcome.contact_angle_rad) - np.asarray(reference.contact_angle_rad))[loaded]
+        out["contact_angle_deg"] = float(np.degrees(dalpha.max())) if dalpha.size else 0.0
+    if outcome.tau_max_Pa is not None and reference.tau_max_Pa is not None:
+        out["tau_max"] = abs(outcome.tau_max_Pa - reference.tau_max_Pa) / reference.tau_max_Pa
+    for name in FIGURE_ERRORS:
+        out[name] = _figure_error(outcome.figures.get(name), reference.figures.get(name))
+    return out
 
 
 def parse_tolerance(text: str) -> float:

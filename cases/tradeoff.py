@@ -25,8 +25,6 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
 from fem_rings.cache import atomic_path, cache_dir, input_hash
 
 from .config import CaseError, dumps_case
@@ -36,6 +34,8 @@ from .outdir import atomic_folder
 from .results import RunOutput, output_units
 from .slewing import fidelity as slewing_fidelity
 from .slewing.case import SlewingCase
+from .wind import fidelity as wind_fidelity
+from .wind.case import WindCase
 from .tradeoff_plots import plot_convergence, plot_pareto
 
 __all__ = ["LADDERS", "LadderResult", "family_ladder", "run_ladder", "write_tradeoff", "pareto_front", "choose_fidelity",
@@ -44,10 +44,11 @@ __all__ = ["LADDERS", "LadderResult", "family_ladder", "run_ladder", "write_trad
 log = logging.getLogger(__name__)
 
 #: case class → the module that declares its ladder (``ladder``, ``scene``, ``rung_case``,
-#: ``measure``, ``describe``)
-LADDERS = {SlewingCase: slewing_fidelity}
+#: ``measure``, ``describe``, ``rung_overrides``, ``element_columns``; optional ``WARM_REPEAT``,
+#: False when a second, warm measurement of each rung is not worth its time)
+LADDERS = {SlewingCase: slewing_fidelity, WindCase: wind_fidelity}
 #: part of the ladder cache key: bump when what a rung measures changes
-TRADEOFF_VERSION = 2
+TRADEOFF_VERSION = 3
 
 
 def family_ladder(case):
@@ -65,7 +66,8 @@ def _peak_rss_mb() -> float:
 
 
 def _measure_rung(module_name: str, case, settings: dict) -> dict:
-    """In a fresh worker: the rung cold (empty cache), then warm; times, peak memory, outcome."""
+    """In a fresh worker: the rung cold (empty cache), then warm (unless the family's
+    ``WARM_REPEAT`` is False); times, peak memory, outcome."""
     import importlib
 
     module = importlib.import_module(module_name)
@@ -75,9 +77,11 @@ def _measure_rung(module_name: str, case, settings: dict) -> dict:
         w0, c0 = time.perf_counter(), time.process_time()
         outcome = module.measure(rung_case)
         wall, cpu = time.perf_counter() - w0, time.process_time() - c0
-        w1 = time.perf_counter()
-        module.measure(rung_case)
-        warm = time.perf_counter() - w1
+        warm = None
+        if getattr(module, "WARM_REPEAT", True):
+            w1 = time.perf_counter()
+            module.measure(rung_case)
+            warm = time.perf_counter() - w1
     return {"outcome": outcome, "wall_s": wall, "cpu_s": cpu, "warm_wall_s": warm, "peak_rss_mb": _peak_rss_mb()}
 
 
@@ -115,18 +119,13 @@ def _cache_file(key: str) -> Path:
 
 
 def _to_json(result: LadderResult) -> dict:
-    return {"rows": result.rows,
-            "outcomes": {k: {"load_N": o.load_N.tolist(), "contact_angle_rad": o.contact_angle_rad.tolist(),
-                             "tau_max_Pa": o.tau_max_Pa, "unloaded_share": o.unloaded_share,
-                             "estimated_error": o.estimated_error}
-                         for k, o in result.outcomes.items()}}
+    return {"rows": result.rows, "outcomes": {k: o.to_json() for k, o in result.outcomes.items()}}
 
 
 def _load_cached(path: Path, ladder: Ladder, all_rungs: list[Rung]) -> LadderResult | None:
     try:
         data = json.loads(path.read_text())
-        outcomes = {k: Outcome(np.array(v["load_N"]), np.array(v["contact_angle_rad"]), float(v["tau_max_Pa"]),
-                               float(v["unloaded_share"]), v["estimated_error"]) for k, v in data["outcomes"].items()}
+        outcomes = {k: Outcome.from_json(v) for k, v in data["outcomes"].items()}
         rows = data["rows"]
     except (OSError, ValueError, KeyError, TypeError):
         return None
@@ -210,12 +209,32 @@ def _cell(row: dict, name: str, front: list[str]):
     return "" if value is None else value
 
 
-def estimate_tracking(rows: list[dict], primary: str) -> dict:
-    """How the runs' own error estimates track their true ``primary`` errors: per rung with both
-    (true error > 0), the ratio estimate / true, and its range."""
-    ratios = {r["rung"]: r["estimated_error"] / r[primary] for r in rows
-              if r.get("estimated_error") is not None and r["rung"] != "reference" and r[primary] > 0.0}
-    out = {"ratio_estimated_to_true": ratios}
+def _true_estimated(result: LadderResult) -> dict[str, float]:
+    """Per rung with an estimate: the true error the estimate estimates (``Ladder.estimate_of``):
+    its ``primary`` error against the reference, or against the finest rung of that knob's sweep
+    (for the rungs of that sweep only)."""
+    ladder, primary = result.ladder, result.ladder.primary
+    rows = [r for r in result.rows if r.get("estimated_error") is not None and r["rung"] != "reference"]
+    if ladder.estimate_of is None:
+        return {r["rung"]: float(r[primary]) for r in rows}
+    knob = next(k for k in ladder.knobs if k.key == ladder.estimate_of)
+    members = sweep_members(ladder, result.rungs, knob)
+    if len(members) < 2:
+        return {}
+    finest = result.outcomes[members[-1].name]
+    names = {m.name for m in members[:-1]}
+    return {r["rung"]: float(rung_errors(result.outcomes[r["rung"]], finest)[primary]) for r in rows if r["rung"] in names}
+
+
+def estimate_tracking(result: LadderResult) -> dict:
+    """How the runs' own error estimates track the true errors they estimate
+    (:func:`_true_estimated`): per rung with both (true error > 0), the ratio estimate / true, and its range."""
+    true = _true_estimated(result)
+    est = {r["rung"]: r["estimated_error"] for r in result.rows}
+    ratios = {k: est[k] / v for k, v in true.items() if v > 0.0}
+    against = ("its error against the reference" if result.ladder.estimate_of is None else
+               f"its error against the finest rung of the {result.ladder.estimate_of} sweep")
+    out = {"estimates": against, "true_error": true, "ratio_estimated_to_true": ratios}
     if ratios:
         out.update(min_ratio=min(ratios.values()), max_ratio=max(ratios.values()),
                    within_factor_3=sorted(k for k, v in ratios.items() if 1 / 3 <= v <= 3))
@@ -223,7 +242,8 @@ def estimate_tracking(rows: list[dict], primary: str) -> dict:
 
 
 def write_tradeoff(case, out_dir, quick: bool = False, progress=None, source: str | None = None):
-    """Run (or reuse) the ladder and write tradeoff.csv, ball_loads.csv, summary.json and the plots;
+    """Run (or reuse) the ladder and write tradeoff.csv, the element loads of every rung (the family's
+    ``LOADS_FILE``), summary.json and the plots;
     returns (summary, ladder result)."""
     t0 = time.perf_counter()
     result = run_ladder(case, quick, progress)
@@ -234,26 +254,26 @@ def write_tradeoff(case, out_dir, quick: bool = False, progress=None, source: st
         out = RunOutput(tmp)
         knob_keys = [k.key for k in ladder.knobs]
         header = ["rung", "knob", "model", *knob_keys, "wall_s", "cpu_s", "warm_wall_s", "peak_rss_mb", "max_load_N",
-                  "unloaded_elements", *ERROR_NAMES, "estimated_error", "pareto"]
+                  "unloaded_elements", *ladder.errors, "estimated_error", "pareto"]
         out.write_csv("tradeoff.csv", [h.replace(".", "_") for h in header],
                       [[_cell(r, h, front) for h in header] for r in result.rows])
         names = [r.name for r in result.rungs]
-        az = np.degrees(2.0 * np.pi * np.arange(len(result.outcomes["reference"].load_N))
-                        / len(result.outcomes["reference"].load_N))
-        out.write_csv("ball_loads.csv", ["element", "azimuth_from_first_deg", *[f"{n}_N" for n in names]],
-                      [(i + 1, az[i], *(result.outcomes[n].load_N[i] for n in names)) for i in range(len(az))])
+        module = family_ladder(case)
+        label_header, labels = module.element_columns(case, len(result.outcomes["reference"].load_N))
+        out.write_csv(module.LOADS_FILE, [*label_header, *[f"{n}_N" for n in names]],
+                      [(*labels[i], *(result.outcomes[n].load_N[i] for n in names)) for i in range(len(labels))])
         out.save_figure(plot_pareto(result.rows, front, ladder.primary, ladder.primary_label, case.name), "tradeoff_pareto.png")
         for key, c in conv.items():
             out.save_figure(plot_convergence(key, c, ladder.primary_label), f"convergence_{key.replace('.', '_')}.png")
         ref = result.row("reference")
         out.summary = output_units({
             "case": case.name, "scene": ladder.scene, "quick": quick, "primary": ladder.primary,
-            "primary_quantity": ladder.primary_label, "errors": ERROR_NAMES,
+            "primary_quantity": ladder.primary_label, "errors": {k: ERROR_NAMES[k] for k in ladder.errors},
             "reference": {"model": ref["model"], "wall_s": ref["wall_s"], "max_load_N": ref["max_load_N"]},
-            "rungs": result.rows, "pareto_front": front, "estimate_tracking": estimate_tracking(result.rows, ladder.primary),
+            "rungs": result.rows, "pareto_front": front, "estimate_tracking": estimate_tracking(result),
             "convergence": {k: {kk: v for kk, v in c.items() if "label" not in kk} for k, c in conv.items()},
             "ladder_from_cache": result.cached, "wall_time_s": time.perf_counter() - t0,
-            "ladder_wall_s": float(sum(r["wall_s"] + r["warm_wall_s"] for r in result.rows)),
+            "ladder_wall_s": float(sum(r["wall_s"] + (r["warm_wall_s"] or 0.0) for r in result.rows)),
         })
         out.write_summary()
     return out.summary, result

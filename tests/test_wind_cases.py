@@ -119,6 +119,6 @@ def test_averages_need_samples_after_the_settling_time():
     case = resolve_case("wind-speeds", True, ["analysis.duration_s=0.004", "analysis.settle_s=0.0025"])
     rec = {"t": np.array([0.0, 1e-3, 2e-3, 3e-3]), "timestep_s": 1e-5}
     with pytest.raises(CaseError, match=r"analysis\.settle_s = 0\.0025 s leaves 1 recorded sample before.*record_every"):
-        dynamic._settled(case, rec)
-    ok = dynamic._settled(case.with_(analysis={"settle_s": 0.0015}), rec)
+        dynamic.settled(case, rec)
+    ok = dynamic.settled(case.with_(analysis={"settle_s": 0.0015}), rec)
     assert ok.tolist() == [False, False, True, True]

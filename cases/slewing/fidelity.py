@@ -47,7 +47,7 @@ from .case import SlewingCase
 from .quasistatic import equilibrium, error_estimates
 from .studies import UNLOADED_SHARE
 
-__all__ = ["ladder", "scene", "measure"]
+__all__ = ["ladder", "scene", "measure", "rung_case", "describe", "rung_overrides", "element_columns", "LOADS_FILE"]
 
 #: element sizes of the mesh knob, as factors of the variant's default
 MESH_FACTORS = (1.4, 1.0, 0.7)
@@ -161,6 +161,15 @@ def measure(case: SlewingCase) -> Outcome:
     est = error_estimates(c, bodies, res)["modal_truncation"]
     return Outcome(np.asarray(row.load_N, float), np.asarray(row.contact_angle_rad, float), tau,
                    unloaded_share=UNLOADED_SHARE, estimated_error=None if est is None else est["max_load"])
+
+
+#: the file of ``flexbearing tradeoff`` that holds every rung's element loads
+LOADS_FILE = "ball_loads.csv"
+
+
+def element_columns(case: SlewingCase, n: int) -> tuple[list[str], list[tuple]]:
+    """The columns that name the ``n`` balls in :data:`LOADS_FILE`: number, azimuth from the first."""
+    return ["element", "azimuth_from_first_deg"], [(i + 1, 360.0 * i / n) for i in range(n)]
 
 
 def rung_case(case: SlewingCase, settings: dict) -> SlewingCase:

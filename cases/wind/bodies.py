@@ -31,7 +31,7 @@ from fem_rings.sections import three_row_inner_ring, three_row_outer_ring
 from ..parts import CAGE_STEEL, STEEL_42CRMO
 from .case import WindCase
 
-__all__ = ["RACEWAYS", "CAGE_KEYS", "ModalBodies", "modal_bodies", "rib_grids", "stress_maps"]
+__all__ = ["RACEWAYS", "CAGE_KEYS", "ModalBodies", "modal_bodies", "rib_grids", "stress_maps", "peak_stresses"]
 
 log = logging.getLogger(__name__)
 
@@ -121,22 +121,30 @@ def rib_grids(body, row, n_theta: int, rib_clearance_m: float) -> tuple:
     return tuple(out)
 
 
-def stress_maps(sc, rec: dict, folder, after_s: float = 0.0) -> dict:
+def peak_stresses(sc, rec: dict, after_s: float = 0.0) -> dict:
     """Per modal body of a run: the recorded instant after ``after_s`` (the start's settling, when
-    the modes swing up from zero under the loads) of the largest nodal von Mises stress (from the
-    modal coordinates, :func:`cms_reduction.stress_history.worst_time`), that stress in MPa and an
-    off-screen PNG of the body at that instant, ``von_mises_<body>.png`` in ``folder``."""
+    the modes swing up from zero under the loads) of the largest nodal von Mises stress, from the
+    modal coordinates (:func:`cms_reduction.stress_history.worst_time`): name → (body, η of the
+    kept samples, that instant)."""
     from cms_reduction.stress_history import worst_time
-    from cms_reduction.stress_modes import render_modal_state
 
     bodies = {"inner ring": sc.modal.inner, "outer ring": sc.modal.outer,
               **{f"{row.name} cage": c for row, c in zip(sc.row_defs, sc.modal.cages)}}
-    out = {}
     keep = rec["t"] >= after_s
+    out = {}
     for name, (first, stop) in rec["modal_ranges"].items():
-        body = bodies[name]
         eta = rec["eta"][keep, first:stop]
-        w = worst_time(body, rec["t"][keep], eta)
+        out[name] = (bodies[name], eta, worst_time(bodies[name], rec["t"][keep], eta))
+    return out
+
+
+def stress_maps(sc, rec: dict, folder, after_s: float = 0.0) -> dict:
+    """:func:`peak_stresses` with the stress in MPa, its time and an off-screen PNG of the body at
+    that instant, ``von_mises_<body>.png`` in ``folder``."""
+    from cms_reduction.stress_modes import render_modal_state
+
+    out = {}
+    for name, (body, eta, w) in peak_stresses(sc, rec, after_s).items():
         png = f"von_mises_{name.replace(' ', '_')}.png"
         render_modal_state(body, eta[w.index], folder / png,
                            title=f"{name}: von Mises at t = {w.time_s:.3f} s (peak {w.von_mises_Pa / 1e6:.1f} MPa)")

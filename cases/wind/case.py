@@ -178,16 +178,21 @@ class Loads:
 @dataclass(frozen=True)
 class Analysis:
     """Driving speed of the inner ring (rpm), simulated time (s), the settling time excluded from
-    the averages (s) and how often a sample is recorded (steps; 50 steps ≈ 0.6–0.8 ms at the steps
-    of implicit friction)."""
+    the averages (s), how often a sample is recorded (steps; 50 steps ≈ 0.6–0.8 ms at the steps
+    of implicit friction) and the explicit step as a share of the automatic stable step
+    (``step_factor`` in (0, 1]; 1: the automatic step, :func:`mbd_core.multibody.stable_timestep`)."""
 
     speed_rpm: float = 30.0
     duration_s: float = 8.0
     settle_s: float = 0.5
     record_every: int = 50
+    step_factor: float = 1.0
 
     def __post_init__(self) -> None:
         _positive(speed_rpm=self.speed_rpm, duration_s=self.duration_s, record_every=self.record_every)
+        if not 0.0 < self.step_factor <= 1.0:
+            raise ValueError(f"step_factor must lie in (0, 1] (a share of the automatic stable step), got "
+                             f"{self.step_factor!r}")
         if not 0 <= self.settle_s < self.duration_s:
             raise ValueError(f"settle_s must lie in [0, duration_s), got {self.settle_s}")
 
@@ -227,6 +232,9 @@ class WindCase(CaseTables):
     study: Study = field(default_factory=Study)
 
     def __post_init__(self) -> None:
+        if self.contact.preset == "adams" and self.analysis.step_factor != 1.0:
+            raise ValueError("analysis.step_factor: the adams preset takes the automatic step of each piece of "
+                             "the run (its soft contacts stiffen as the loads grow); leave step_factor at 1")
         self._check_model_sizes()
 
     def _check_model_sizes(self) -> None:

@@ -23,29 +23,58 @@ import numpy as np
 from cases.config import CaseError
 from cases.integrate import integrate
 from cases.results import RPM_PER_RAD_S, plural
+from mbd_core.multibody import stable_timestep
+from mbd_core.multibody import step_error as richardson_window
 
 from .case import INNER_RING_MASS_KG, WindCase
 from .scene import G_M_S2, WindScene, build_scene, rolling_speeds
 
-__all__ = ["LOADED_SHARE", "run", "roller_speeds", "cage_speeds", "ring_reaction", "cage_forces", "applied_load"]
+__all__ = ["LOADED_SHARE", "run", "settled", "step_error", "largest_roller_load_N", "roller_speeds", "cage_speeds", "ring_reaction", "cage_forces", "applied_load"]
 
 #: a roller counts as loaded above this share of its row's largest raceway load at that instant
 LOADED_SHARE = 0.05
 
 
 def run(case: WindCase, progress=None) -> tuple[WindScene, dict]:
+    """The case's scene integrated over ``analysis.duration_s``; ``sc.state`` is left at its end."""
     sc = build_scene(case)
     a = case.analysis
+    h = None
+    if a.step_factor != 1.0:
+        h = a.step_factor * stable_timestep(sc.model, sc.state).timestep_s
     # the Adams preset's soft contacts let the ring settle far from the (Hertz) start: loads grow
     return sc, integrate(sc.model, sc.state, a.duration_s, a.record_every, progress,
-                         adaptive=case.contact.preset == "adams")
+                         adaptive=case.contact.preset == "adams", timestep_s=h)
+
+
+#: steps of the window that :func:`step_error` repeats at h/2 and h/4
+STEP_ERROR_WINDOW_STEPS = 200
+
+
+def largest_roller_load_N(sc: WindScene, rec: dict) -> float:
+    """Mean over the record of the largest raceway load of any roller at each sample, N."""
+    pairs = [p for rb in sc.rows for p in rb.moving_pairs]
+    return float(rec["fn"][:, pairs].max(axis=1).mean())
+
+
+def step_error(sc: WindScene, timestep_s: float) -> dict:
+    """Time-step error of the largest roller load, from a window of
+    :data:`STEP_ERROR_WINDOW_STEPS` steps from ``sc.state`` repeated at h/2 and h/4
+    (:func:`mbd_core.multibody.step_error`): relative error, value, order."""
+    est = richardson_window(sc.model, sc.state, timestep_s,
+                            lambda rec: {"max_load": largest_roller_load_N(sc, rec)},
+                            STEP_ERROR_WINDOW_STEPS)["max_load"]
+    return {"max_load": est.relative, "max_load_N": est.value, "order": est.order,
+            "order_observed": est.order_observed, "window_s": STEP_ERROR_WINDOW_STEPS * timestep_s,
+            "what": "relative time-step error of the largest roller load over a window repeated at h/2 and "
+                    "h/4 from the run's end (Richardson)"}
 
 
 #: fewest recorded samples after the settling time that the averages of a run are taken over
 MIN_SETTLED_SAMPLES = 2
 
 
-def _settled(case: WindCase, rec: dict) -> np.ndarray:
+def settled(case: WindCase, rec: dict) -> np.ndarray:
     """Mask of the samples after ``analysis.settle_s``; too few of them is an error naming the keys."""
     ok = rec["t"] >= case.analysis.settle_s
     if np.count_nonzero(ok) < MIN_SETTLED_SAMPLES:
@@ -77,7 +106,7 @@ def watched_roller(sc: WindScene, rec: dict, k: int) -> int:
 
 def roller_speeds(case: WindCase, sc: WindScene, rec: dict) -> dict:
     """Per row: kinematic spin, mean spin of loaded rollers and of roller 0, their errors, rpm."""
-    ok = _settled(case, rec)
+    ok = settled(case, rec)
     out = {}
     for k, (rb, row) in enumerate(zip(sc.rows, sc.row_defs)):
         _, w_s = rolling_speeds(row, _omega(case))
@@ -102,7 +131,7 @@ def roller_speeds(case: WindCase, sc: WindScene, rec: dict) -> dict:
 
 def cage_speeds(case: WindCase, sc: WindScene, rec: dict) -> dict:
     """Per row: mean cage speed about z against the no-slip orbit speed, rad/s (r/min in the outputs)."""
-    ok = _settled(case, rec)
+    ok = settled(case, rec)
     out = {}
     for rb, row in zip(sc.rows, sc.row_defs):
         w_c, _ = rolling_speeds(row, _omega(case))
@@ -157,7 +186,7 @@ def ring_reaction(sc: WindScene, rec: dict) -> np.ndarray:
 
 def equilibrium_error(case: WindCase, sc: WindScene, rec: dict) -> dict:
     """Mean residual of the inner ring's equilibrium after settling, relative to the load."""
-    ok = _settled(case, rec)
+    ok = settled(case, rec)
     react = ring_reaction(sc, rec)[ok].mean(axis=0)
     load = applied_load(sc, rec["t"][ok]).mean(axis=0)
     load[5] = react[5] = 0.0  # the drive holds the spin
@@ -169,7 +198,7 @@ def equilibrium_error(case: WindCase, sc: WindScene, rec: dict) -> dict:
 
 def cage_forces(case: WindCase, sc: WindScene, rec: dict) -> dict:
     """Per row: mean roller–pocket force over contacts in touch, mean over all pockets and time, peak, N."""
-    ok = _settled(case, rec)
+    ok = settled(case, rec)
     out = {}
     for rb, row in zip(sc.rows, sc.row_defs):
         f = rec["fn"][ok][:, list(rb.pocket_pairs)]

@@ -65,6 +65,7 @@ def _one_run(case: WindCase, progress=None) -> tuple[dict, object, dict]:
     figures = {"speeds": dynamic.roller_speeds(case, sc, rec), "cages": dynamic.cage_speeds(case, sc, rec),
                "equilibrium": dynamic.equilibrium_error(case, sc, rec),
                "cage_forces": dynamic.cage_forces(case, sc, rec), "timestep_s": rec["timestep_s"],
+               "error_estimates": {"time_step": dynamic.step_error(sc, rec["timestep_s"])},
                "wall_time_s": time.perf_counter() - t0}
     return figures, sc, rec
 
@@ -78,6 +79,9 @@ def _speed_notes(out, fig: dict, label: str = "") -> None:
     e = fig["equilibrium"]
     out.note(f"{label}inner ring equilibrium: force {100 * e['force_error']:.3f} %, moment {100 * e['moment_error']:.3f} % "
              f"of the load; {fig['wall_time_s']:.0f} s wall")
+    step = fig["error_estimates"]["time_step"]
+    out.note(f"{label}time-step error of the largest roller load (Richardson, h/2 and h/4 over "
+             f"{1e3 * step['window_s']:.2g} ms): {100 * step['max_load']:.2g} %")
 
 
 def study_speeds(case: WindCase, out, progress=None) -> None:
