@@ -110,8 +110,8 @@ def test_tolerance_no_rung_meets_names_the_best(ladder_folder, scene_file, capsy
 
 
 def test_a_family_without_a_ladder_is_refused(tmp_path, capsys):
-    assert main(["tradeoff", "wind-friction", "--quick", "--out", str(tmp_path / "t")]) == 2
-    assert "no fidelity ladder is declared for wind cases" in capsys.readouterr().err
+    assert main(["tradeoff", "bearing-loaddist", "--quick", "--out", str(tmp_path / "t")]) == 2
+    assert "no fidelity ladder is declared for bearing cases" in capsys.readouterr().err
     assert not (tmp_path / "t").exists()
 
 

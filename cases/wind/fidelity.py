@@ -203,20 +203,28 @@ def describe(settings: dict) -> str:
             f"{friction} friction from {1e3 * settings['contact.v_static_m_s']:g} mm/s")
 
 
-#: the knob keys :func:`rung_overrides` carries over to a run (the window and meshes stay the case's)
+#: the knob keys :func:`rung_overrides` carries over to a run (the window stays the case's); the
+#: meshes and bolts only with modal bodies (rigid ones do not read them)
 _RUN_KEYS = ("bodies.rings", "bodies.cages", "bodies.n_modes", "rollers.n_slices", "analysis.step_factor",
              "contact.v_static_m_s", "contact.v_dynamic_m_s", "contact.implicit_friction")
+_MESH_KEYS = ("bodies.bolts", "bodies.ring_element_size_m", "bodies.cage_element_size_m")
 
 
 def rung_overrides(case: WindCase, settings: dict) -> dict | None:
-    """The table overrides that run ``case`` at a rung's fidelity (its own study, loads and window
-    kept), or None when the rung does not apply: the rigid-flexible study runs both rigid and
-    modal bodies, so only its rungs with modal rings and cages set its modes, slices and step."""
+    """The table overrides that run ``case`` at a rung's fidelity, on the meshes the ladder measured
+    (its own study, loads and window kept), or None when the rung does not apply: the
+    rigid-flexible study runs both rigid and modal bodies, so only its rungs with modal rings and
+    cages set its modes, slices and step."""
     keys = list(_RUN_KEYS)
+    modal = "modal" in (settings["bodies.rings"], settings["bodies.cages"])
     if case.study.kind == "rigid-flexible":
         if (settings["bodies.rings"], settings["bodies.cages"]) != ("modal", "modal"):
             return None
         keys = [k for k in keys if k not in ("bodies.rings", "bodies.cages")]
+    if modal:
+        keys += _MESH_KEYS
+    else:
+        keys.remove("bodies.n_modes")
     tables: dict[str, dict] = {}
     for key in keys:
         table, name = key.split(".")

@@ -1,0 +1,138 @@
+"""The wind main bearing's fidelity ladder (``flexbearing tradeoff wind-speeds --quick``): a dynamic
+window measured at each rung, its errors, the time-step estimate, the choice for a tolerance.
+
+References: the quasi-static load distribution of the same rows under the same load (the rigid
+rung's time-mean loads are a dynamic equilibrium of the same rigid bearing); the errors recomputed
+here from the written roller loads by their definitions (cases.fidelity.ERROR_NAMES).
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+
+import numpy as np
+import pytest
+
+from cases.cli import main
+from cases.config import CaseError
+from cases.wind.case import INNER_RING_MASS_KG
+from cases.wind.presets import preset
+from cases.wind.scene import G_M_S2, rows
+from cases.wind.spectrum import load_cases
+from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
+
+
+def _rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+@pytest.fixture(scope="module")
+def ladder_folder(tmp_path_factory):
+    out = tmp_path_factory.mktemp("wind-tradeoff") / "t"
+    assert main(["tradeoff", "wind-speeds", "--quick", "--out", str(out)]) == 0
+    return out
+
+
+def test_rigid_rung_loads_match_the_quasi_static_distribution(ladder_folder):
+    # Reference: solve_load_distribution of the same three rows (5 slices) under load case 19 and
+    # the ring's weight. The rigid rung's largest time-mean roller load is the dynamic equilibrium
+    # of the same bearing turning at 30 r/min; friction carries about 0.4 % of the load
+    # (cases/wind/README.md) and the rollers move over the window: tolerance 0.5 %.
+    case = preset("wind-speeds").with_(rollers={"n_slices": 5})
+    f = load_cases()[0][case.loads.case_index]
+    res = solve_load_distribution(Bearing("three-row", rows(case)),
+                                  RingLoad(Fx_N=f[0], Fy_N=f[1] - INNER_RING_MASS_KG * G_M_S2, Fz_N=f[2],
+                                           Mx_Nm=f[3], My_Nm=f[4]))
+    qs = max(float(r.load_N.max()) for r in res.rows)
+    base = next(r for r in _rows(ladder_folder / "tradeoff.csv") if r["rung"] == "base")
+    assert float(base["max_load_N"]) == pytest.approx(qs, rel=5e-3)
+
+
+def test_errors_are_those_of_the_written_roller_loads(ladder_folder):
+    table = {r["rung"]: r for r in _rows(ladder_folder / "tradeoff.csv")}
+    loads = _rows(ladder_folder / "roller_loads.csv")
+    assert len(loads) == 98 + 94 + 94
+    assert {r["row"] for r in loads} == {"radial", "front thrust", "rear thrust"}
+    ref = np.array([float(x["reference_N"]) for x in loads])
+    for name, row in table.items():
+        q = np.array([float(x[f"{name}_N"]) for x in loads])
+        d = q - ref
+        # CSV: 9 significant digits on each load
+        assert float(row["max_load"]) == pytest.approx(abs(q.max() - ref.max()) / ref.max(), rel=1e-6, abs=1e-8)
+        assert float(row["load_rms"]) == pytest.approx(np.sqrt(np.mean(d * d)) / ref.max(), rel=1e-6, abs=1e-8)
+    # the dynamic errors are measured for every rung; a ring's stress only for modal rings
+    for name, row in table.items():
+        for col in ("roller_speed", "cage_speed", "cage_force_mean", "cage_force_peak"):
+            assert row[col] != "", (name, col)
+        assert (row["ring_von_mises"] != "") == (row["bodies_rings"] == "modal"), name
+    summary = json.loads((ladder_folder / "summary.json").read_text())
+    assert summary["primary"] == "max_load" and "contact_angle_deg" not in summary["errors"]
+
+
+def test_the_automatic_step_is_converged_for_the_largest_load(ladder_folder):
+    # Reference: the ladder's own step sweep (step ×1 against ×0.5 over the whole window). The
+    # automatic step's error in the largest roller load is below 1e-5 both measured that way and
+    # as the run's Richardson estimate (a 200-step window at h/2 and h/4).
+    summary = json.loads((ladder_folder / "summary.json").read_text())
+    track = summary["estimate_tracking"]
+    assert track["estimates"].endswith("analysis.step_factor sweep")
+    assert 0.0 < track["true_error"]["base"] < 1e-5
+    base = next(r for r in summary["rungs"] if r["rung"] == "base")
+    assert 0.0 < base["estimated_error"] < 1e-5
+
+
+def test_tolerance_chooses_the_fastest_rung_meeting_it(ladder_folder):
+    # The ladder is cached by the fixture's run; no rung runs again.
+    from cases.tradeoff import choose_fidelity
+
+    table = [r for r in _rows(ladder_folder / "tradeoff.csv") if r["rung"] != "reference"]
+    meeting = [r for r in table if float(r["max_load"]) <= 0.01]
+    fastest = min(meeting, key=lambda r: float(r["wall_s"]))
+    said = []
+    run, choice = choose_fidelity(preset("wind-speeds"), 0.01, say=said.append)
+    assert not said  # from the cache
+    assert choice["rung"] == fastest["rung"] and choice["expected_error"] <= 0.01
+    assert run.bodies.rings == fastest["bodies_rings"]
+    if run.bodies.rings == "modal":  # on the meshes the ladder measured
+        # (the CSV writes lengths in mm)
+        assert run.bodies.ring_element_size_m == pytest.approx(1e-3 * float(fastest["bodies_ring_element_size_mm"]))
+
+
+@pytest.mark.parametrize("args, message", [
+    (["tradeoff", "wind-static", "--quick"], "the wind static study is quasi-static"),
+    (["tradeoff", "wind-speeds", "--quick", "--set", "loads.source=csv", "--set", "loads.csv_path=x.csv"],
+     "loads.csv_path"),
+])
+def test_scenes_without_a_ladder_are_refused(tmp_path, capsys, args, message):
+    assert main([*args, "--out", str(tmp_path / "t")]) == 2
+    assert message in capsys.readouterr().err
+    assert not (tmp_path / "t").exists()
+
+
+@pytest.mark.parametrize("tables, key", [
+    ({"analysis": {"step_factor": 0.0}}, "analysis.step_factor"),
+    ({"analysis": {"step_factor": 1.5}}, "analysis.step_factor"),
+    ({"analysis": {"step_factor": 0.5}, "contact": {"preset": "adams"}}, "analysis.step_factor"),
+])
+def test_bad_step_factor_names_its_key(tables, key):
+    from cases.config import from_mapping
+    from cases.wind.case import WindCase
+
+    with pytest.raises(CaseError, match=key.replace(".", r"\.")):
+        from_mapping(WindCase, tables)
+
+
+def test_step_factor_scales_the_automatic_step():
+    # Reference: stable_timestep of the same scene; the run takes half of it.
+    from cases.wind import dynamic
+    from cases.wind.scene import build_scene
+    from mbd_core.multibody import stable_timestep
+
+    case = preset("wind-speeds").with_(rollers={"n_slices": 5}, loads={"source": "constant"},
+                                       analysis={"duration_s": 2e-3, "settle_s": 0.0, "record_every": 10})
+    sc = build_scene(case)
+    h = stable_timestep(sc.model, sc.state).timestep_s
+    _, rec = dynamic.run(case.with_(analysis={"step_factor": 0.5}))
+    assert rec["timestep_s"] == pytest.approx(0.5 * h, rel=1e-12)
