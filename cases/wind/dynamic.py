@@ -23,13 +23,12 @@ import numpy as np
 from cases.config import CaseError
 from cases.integrate import integrate
 from cases.results import RPM_PER_RAD_S, plural
-from mbd_core.multibody import stable_timestep
-from mbd_core.multibody import step_error as richardson_window
+from mbd_core.multibody import largest_load_step_error, stable_timestep
 
 from .case import INNER_RING_MASS_KG, WindCase
 from .scene import G_M_S2, WindScene, build_scene, rolling_speeds
 
-__all__ = ["LOADED_SHARE", "run", "settled", "step_error", "largest_roller_load_N", "roller_speeds", "cage_speeds", "ring_reaction", "cage_forces", "applied_load"]
+__all__ = ["LOADED_SHARE", "run", "settled", "step_error", "roller_speeds", "cage_speeds", "ring_reaction", "cage_forces", "applied_load"]
 
 #: a roller counts as loaded above this share of its row's largest raceway load at that instant
 LOADED_SHARE = 0.05
@@ -47,27 +46,10 @@ def run(case: WindCase, progress=None) -> tuple[WindScene, dict]:
                          adaptive=case.contact.preset == "adams", timestep_s=h)
 
 
-#: steps of the window that :func:`step_error` repeats at h/2 and h/4
-STEP_ERROR_WINDOW_STEPS = 200
-
-
-def largest_roller_load_N(sc: WindScene, rec: dict) -> float:
-    """Mean over the record of the largest raceway load of any roller at each sample, N."""
-    pairs = [p for rb in sc.rows for p in rb.moving_pairs]
-    return float(rec["fn"][:, pairs].max(axis=1).mean())
-
-
 def step_error(sc: WindScene, timestep_s: float) -> dict:
-    """Time-step error of the largest roller load, from a window of
-    :data:`STEP_ERROR_WINDOW_STEPS` steps from ``sc.state`` repeated at h/2 and h/4
-    (:func:`mbd_core.multibody.step_error`): relative error, value, order."""
-    est = richardson_window(sc.model, sc.state, timestep_s,
-                            lambda rec: {"max_load": largest_roller_load_N(sc, rec)},
-                            STEP_ERROR_WINDOW_STEPS)["max_load"]
-    return {"max_load": est.relative, "max_load_N": est.value, "order": est.order,
-            "order_observed": est.order_observed, "window_s": STEP_ERROR_WINDOW_STEPS * timestep_s,
-            "what": "relative time-step error of the largest roller load over a window repeated at h/2 and "
-                    "h/4 from the run's end (Richardson)"}
+    """Time-step error of the largest roller load (:func:`mbd_core.multibody.largest_load_step_error`)
+    from ``sc.state`` (the run's end)."""
+    return largest_load_step_error(sc.model, sc.state, timestep_s, [p for rb in sc.rows for p in rb.moving_pairs])
 
 
 #: fewest recorded samples after the settling time that the averages of a run are taken over

@@ -11,10 +11,10 @@ from .implicit import simulate_implicit
 from .explicit import DivergenceError, SimulationError, StepTooLargeError, evaluate_forces, simulate, stable_timestep
 from .model import Model, State
 from .recorder import read_run
-from .step_error import StepError, step_error
+from .step_error import StepError, largest_load_step_error, step_error
 
 __all__ = [
     "ModelBuilder", "ContactLaw", "Free", "Fixed", "Driven", "quat_from_axis_angle", "quat_z_to",
     "Model", "State", "simulate", "simulate_implicit", "stable_timestep", "evaluate_forces", "read_run",
-    "SimulationError", "StepTooLargeError", "DivergenceError", "StepError", "step_error",
+    "SimulationError", "StepTooLargeError", "DivergenceError", "StepError", "step_error", "largest_load_step_error",
 ]

@@ -24,8 +24,10 @@ from dataclasses import dataclass
 from .explicit import simulate
 from .model import Model, State
 
-__all__ = ["StepError", "step_error"]
+__all__ = ["StepError", "step_error", "largest_load_step_error", "WINDOW_STEPS"]
 
+#: steps of the window :func:`largest_load_step_error` repeats
+WINDOW_STEPS = 200
 #: the range of observed orders that are believed; outside it p = ASSUMED_ORDER
 ORDER_RANGE = (0.5, 4.0)
 ASSUMED_ORDER = 1.0
@@ -75,3 +77,16 @@ def step_error(model: Model, state: State, timestep_s: float, figures: Callable[
         rec = simulate(model, state.copy(), t_end, timestep_s=timestep_s / k, record_every=k, allow_unstable=True)
         values.append(dict(figures(rec)))
     return {name: richardson(values[0][name], values[1][name], values[2][name]) for name in values[0]}
+
+
+def largest_load_step_error(model: Model, state: State, timestep_s: float, pairs, n_steps: int = WINDOW_STEPS) -> dict:
+    """:func:`step_error` of the largest normal force among contact ``pairs`` (mean over the
+    window of the largest at each sample), as ``summary.json`` reports it: relative error, value
+    (N), order and whether it was observed, window length (s)."""
+    pairs = list(pairs)
+    est = step_error(model, state, timestep_s, lambda rec: {"q": float(rec["fn"][:, pairs].max(axis=1).mean())},
+                     n_steps)["q"]
+    return {"max_load": est.relative, "max_load_N": est.value, "order": est.order,
+            "order_observed": est.order_observed, "window_s": n_steps * timestep_s,
+            "what": f"relative time-step error of the largest contact load over {n_steps} steps from the run's "
+                    "end, repeated at h/2 and h/4 (Richardson)"}
