@@ -330,12 +330,14 @@ def cmd_tradeoff(args) -> dict:
     summary, result = write_tradeoff(case, out_dir, args.quick, progress=track, source=case_source(args.case))
     print(f"{case.name}: {summary['scene']}; errors of the {summary['primary_quantity']} against the reference "
           f"({summary['reference']['model']})" + (" — ladder from the cache" if result.cached else ""))
+    estimates = list(result.ladder.estimates)
     rows = [(r["rung"], r["model"], f"{r['wall_s']:.1f}", f"{r['peak_rss_mb']:.0f}",
              f"{100 * r[result.ladder.primary]:.3g}",
-             "" if r.get("estimated_error") is None else f"{100 * r['estimated_error']:.3g}",
+             *("" if r.get(e) is None else f"{100 * r[e]:.3g}" for e in estimates),
              "*" if r["rung"] in summary["pareto_front"] else "")
             for r in result.rows]
-    print(format_table(rows, ("rung", "model", "wall s", "peak MB", "error %", "estimate %", "Pareto")))
+    print(format_table(rows, ("rung", "model", "wall s", "peak MB", "error %",
+                              *(e.replace("estimated_", "est. ").replace("_", " ") + " %" for e in estimates), "Pareto")))
     for key, c in summary["convergence"].items():
         print(f"  {key}: {order_text(c['observed_order'])}")
     print(f"results in {out_dir}/ (tradeoff.csv, {family_ladder(case).LOADS_FILE}, summary.json, tradeoff_pareto.png, "

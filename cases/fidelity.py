@@ -87,10 +87,10 @@ class Ladder:
     scene: str = ""
     #: the error columns the ladder reports (keys of :data:`ERROR_NAMES`)
     errors: tuple = QUASI_STATIC_ERRORS
-    #: what the rungs' own estimates (``Outcome.estimated_error``) estimate: None, the whole
-    #: ``primary`` error against the reference; a knob key, the part of it that knob's sweep
-    #: measures (the error against the rung of that sweep at its last, finest value)
-    estimate_of: str | None = None
+    #: the rungs' own error estimates (columns of ``Outcome.estimates``) → what each estimates:
+    #: None, the whole ``primary`` error against the reference; a knob key, the part of it that
+    #: knob's sweep measures (the error against the rung of that sweep at its last, finest value)
+    estimates: Mapping = field(default_factory=lambda: {"estimated_error": None})
 
     def __post_init__(self) -> None:
         keys = {k.key for k in self.knobs}
@@ -103,8 +103,9 @@ class Ladder:
             raise ValueError(f"ladder errors: {sorted(set(self.errors) - set(ERROR_NAMES))} are no error names")
         if self.primary not in self.errors:
             raise ValueError(f"ladder primary must be one of {list(self.errors)}, got {self.primary!r}")
-        if self.estimate_of is not None and self.estimate_of not in keys:
-            raise ValueError(f"ladder estimate_of: {self.estimate_of!r} is no knob of the ladder")
+        for name, knob in self.estimates.items():
+            if knob is not None and knob not in keys:
+                raise ValueError(f"ladder estimates: {name} estimates {knob!r}, no knob of the ladder")
 
 
 @dataclass(frozen=True)
@@ -122,15 +123,15 @@ class Outcome:
     """What a rung computes, per rolling element (Z of them): normal load (N) and, for
     quasi-static scenes, the loaded contact angle (rad) and the peak subsurface shear stress under
     the largest load (Pa); for dynamic scenes ``figures`` (error name of :data:`FIGURE_ERRORS` →
-    {row or body: value}); and the error the run estimates for itself (``error_estimates``), to
-    compare with its true error."""
+    {row or body: value}); and the errors of its ``primary`` quantity the run estimates for itself
+    (``error_estimates``; column of :attr:`Ladder.estimates` → value, None: none), to compare with
+    its true errors."""
 
     load_N: np.ndarray
     contact_angle_rad: np.ndarray | None = None
     tau_max_Pa: float | None = None
     unloaded_share: float = 1e-3
-    #: the run's own estimate of its ``primary`` error without the reference (None: none)
-    estimated_error: float | None = None
+    estimates: Mapping = field(default_factory=dict)
     figures: Mapping = field(default_factory=dict)
 
     @property
@@ -144,7 +145,7 @@ class Outcome:
 
         return {"load_N": listed(self.load_N), "contact_angle_rad": listed(self.contact_angle_rad),
                 "tau_max_Pa": self.tau_max_Pa, "unloaded_share": self.unloaded_share,
-                "estimated_error": self.estimated_error,
+                "estimates": dict(self.estimates),
                 "figures": {k: {kk: float(vv) for kk, vv in v.items()} for k, v in self.figures.items()}}
 
     @classmethod
@@ -152,7 +153,7 @@ class Outcome:
         angle = d["contact_angle_rad"]
         tau = d["tau_max_Pa"]
         return cls(np.array(d["load_N"], float), None if angle is None else np.array(angle, float),
-                   None if tau is None else float(tau), float(d["unloaded_share"]), d["estimated_error"],
+                   None if tau is None else float(tau), float(d["unloaded_share"]), dict(d["estimates"]),
                    {k: dict(v) for k, v in d["figures"].items()})
 
 

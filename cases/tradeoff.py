@@ -163,7 +163,7 @@ def run_ladder(case, quick: bool = False, progress=None, use_cache: bool = True)
                      **{k: v for k, v in r.settings.items()},
                      "wall_s": m["wall_s"], "cpu_s": m["cpu_s"], "warm_wall_s": m["warm_wall_s"],
                      "peak_rss_mb": m["peak_rss_mb"], "max_load_N": float(o.load_N.max()), "unloaded_elements": o.unloaded,
-                     **rung_errors(o, ref), "estimated_error": o.estimated_error})
+                     **rung_errors(o, ref), **{name: o.estimates.get(name) for name in ladder.estimates}})
     result = LadderResult(ladder, all_rungs, rows, {k: v["outcome"] for k, v in measured.items()})
     if use_cache:
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -209,35 +209,35 @@ def _cell(row: dict, name: str, front: list[str]):
     return "" if value is None else value
 
 
-def _true_estimated(result: LadderResult) -> dict[str, float]:
-    """Per rung with an estimate: the true error the estimate estimates (``Ladder.estimate_of``):
-    its ``primary`` error against the reference, or against the finest rung of that knob's sweep
-    (for the rungs of that sweep only)."""
+def _true_errors(result: LadderResult, knob_key: str | None) -> dict[str, float]:
+    """The true errors an estimate of ``knob_key`` estimates (:attr:`cases.fidelity.Ladder.estimates`),
+    per rung: the ``primary`` error against the reference (None), or against the finest rung of
+    that knob's sweep (the other rungs of that sweep only)."""
     ladder, primary = result.ladder, result.ladder.primary
-    rows = [r for r in result.rows if r.get("estimated_error") is not None and r["rung"] != "reference"]
-    if ladder.estimate_of is None:
-        return {r["rung"]: float(r[primary]) for r in rows}
-    knob = next(k for k in ladder.knobs if k.key == ladder.estimate_of)
+    if knob_key is None:
+        return {r["rung"]: float(r[primary]) for r in result.rows if r["rung"] != "reference"}
+    knob = next(k for k in ladder.knobs if k.key == knob_key)
     members = sweep_members(ladder, result.rungs, knob)
-    if len(members) < 2:
-        return {}
-    finest = result.outcomes[members[-1].name]
-    names = {m.name for m in members[:-1]}
-    return {r["rung"]: float(rung_errors(result.outcomes[r["rung"]], finest)[primary]) for r in rows if r["rung"] in names}
+    finest = result.outcomes[members[-1].name] if members else None
+    return {m.name: float(rung_errors(result.outcomes[m.name], finest)[primary]) for m in members[:-1]}
 
 
 def estimate_tracking(result: LadderResult) -> dict:
-    """How the runs' own error estimates track the true errors they estimate
-    (:func:`_true_estimated`): per rung with both (true error > 0), the ratio estimate / true, and its range."""
-    true = _true_estimated(result)
-    est = {r["rung"]: r["estimated_error"] for r in result.rows}
-    ratios = {k: est[k] / v for k, v in true.items() if v > 0.0}
-    against = ("its error against the reference" if result.ladder.estimate_of is None else
-               f"its error against the finest rung of the {result.ladder.estimate_of} sweep")
-    out = {"estimates": against, "true_error": true, "ratio_estimated_to_true": ratios}
-    if ratios:
-        out.update(min_ratio=min(ratios.values()), max_ratio=max(ratios.values()),
-                   within_factor_3=sorted(k for k, v in ratios.items() if 1 / 3 <= v <= 3))
+    """How the runs' own error estimates track the true errors they estimate (:func:`_true_errors`):
+    per estimate and rung with both (true error > 0), the ratio estimate / true, and its range."""
+    out = {}
+    for name, knob_key in result.ladder.estimates.items():
+        true = _true_errors(result, knob_key)
+        est = {r["rung"]: r.get(name) for r in result.rows}
+        ratios = {k: est[k] / v for k, v in true.items() if v > 0.0 and est.get(k) is not None}
+        against = ("its error against the reference" if knob_key is None else
+                   f"its error against the finest rung of the {knob_key} sweep")
+        track = {"estimates": against, "true_error": {k: v for k, v in true.items() if est.get(k) is not None},
+                 "ratio_estimated_to_true": ratios}
+        if ratios:
+            track.update(min_ratio=min(ratios.values()), max_ratio=max(ratios.values()),
+                         within_factor_3=sorted(k for k, v in ratios.items() if 1 / 3 <= v <= 3))
+        out[name] = track
     return out
 
 
@@ -254,7 +254,7 @@ def write_tradeoff(case, out_dir, quick: bool = False, progress=None, source: st
         out = RunOutput(tmp)
         knob_keys = [k.key for k in ladder.knobs]
         header = ["rung", "knob", "model", *knob_keys, "wall_s", "cpu_s", "warm_wall_s", "peak_rss_mb", "max_load_N",
-                  "unloaded_elements", *ladder.errors, "estimated_error", "pareto"]
+                  "unloaded_elements", *ladder.errors, *ladder.estimates, "pareto"]
         out.write_csv("tradeoff.csv", [h.replace(".", "_") for h in header],
                       [[_cell(r, h, front) for h in header] for r in result.rows])
         names = [r.name for r in result.rungs]

@@ -76,11 +76,23 @@ def test_the_automatic_step_is_converged_for_the_largest_load(ladder_folder):
     # automatic step's error in the largest roller load is below 1e-5 both measured that way and
     # as the run's Richardson estimate (a 200-step window at h/2 and h/4).
     summary = json.loads((ladder_folder / "summary.json").read_text())
-    track = summary["estimate_tracking"]
+    track = summary["estimate_tracking"]["estimated_step_error"]
     assert track["estimates"].endswith("analysis.step_factor sweep")
     assert 0.0 < track["true_error"]["base"] < 1e-5
     base = next(r for r in summary["rungs"] if r["rung"] == "base")
-    assert 0.0 < base["estimated_error"] < 1e-5
+    assert 0.0 < base["estimated_step_error"] < 1e-5
+
+
+def test_slice_estimate_tracks_the_slice_sweep(ladder_folder):
+    # Reference: the ladder's slice sweep, the dynamic window at 5 against 10 slices per roller.
+    # The run's estimate (quasi-static at 5, 10, 20 slices, Richardson) lies within a factor 3 of
+    # it (issue acceptance for indicators); Richardson's error at n against the 2n run is 4/3 of
+    # their difference at order 2, so the ratio is near 4/3 where both see the same slicing.
+    summary = json.loads((ladder_folder / "summary.json").read_text())
+    track = summary["estimate_tracking"]["estimated_slice_error"]
+    assert track["estimates"].endswith("rollers.n_slices sweep")
+    assert set(track["ratio_estimated_to_true"]) == {"base"}
+    assert 1 / 3 <= track["ratio_estimated_to_true"]["base"] <= 3
 
 
 def test_tolerance_chooses_the_fastest_rung_meeting_it(ladder_folder):

@@ -160,7 +160,8 @@ def measure(case: SlewingCase) -> Outcome:
     tau = _tau_max_Pa(c, float(row.load_N[k]), float(row.contact_angle_rad[k]))
     est = error_estimates(c, bodies, res)["modal_truncation"]
     return Outcome(np.asarray(row.load_N, float), np.asarray(row.contact_angle_rad, float), tau,
-                   unloaded_share=UNLOADED_SHARE, estimated_error=None if est is None else est["max_load"])
+                   unloaded_share=UNLOADED_SHARE,
+                   estimates={"estimated_error": None if est is None else est["max_load"]})
 
 
 #: the file of ``flexbearing tradeoff`` that holds every rung's element loads

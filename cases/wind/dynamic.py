@@ -24,11 +24,13 @@ from cases.config import CaseError
 from cases.integrate import integrate
 from cases.results import RPM_PER_RAD_S, plural
 from mbd_core.multibody import largest_load_step_error, stable_timestep
+from mbd_core.multibody.step_error import richardson
+from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
 
 from .case import INNER_RING_MASS_KG, WindCase
-from .scene import G_M_S2, WindScene, build_scene, rolling_speeds
+from .scene import G_M_S2, WindScene, build_scene, load_history, rolling_speeds, rows
 
-__all__ = ["LOADED_SHARE", "run", "settled", "step_error", "roller_speeds", "cage_speeds", "ring_reaction", "cage_forces", "applied_load"]
+__all__ = ["LOADED_SHARE", "run", "settled", "step_error", "slice_error", "roller_speeds", "cage_speeds", "ring_reaction", "cage_forces", "applied_load"]
 
 #: a roller counts as loaded above this share of its row's largest raceway load at that instant
 LOADED_SHARE = 0.05
@@ -50,6 +52,32 @@ def step_error(sc: WindScene, timestep_s: float) -> dict:
     """Time-step error of the largest roller load (:func:`mbd_core.multibody.largest_load_step_error`)
     from ``sc.state`` (the run's end)."""
     return largest_load_step_error(sc.model, sc.state, timestep_s, [p for rb in sc.rows for p in rb.moving_pairs])
+
+
+def slice_error(case: WindCase) -> dict | None:
+    """Slicing error of the largest roller load: the quasi-static load distribution (rigid rings)
+    under the load of the case's history that loads a roller most, with ``rollers.n_slices``
+    slices and with 2× and 4× as many, extrapolated as the time step is
+    (:func:`mbd_core.multibody.step_error.richardson`, with 1/slices for h). None under the
+    ``adams`` preset, whose contact law takes the whole roller."""
+    if case.contact.preset == "adams":
+        return None
+    _, loads = load_history(case)
+    n = case.rollers.n_slices
+
+    def largest(k: int, load) -> float:
+        bearing = Bearing("three-row roller", rows(case.with_(rollers={"n_slices": k * n})))
+        res = solve_load_distribution(bearing, RingLoad(Fx_N=load[0], Fy_N=load[1] - INNER_RING_MASS_KG * G_M_S2,
+                                                        Fz_N=load[2], Mx_Nm=load[3], My_Nm=load[4]))
+        return max(float(r.load_N.max()) for r in res.rows)
+
+    worst = max(np.unique(loads, axis=0), key=lambda f: largest(1, f))
+    est = richardson(*(largest(k, worst) for k in (1, 2, 4)))
+    return {"max_load": est.relative, "max_load_N": est.value, "order": est.order,
+            "order_observed": est.order_observed,
+            "what": f"relative slicing error of the largest roller load at {n} slices per roller: quasi-static "
+                    f"(rigid rings) with {n}, {2 * n} and {4 * n} slices under the most loading load of the history "
+                    "(Richardson)"}
 
 
 #: fewest recorded samples after the settling time that the averages of a run are taken over

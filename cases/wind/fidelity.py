@@ -24,7 +24,9 @@ measured at the base (its step is set by the friction law's slope, 5–6× below
 What a rung computes (:func:`measure`): per roller (radial row, then front and rear thrust rows)
 its raceway load averaged over the window after settling; per row the mean spin of the loaded
 rollers, the mean cage speed, the mean and the peak roller–pocket force; per modal ring its peak
-von Mises stress; and its own time-step error estimate (:func:`.dynamic.step_error`).
+von Mises stress; and its own estimates of the time-step and slicing errors of the largest roller
+load (:func:`.dynamic.step_error`, :func:`.dynamic.slice_error`), which the ladder compares with the
+errors along the step and slice sweeps.
 """
 
 from __future__ import annotations
@@ -117,7 +119,7 @@ def ladder(case: WindCase, quick: bool = False) -> Ladder:
     return Ladder(tuple(knobs), base, reference, combined, primary="max_load",
                   primary_label="largest roller load (mean over the window)",
                   scene="a dynamic window: " + describe_scene(case), errors=_ERRORS,
-                  estimate_of=None if adams else "analysis.step_factor")
+                  estimates={"estimated_step_error": "analysis.step_factor", "estimated_slice_error": "rollers.n_slices"})
 
 
 def _scene_values(case: WindCase) -> dict:
@@ -178,8 +180,10 @@ def measure(case: WindCase) -> Outcome:
     if case.bodies.rings == "modal":
         figures["ring_von_mises"] = {name: w.von_mises_Pa for name, (_, _, w) in
                                      peak_stresses(sc, rec, case.analysis.settle_s).items() if name.endswith("ring")}
-    estimate = dynamic.step_error(sc, rec["timestep_s"])["max_load"]
-    return Outcome(loads, unloaded_share=UNLOADED_SHARE, estimated_error=estimate, figures=figures)
+    slices = dynamic.slice_error(case)
+    estimates = {"estimated_step_error": dynamic.step_error(sc, rec["timestep_s"])["max_load"],
+                 "estimated_slice_error": None if slices is None else slices["max_load"]}
+    return Outcome(loads, unloaded_share=UNLOADED_SHARE, estimates=estimates, figures=figures)
 
 
 def element_columns(case: WindCase, n: int) -> tuple[list[str], list[tuple]]:

@@ -65,7 +65,8 @@ def _one_run(case: WindCase, progress=None) -> tuple[dict, object, dict]:
     figures = {"speeds": dynamic.roller_speeds(case, sc, rec), "cages": dynamic.cage_speeds(case, sc, rec),
                "equilibrium": dynamic.equilibrium_error(case, sc, rec),
                "cage_forces": dynamic.cage_forces(case, sc, rec), "timestep_s": rec["timestep_s"],
-               "error_estimates": {"time_step": dynamic.step_error(sc, rec["timestep_s"])},
+               "error_estimates": {"time_step": dynamic.step_error(sc, rec["timestep_s"]),
+                                   "slices": dynamic.slice_error(case)},
                "wall_time_s": time.perf_counter() - t0}
     return figures, sc, rec
 
@@ -82,6 +83,10 @@ def _speed_notes(out, fig: dict, label: str = "") -> None:
     step = fig["error_estimates"]["time_step"]
     out.note(f"{label}time-step error of the largest roller load (Richardson, h/2 and h/4 over "
              f"{1e3 * step['window_s']:.2g} ms): {100 * step['max_load']:.2g} %")
+    slices = fig["error_estimates"]["slices"]
+    if slices is not None:
+        out.note(f"{label}slicing error of the largest roller load (quasi-static, 2× and 4× the slices): "
+                 f"{100 * slices['max_load']:.2g} %")
 
 
 def study_speeds(case: WindCase, out, progress=None) -> None:
