@@ -30,11 +30,12 @@ from cms_reduction.craig_bampton import InterfaceError
 from cms_reduction.pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, reduced_body
 from fem_rings.dxf_section import profile_from_dxf
 from fem_rings.mesh import MeshSpec, QuadMeshError
+from fem_rings.nodesets import PatchError
 from fem_rings.profile import Arc, Line, Profile, ProfileError
 from foundation.materials import ElasticMaterial
 from mbd_core.quasistatic import Bearing
 from mbd_core.quasistatic.flexible import FlexibleRing
-from mbd_core.quasistatic.rows import RollerRow
+from mbd_core.quasistatic.rows import FourPointRow, RollerRow
 
 from .config import CaseError, from_mapping
 from .mesh_budget import check_model_size
@@ -90,11 +91,13 @@ class RingKeys:
     clamped_face: str | None = None
     n_modes: int = 20
     raceway_harmonics: int = 8
+    element_load_shapes: bool = False
+    raceway_spread_m: float | None = None
     element_size_m: float | None = None
     element: Literal["hex27", "tet10"] = "hex27"
 
     def __post_init__(self) -> None:
-        for key in ("inner_diameter_m", "outer_diameter_m", "z_min_m", "z_max_m", "element_size_m"):
+        for key in ("inner_diameter_m", "outer_diameter_m", "z_min_m", "z_max_m", "element_size_m", "raceway_spread_m"):
             v = getattr(self, key)
             if v is not None and not math.isfinite(v):
                 raise ValueError(f"{key}: must be a finite number, got {v!r}")
@@ -104,6 +107,11 @@ class RingKeys:
                 raise ValueError(f"{key}: must be > 0, got {v!r}")
         if (self.bolts is None) == (self.clamped_face is None):
             raise ValueError("bolts: give the ring's support: a [bolts] table or clamped_face (one of them)")
+        if self.raceway_spread_m is not None and self.raceway_spread_m < 0.0:
+            raise ValueError(f"raceway_spread_m: must be ≥ 0, got {self.raceway_spread_m!r}")
+        if self.element_load_shapes and self.raceway_spread_m == 0.0:
+            raise ValueError("raceway_spread_m: element_load_shapes need a patch > 0 (a force at a point of a solid "
+                             "has an unbounded displacement there); leave it out for 0.3 × the element diameter")
         if not 1 <= self.n_modes <= 400:
             raise ValueError(f"n_modes: must lie in 1 … 400, got {self.n_modes}")
         if not 0 <= self.raceway_harmonics <= 60:
@@ -272,16 +280,43 @@ def _support(m: RingModel) -> InterfaceSpec:
     return InterfaceSpec(b.face, angles, b.washer_radius_m, pitch_radius_m=0.5 * b.pitch_diameter_m)
 
 
+#: the raceway patch a rolling element's load is spread over, as a share of its diameter, when
+#: ``element_load_shapes`` is on and ``raceway_spread_m`` is left out: the groove patch that the
+#: slewing ring's fidelity ladder found to converge with the mesh (cases/slewing/README.md)
+ELEMENT_PATCH_SHARE = 0.3
+
+
+def _raceway_spec(m: RingModel, row, n_theta: int) -> RacewaySpec:
+    """The sampled raceway of ``row`` on ring ``m``: its patch and, with ``element_load_shapes``, the
+    static shapes of radial and axial element forces at the row's elements (their first position)."""
+    keys, place = m.keys, m.places[row.name]
+    if keys.element_load_shapes and isinstance(row, FourPointRow):
+        raise CaseError(f"rings.{m.name}.element_load_shapes: not for the four-point row {row.name!r} yet (its "
+                        "contacts lie on the two arcs of the gothic arch, away from the raceway sample at its apex)")
+    spread = keys.raceway_spread_m
+    if spread is None:
+        spread = round(ELEMENT_PATCH_SHARE * _element_size(row), 6) if keys.element_load_shapes else 0.0
+    angles = ()
+    if keys.element_load_shapes:
+        first = math.degrees(row.first_azimuth_rad)
+        angles = tuple((first + 360.0 * k / row.n_elements) % 360.0 for k in range(row.n_elements))
+    return RacewaySpec(m.raceways[row.name], n_theta, at_rz_m=tuple(map(float, place.point_rz_m)),
+                       directions=place.directions, n_max=keys.raceway_harmonics, spread_m=spread,
+                       element_angles_deg=angles)
+
+
 def reduce_ring(m: RingModel, bearing: Bearing):
     """The reduced body of a ring (built once, then loaded from the cache)."""
     n_elements = max(r.n_elements for r in bearing.rows)
     n_theta = max(MIN_RACEWAY_SAMPLES, 4 * n_elements)
-    raceways = tuple(RacewaySpec(m.raceways[row], n_theta, at_rz_m=tuple(map(float, p.point_rz_m)),
-                                 directions=p.directions, n_max=m.keys.raceway_harmonics)
-                     for row, p in m.places.items())
+    rows = {r.name: r for r in bearing.rows}
+    raceways = tuple(_raceway_spec(m, rows[name], n_theta) for name in m.places)
     spec = ReductionSpec(n_modes=m.keys.n_modes, interfaces=(_support(m),), raceways=raceways)
     try:
         return reduced_body(m.profile, _mesh_spec(m), m.material, spec, name=f"{bearing.name}: {m.name} ring")
+    except PatchError as exc:
+        raise CaseError(f"rings.{m.name}.raceway_spread_m: {exc}; give a smaller patch (with element_load_shapes "
+                        f"its default is {ELEMENT_PATCH_SHARE:g} × the element diameter)") from None
     except QuadMeshError as exc:
         raise CaseError(f"rings.{m.name}.element: {exc} (element = \"tet10\" in [rings.{m.name}])") from None
     except InterfaceError as exc:

@@ -17,6 +17,7 @@ import numpy as np
 from .profile import Arc, Line, Profile
 
 __all__ = [
+    "PatchError",
     "RacewayCurve",
     "classify_boundary",
     "point_segment_distance",
@@ -322,8 +323,12 @@ def raceway_patch(curve: RacewayCurve, profile: Profile, spread_m: float, n_u: i
     return out
 
 
+class PatchError(ValueError):
+    """A raceway patch that leaves the section or its raceway (``spread_m`` too large)."""
+
+
 def _check_patch(curve: RacewayCurve, profile: Profile, spread_m: float, rz: np.ndarray, foot: np.ndarray) -> None:
-    """ValueError unless every patch point lies strictly inside the section and every surface foot
+    """:class:`PatchError` unless every patch point lies strictly inside the section and every surface foot
     point on the raceway's own segment."""
     tol = REL_TOL * profile.size_m
     segs = [seg for seg in profile.segments if seg.name == curve.name]
@@ -332,7 +337,7 @@ def _check_patch(curve: RacewayCurve, profile: Profile, spread_m: float, rz: np.
     inside = _inside_polygon(rz, poly)
     if not (on_raceway.all() and inside.all()):
         bad = rz[np.argmin(inside)] if not inside.all() else foot[np.argmin(on_raceway)]
-        raise ValueError(
+        raise PatchError(
             f"raceway {curve.name!r}: spread_m = {spread_m:g} m is too large: its patch reaches "
             f"(r, z) = ({bad[0]:.6g}, {bad[1]:.6g}) m, "
             + ("outside the section" if not inside.all() else "past the edge of the raceway"))
