@@ -34,9 +34,9 @@ from .outdir import atomic_folder
 from .results import RunOutput, output_units
 from .slewing import fidelity as slewing_fidelity
 from .slewing.case import SlewingCase
+from .tradeoff_plots import plot_convergence, plot_pareto
 from .wind import fidelity as wind_fidelity
 from .wind.case import WindCase
-from .tradeoff_plots import plot_convergence, plot_pareto
 
 __all__ = ["LADDERS", "LadderResult", "family_ladder", "run_ladder", "write_tradeoff", "pareto_front", "choose_fidelity",
            "measure_cold"]

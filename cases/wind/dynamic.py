@@ -30,7 +30,8 @@ from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
 from .case import INNER_RING_MASS_KG, WindCase
 from .scene import G_M_S2, WindScene, build_scene, load_history, rolling_speeds, rows
 
-__all__ = ["LOADED_SHARE", "run", "settled", "step_error", "slice_error", "roller_speeds", "cage_speeds", "ring_reaction", "cage_forces", "applied_load"]
+__all__ = ["LOADED_SHARE", "run", "settled", "step_error", "slice_error", "roller_speeds", "cage_speeds",
+           "ring_reaction", "cage_forces", "applied_load"]
 
 #: a roller counts as loaded above this share of its row's largest raceway load at that instant
 LOADED_SHARE = 0.05
