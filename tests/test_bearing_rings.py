@@ -313,9 +313,9 @@ ANGULAR = SMALL.replace('type = "four_point"', 'type = "angular_contact"\nloaded
     f"shoulder_angle_deg = {SHOULDER}\n", "")
 
 
-def _with_ring_keys(text: str, **keys) -> str:
-    """``text`` with ``keys`` replacing or added to both [rings.X] tables (TOML values as text)."""
-    for ring in ("inner", "outer"):
+def _with_ring_keys(text: str, rings=("inner", "outer"), **keys) -> str:
+    """``text`` with ``keys`` replacing or added to the [rings.X] tables of ``rings`` (TOML values as text)."""
+    for ring in rings:
         head = f"[rings.{ring}]\n"
         start = text.index(head) + len(head)
         end = text.index("[", start)
@@ -343,10 +343,12 @@ def test_element_load_shapes_make_the_ring_basis_hold_the_static_response():
     # grid, while the shapes spread each force over the patch and ±spread along the circumference, so
     # the force it applies is not exactly the load of a shape; the slewing ladder: 0.07 %); without
     # those shapes 4 modes miss part of the ring's flexibility (more than 1 %).
+    # Only the inner ring's basis changes (the outer ring is the same, and reduced once).
+    inner = ("inner",)
     shapes = dict(element_load_shapes="true", raceway_spread_m="0.004")
-    lean = _soft_largest_load(_with_ring_keys(ANGULAR, n_modes=4, raceway_harmonics=0, **shapes))
-    rich = _soft_largest_load(_with_ring_keys(ANGULAR, **shapes))
-    plain = _soft_largest_load(_with_ring_keys(ANGULAR, n_modes=4, raceway_harmonics=0, raceway_spread_m="0.004"))
+    lean = _soft_largest_load(_with_ring_keys(ANGULAR, inner, n_modes=4, raceway_harmonics=0, **shapes))
+    rich = _soft_largest_load(_with_ring_keys(ANGULAR, inner, **shapes))
+    plain = _soft_largest_load(_with_ring_keys(ANGULAR, inner, n_modes=4, raceway_harmonics=0, raceway_spread_m="0.004"))
     assert lean == pytest.approx(rich, rel=1e-3)
     assert abs(plain - rich) > 1e-2 * rich, (plain, rich)
 
