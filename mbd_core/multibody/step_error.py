@@ -62,7 +62,7 @@ def richardson(y_h: float, y_h2: float, y_h4: float) -> StepError:
 
 
 def step_error(model: Model, state: State, timestep_s: float, figures: Callable[[dict], Mapping[str, float]],
-               n_steps: int = 200) -> dict[str, StepError]:
+               n_steps: int = WINDOW_STEPS) -> dict[str, StepError]:
     """Time-step error of each figure of ``figures(record)`` for a run at ``timestep_s``, from a window
     of ``n_steps`` steps starting at ``state`` (left unchanged), run at h, h/2 and h/4 (module
     docstring). ``figures`` reads a :func:`~.explicit.simulate` record, sampled every h."""
