@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 __all__ = ["Knob", "Ladder", "Rung", "Outcome", "ToleranceError", "ERROR_NAMES", "QUASI_STATIC_ERRORS", "FIGURE_ERRORS",
-           "rungs", "rung_errors",
+           "rungs", "rung_errors", "case_tables",
            "choose_rung", "parse_tolerance", "observed_order"]
 
 #: error columns of a rung, with what they are (all relative to the reference's largest load
@@ -155,6 +155,16 @@ class Outcome:
         return cls(np.array(d["load_N"], float), None if angle is None else np.array(angle, float),
                    None if tau is None else float(tau), float(d["unloaded_share"]), dict(d["estimates"]),
                    {k: dict(v) for k, v in d["figures"].items()})
+
+
+def case_tables(settings: Mapping) -> dict[str, dict]:
+    """Dotted knob keys → values as the tables of :meth:`cases.config.CaseTables.with_`:
+    ``{"top.n_modes": 5}`` → ``{"top": {"n_modes": 5}}``."""
+    tables: dict[str, dict] = {}
+    for key, value in settings.items():
+        table, name = key.split(".")
+        tables.setdefault(table, {})[name] = value
+    return tables
 
 
 def _settings_name(settings: Mapping) -> str:

@@ -41,7 +41,7 @@ from foundation.materials import BEARING_STEEL
 from mbd_core.contact import ball_on_groove
 from mbd_core.contact.subsurface import subsurface_shear
 
-from ..fidelity import Knob, Ladder, Outcome
+from ..fidelity import Knob, Ladder, Outcome, case_tables
 from . import scene as scene_mod
 from .case import SlewingCase
 from .quasistatic import equilibrium, error_estimates
@@ -175,11 +175,7 @@ def element_columns(case: SlewingCase, n: int) -> tuple[list[str], list[tuple]]:
 
 def rung_case(case: SlewingCase, settings: dict) -> SlewingCase:
     """``case``'s scene with the rung's knob values (dotted keys → values)."""
-    tables: dict[str, dict] = {}
-    for key, value in settings.items():
-        table, name = key.split(".")
-        tables.setdefault(table, {})[name] = value
-    return scene(case).with_(**tables)
+    return scene(case).with_(**case_tables(settings))
 
 
 def describe(settings: dict) -> str:

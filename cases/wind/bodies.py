@@ -121,20 +121,22 @@ def rib_grids(body, row, n_theta: int, rib_clearance_m: float) -> tuple:
     return tuple(out)
 
 
-def peak_stresses(sc, rec: dict, after_s: float = 0.0) -> dict:
+def peak_stresses(sc, rec: dict, after_s: float = 0.0, names: tuple | None = None) -> dict:
     """Per modal body of a run: the recorded instant after ``after_s`` (the start's settling, when
     the modes swing up from zero under the loads) of the largest nodal von Mises stress, from the
     modal coordinates (:func:`cms_reduction.stress_history.worst_time`): name → (body, η of the
-    kept samples, that instant)."""
+    kept samples, that instant); ``names``: only these bodies (None: every modal body)."""
     from cms_reduction.stress_history import worst_time
 
-    bodies = {"inner ring": sc.modal.inner, "outer ring": sc.modal.outer,
-              **{f"{row.name} cage": c for row, c in zip(sc.row_defs, sc.modal.cages)}}
+    reduced = {"inner ring": sc.modal.inner, "outer ring": sc.modal.outer,
+               **{f"{row.name} cage": c for row, c in zip(sc.row_defs, sc.modal.cages)}}
     keep = rec["t"] >= after_s
     out = {}
     for name, (first, stop) in rec["modal_ranges"].items():
+        if names is not None and name not in names:
+            continue
         eta = rec["eta"][keep, first:stop]
-        out[name] = (bodies[name], eta, worst_time(bodies[name], rec["t"][keep], eta))
+        out[name] = (reduced[name], eta, worst_time(reduced[name], rec["t"][keep], eta))
     return out
 
 

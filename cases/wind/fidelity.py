@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..fidelity import Knob, Ladder, Outcome
+from ..fidelity import Knob, Ladder, Outcome, case_tables
 from . import dynamic
 from .bodies import peak_stresses
 from .case import WindCase
@@ -160,10 +160,7 @@ def describe_scene(case: WindCase) -> str:
 def rung_case(case: WindCase, settings: dict) -> WindCase:
     """``case``'s scene with the rung's knob values (dotted keys → values); the record samples
     the same instants at every step factor."""
-    tables: dict[str, dict] = {}
-    for key, value in settings.items():
-        table, name = key.split(".")
-        tables.setdefault(table, {})[name] = value
+    tables = case_tables(settings)
     factor = settings.get("analysis.step_factor", 1.0)
     tables.setdefault("analysis", {})["record_every"] = max(1, round(RECORD_EVERY / factor))
     return scene(case).with_(**tables)
@@ -182,8 +179,8 @@ def measure(case: WindCase) -> Outcome:
                "cage_force_mean": {n: v["mean_N"] for n, v in forces.items()},
                "cage_force_peak": {n: v["peak_N"] for n, v in forces.items()}}
     if case.bodies.rings == "modal":
-        figures["ring_von_mises"] = {name: w.von_mises_Pa for name, (_, _, w) in
-                                     peak_stresses(sc, rec, case.analysis.settle_s).items() if name.endswith("ring")}
+        rings = peak_stresses(sc, rec, case.analysis.settle_s, names=("inner ring", "outer ring"))
+        figures["ring_von_mises"] = {name: w.von_mises_Pa for name, (_, _, w) in rings.items()}
     slices = dynamic.slice_error(case)
     estimates = {"estimated_step_error": dynamic.step_error(sc, rec["timestep_s"])["max_load"],
                  "estimated_slice_error": None if slices is None else slices["max_load"]}
@@ -233,8 +230,4 @@ def rung_overrides(case: WindCase, settings: dict) -> dict | None:
         keys += _MESH_KEYS
     else:
         keys.remove("bodies.n_modes")
-    tables: dict[str, dict] = {}
-    for key in keys:
-        table, name = key.split(".")
-        tables.setdefault(table, {})[name] = settings[key]
-    return tables
+    return case_tables({key: settings[key] for key in keys})
