@@ -16,6 +16,11 @@ Support of a ring (one of):
   clamped area is not known);
 - ``clamped_face = NAME``: the whole face held (a ring on a stiff, continuous seat).
 
+A whole ring can come from a STEP solid (``step_file``; gear teeth, bolt holes): it is meshed with
+quadratic tetrahedra, and the section (any of the three) then names the solid's faces — the raceways
+and the support face must lie on it, which is checked before meshing
+(:func:`fem_rings.step_solid.check_step_solid` with probe points).
+
 The format reference is ``cases/bearings/README.md``.
 """
 
@@ -26,12 +31,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
 
+import numpy as np
+
 from cms_reduction.craig_bampton import InterfaceError
 from cms_reduction.pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, reduced_body
 from fem_rings.dxf_section import profile_from_dxf
-from fem_rings.mesh import MeshSpec, QuadMeshError
+from fem_rings.mesh import GmshError, MeshSpec, QuadMeshError, TangledMeshError
 from fem_rings.nodesets import PatchError
 from fem_rings.profile import Arc, Line, Profile, ProfileError
+from fem_rings.step_solid import StepSolid, check_step_solid, step_solid
 from foundation.materials import ElasticMaterial
 from mbd_core.quasistatic import Bearing
 from mbd_core.quasistatic.flexible import FlexibleRing
@@ -94,7 +102,9 @@ class RingKeys:
     element_load_shapes: bool = False
     raceway_spread_m: float | None = None
     element_size_m: float | None = None
-    element: Literal["hex27", "tet10"] = "hex27"
+    element: Literal["hex27", "tet10"] | None = None
+    step_file: str | None = None
+    step_unit: Literal["mm", "m", "file"] = "mm"
 
     def __post_init__(self) -> None:
         for key in ("inner_diameter_m", "outer_diameter_m", "z_min_m", "z_max_m", "element_size_m", "raceway_spread_m"):
@@ -124,6 +134,10 @@ class RingKeys:
             raise ValueError("segments: missing key (a profile section needs its [[segments]])")
         if self.section == "dxf" and not (self.dxf_file or "").strip():
             raise ValueError("dxf_file: missing key (the DXF drawing of the section, path relative to this file)")
+        if self.step_file is not None and not self.step_file.strip():
+            raise ValueError("step_file: must be a path (the STEP solid of the ring, relative to this file)")
+        if self.step_file is not None and self.element == "hex27":
+            raise ValueError("element: a STEP solid is meshed with \"tet10\" (hex27 sweeps a section); leave element out")
         if self.section != "box":
             given = [k for k in ("inner_diameter_m", "outer_diameter_m", "z_min_m", "z_max_m") if getattr(self, k) is not None]
             if given:
@@ -132,6 +146,15 @@ class RingKeys:
     @property
     def support_face(self) -> str:
         return self.bolts.face if self.bolts is not None else self.clamped_face
+
+    @property
+    def support_key(self) -> str:
+        return "bolts.face" if self.bolts is not None else "clamped_face"
+
+    @property
+    def mesh_element(self) -> str:
+        """tet10 for a STEP solid, else the element asked for (hex27 by default)."""
+        return "tet10" if self.step_file is not None else (self.element or "hex27")
 
 
 @dataclass(frozen=True)
@@ -145,6 +168,7 @@ class RingModel:
     places: dict  # row name → RacewayPlace
     keys: RingKeys
     material: ElasticMaterial
+    solid: StepSolid | None = None
 
 
 def _point(value, at: str) -> tuple[float, float]:
@@ -184,13 +208,18 @@ def _segment(table, at: str):
         raise CaseError(f"{at}: {exc}") from None
 
 
+def _file(value: str, key: str, base_dir: Path | None) -> Path:
+    path = Path(value)
+    if not path.is_absolute():
+        if base_dir is None:
+            raise CaseError(f"{key}: a relative path needs the description file's folder")
+        path = base_dir / path
+    return path
+
+
 def _profile(keys: RingKeys, name: str, places: dict, where: str, base_dir: Path | None) -> Profile:
     if keys.section == "dxf":
-        path = Path(keys.dxf_file)
-        if not path.is_absolute():
-            if base_dir is None:
-                raise CaseError(f"{where}.dxf_file: a relative path needs the description file's folder")
-            path = base_dir / path
+        path = _file(keys.dxf_file, f"{where}.dxf_file", base_dir)
         try:
             return profile_from_dxf(path, name=name, unit=keys.dxf_unit)
         except ProfileError as exc:
@@ -234,12 +263,65 @@ def ring_profile(bearing: Bearing, ring: str, moving_ring: str, keys: RingKeys, 
         raise CaseError(f"{where}.{key}: {exc}") from None
     face = keys.support_face
     if face not in profile.names:
-        key = "bolts.face" if keys.bolts is not None else "clamped_face"
-        raise CaseError(f"{where}.{key}: the section has no face {face!r}; its faces: {', '.join(profile.names)}")
+        raise CaseError(f"{where}.{keys.support_key}: the section has no face {face!r}; its faces: "
+                        f"{', '.join(profile.names)}")
     if face in raceways.values():
-        key = "bolts.face" if keys.bolts is not None else "clamped_face"
-        raise CaseError(f"{where}.{key}: {face!r} carries a raceway; support the ring on another face")
+        raise CaseError(f"{where}.{keys.support_key}: {face!r} carries a raceway; support the ring on another face")
     return side, profile, raceways, places
+
+
+#: azimuths at which a STEP solid must carry a row's raceway and the support face
+STEP_PROBE_AZIMUTHS = 12
+#: how far (share of the section's size) a probe point may lie from the solid's nearest face
+STEP_PROBE_TOLERANCE = 1e-3
+
+
+def _step_probes(keys: RingKeys, profile: Profile, places: dict) -> list[tuple[str, np.ndarray]]:
+    """(what, (x, y, z) points) the solid must carry on its faces: each row's raceway contact point
+    and the middle of each support-face segment, at up to ``STEP_PROBE_AZIMUTHS`` azimuths, taken
+    halfway between bolts (the k-th bolt, and its hole, sits at (k + ½)·360°/count)."""
+    psi = 2.0 * np.pi * np.arange(STEP_PROBE_AZIMUTHS) / STEP_PROBE_AZIMUTHS
+    if keys.bolts is not None:
+        n = keys.bolts.count
+        psi = 2.0 * np.pi * np.unique(np.round(np.arange(STEP_PROBE_AZIMUTHS) * n / STEP_PROBE_AZIMUTHS)) / n
+
+    def ring(rz) -> np.ndarray:
+        return np.column_stack((rz[0] * np.cos(psi), rz[0] * np.sin(psi), np.full_like(psi, rz[1])))
+
+    out = [(f"the raceway of row {row!r}", ring(np.asarray(place.point_rz_m, float))) for row, place in places.items()]
+    for seg in profile.segments:
+        if seg.name == keys.support_face:
+            out.append((f"the support face {seg.name!r}", ring(seg.points(np.array([0.5]))[0])))
+    return out
+
+
+def _step_solid(keys: RingKeys, profile: Profile, places: dict, where: str, base_dir: Path | None) -> StepSolid:
+    """The checked STEP solid of a ring: a solid ring about z whose faces carry the section's raceways
+    and support face (CaseError naming ``step_file`` otherwise); before any meshing."""
+    key = f"{where}.step_file"
+    path = _file(keys.step_file, key, base_dir)
+    probes = _step_probes(keys, profile, places)
+    try:
+        info = check_step_solid(path, unit=keys.step_unit, probes_m=np.concatenate([p for _, p in probes]))
+        solid = step_solid(path, keys.step_unit)
+    except ValueError as exc:
+        raise CaseError(f"{key}: {exc}") from None
+    if not info.is_ring_about_z:
+        raise CaseError(f"{key}: {path.name} is not a ring about the z axis ({info.not_ring_reason})")
+    if info.n_volumes != 1:
+        raise CaseError(f"{key}: {path.name} holds {info.n_volumes} solids; a ring is one (fuse its parts in the CAD "
+                        "model, or describe each ring in its own table)")
+    tol = STEP_PROBE_TOLERANCE * profile.size_m
+    d = np.asarray(info.probe_distances_m)
+    start = 0
+    for what, pts in probes:
+        worst = float(d[start:start + len(pts)].max())
+        start += len(pts)
+        if worst > tol:
+            raise CaseError(f"{key}: the solid has no face at {what} of the section ({keys.section}): a point of it "
+                            f"lies {1e3 * worst:.3g} mm from the nearest face (allowed {1e3 * tol:.2g} mm); the "
+                            "section must describe the solid's raceways and support face")
+    return solid
 
 
 def ring_models(bearing: Bearing, moving_ring: str, tables: dict, materials: dict,
@@ -255,7 +337,8 @@ def ring_models(bearing: Bearing, moving_ring: str, tables: dict, materials: dic
         if keys.material not in materials:
             raise CaseError(f"{where}.material: unknown material {keys.material!r}; known: {', '.join(sorted(materials))}")
         side, profile, raceways, places = ring_profile(bearing, ring, moving_ring, keys, where, base_dir)
-        model = RingModel(ring, side, profile, raceways, places, keys, materials[keys.material])
+        solid = None if keys.step_file is None else _step_solid(keys, profile, places, where, base_dir)
+        model = RingModel(ring, side, profile, raceways, places, keys, materials[keys.material], solid)
         try:  # the mesh can give the modes and fits in memory (estimated before any meshing)
             check_model_size(profile, _mesh_spec(model).size_m, keys.n_modes, f"{where}.element_size_m",
                              f"{where}.n_modes", n_rigid=0)
@@ -268,7 +351,7 @@ def ring_models(bearing: Bearing, moving_ring: str, tables: dict, materials: dic
 def _mesh_spec(m: RingModel) -> MeshSpec:
     r0, r1, z0, z1 = m.profile.bounds_m
     size = m.keys.element_size_m or min(r1 - r0, z1 - z0) / 3.0
-    return MeshSpec(size, m.keys.element)
+    return MeshSpec(size, m.keys.mesh_element, solid=m.solid)
 
 
 def _support(m: RingModel) -> InterfaceSpec:
@@ -319,6 +402,11 @@ def reduce_ring(m: RingModel, bearing: Bearing):
                         f"its default is {ELEMENT_PATCH_SHARE:g} × the element diameter)") from None
     except QuadMeshError as exc:
         raise CaseError(f"rings.{m.name}.element: {exc} (element = \"tet10\" in [rings.{m.name}])") from None
+    except TangledMeshError as exc:
+        raise CaseError(f"rings.{m.name}.element_size_m: {exc}") from None
+    except GmshError as exc:
+        key = "step_file" if m.solid is not None else "element_size_m"
+        raise CaseError(f"rings.{m.name}.{key}: {exc}") from None
     except InterfaceError as exc:
         key = "bolts.washer_diameter_m" if m.keys.bolts is not None else "clamped_face"
         raise CaseError(f"rings.{m.name}.{key}: the support cannot be built on this mesh ({exc}); change the washer "
@@ -342,5 +430,6 @@ def ring_part_of(desc, ring: str):
         given = ", ".join(desc.rings) or "none"
         raise ValueError(f"--ring {ring}: the description file gives no [rings.{ring}] table (rings given: {given})")
     m = desc.rings[ring]
+    what = f"STEP solid {Path(m.solid.path).name}" if m.solid is not None else f"{m.keys.section} section"
     return RingPart(f"{desc.name}: {ring} ring", lambda: (m.profile, None), m.material, _mesh_spec(m).size_m,
-                    m.keys.element, f"{ring} ring of {desc.name} ({m.keys.section} section)")
+                    m.keys.mesh_element, f"{ring} ring of {desc.name} ({what})", m.solid)

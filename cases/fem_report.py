@@ -31,7 +31,7 @@ def part_modes(part: RingPart, n_modes: int, size_m: float | None = None, elemen
     naming ``keys`` (element size, mode count) refuses a mesh that cannot give ``n_modes`` modes
     or would not fit in memory."""
     profile, pockets = part.make()
-    spec = MeshSpec(size_m or part.default_size_m, element or part.default_element)
+    spec = MeshSpec(size_m or part.default_size_m, element or part.default_element, solid=part.solid)
     size_text = f"{spec.size_m * 1e3:g}" if keys[0].endswith("-mm") else None
     check_model_size(profile, spec.size_m, n_modes, *keys, size_text=size_text, n_rigid=0)
     model = build_model(profile, spec, part.material, pockets, use_cache=use_cache)
@@ -51,7 +51,8 @@ def part_modes(part: RingPart, n_modes: int, size_m: float | None = None, elemen
         "element_size_m": spec.size_m,
         "dofs": model.n_dofs,
         "mass_kg": float(ex @ model.M @ ex),
-        "mass_of_section_kg": None if pockets else profile.revolved_properties(part.material.density_kg_m3)["mass_kg"],
+        "mass_of_section_kg": (None if pockets or part.solid else
+                               profile.revolved_properties(part.material.density_kg_m3)["mass_kg"]),
         "n_rigid_modes": modes.n_rigid,
         "factorisation": modes.backend,
         "timings_s": model.timings_s,

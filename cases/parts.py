@@ -13,6 +13,7 @@ from typing import Callable
 
 from fem_rings.cages import CagePockets, three_row_cages
 from fem_rings.profile import Profile
+from fem_rings.step_solid import StepSolid
 from fem_rings.sections import (
     slewing_bottom_race,
     slewing_tmr,
@@ -39,6 +40,7 @@ class RingPart:
     default_size_m: float
     default_element: str
     description: str
+    solid: StepSolid | None = None  # a ring meshed from a STEP solid, its profile naming the faces
 
 
 def _ring(factory, *args):

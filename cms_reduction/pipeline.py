@@ -13,7 +13,7 @@ import math
 from dataclasses import dataclass, replace
 
 from fem_rings.cache import input_hash
-from fem_rings.mesh import MeshSpec
+from fem_rings.mesh import MESH_VERSION, MeshSpec
 from fem_rings.model import build_model
 from fem_rings.nodesets import patch_nodes, raceway_curve, raceway_patch
 from fem_rings.profile import Profile
@@ -146,7 +146,7 @@ def _patch(ring, spec: InterfaceSpec, angle_deg: float):
 def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMaterial, spec: ReductionSpec,
                  pockets=None, *, name: str | None = None, use_cache: bool = True) -> ReducedBody:
     """Build (or load from the cache) the reduced body of a ring."""
-    key = input_hash("reduced-body", REDUCTION_VERSION, profile, mesh_spec, material, spec, pockets, name)
+    key = input_hash("reduced-body", REDUCTION_VERSION, MESH_VERSION, profile, mesh_spec, material, spec, pockets, name)
 
     def build() -> ReducedBody:
         with phase(f"reducing {name or profile.name}"):

@@ -55,10 +55,18 @@ def cache_dir() -> Path:
     return Path(root)
 
 
+def _hashed(f: dataclasses.Field, obj) -> bool:
+    """Whether a dataclass field enters the hash: ``metadata={"hash": False}`` leaves it out (a file's
+    path beside its digest); ``"if-set"`` leaves it out while it is None (an optional field added
+    later, so that the keys of products made without it do not change)."""
+    how = f.metadata.get("hash", True)
+    return how is True or (how == "if-set" and getattr(obj, f.name) is not None)
+
+
 def _canonical(obj):
     if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
         return {"__type__": type(obj).__name__,
-                **{f.name: _canonical(getattr(obj, f.name)) for f in dataclasses.fields(obj)}}
+                **{f.name: _canonical(getattr(obj, f.name)) for f in dataclasses.fields(obj) if _hashed(f, obj)}}
     if isinstance(obj, dict):
         return {str(k): _canonical(v) for k, v in sorted(obj.items(), key=lambda kv: str(kv[0]))}
     if isinstance(obj, (list, tuple)):

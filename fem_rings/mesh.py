@@ -11,6 +11,11 @@ circles and groove arcs are represented exactly to second order:
     about the axis in layers (gmsh built-in kernel, ``revolve`` with ``numElements``), giving
     27-node hexahedra. Converges much faster per degree of freedom.
 
+A ring can instead be a solid from a STEP file (``MeshSpec.solid``, :class:`fem_rings.step_solid.StepSolid`):
+gmsh's OpenCASCADE importer reads it in metres and fills it with 10-node tetrahedra; the profile
+then only names the faces that lie on its revolved segments (raceways, support faces), and the
+rest of the solid's boundary (gear teeth, bolt holes) is named ``other``.
+
 gmsh writes a ``.msh`` file that meshio reads; the volume cells become a scikit-fem ``MeshTet2`` /
 ``MeshHex2``. Boundary facets are then named after the profile segment that generated them (and
 ``sector_start``/``sector_end``/``pocket``), see :mod:`fem_rings.nodesets`.
@@ -41,19 +46,42 @@ from .profile import Arc, Line, Profile
 
 if TYPE_CHECKING:
     from .cages import CagePockets
+    from .step_solid import StepSolid
 
-__all__ = ["MeshSpec", "RingMesh", "mesh_ring", "gmsh_session", "ELEMENT_TYPES"]
+__all__ = ["MeshSpec", "RingMesh", "mesh_ring", "gmsh_session", "ELEMENT_TYPES", "MESH_VERSION", "GmshError",
+           "QuadMeshError", "TangledMeshError", "tangled_elements"]
 
 log = logging.getLogger(__name__)
 
 #: meshio cell type of each element family.
 ELEMENT_TYPES = {"tet10": "tetra10", "hex27": "hexahedron27"}
 
+#: Version of the meshing, part of the cache keys of FE models and reduced bodies: a change that
+#: alters the mesh of the same inputs bumps it. 2: curved tet10 elements are untangled by gmsh's
+#: high-order optimisation and every mesh is checked for tangled elements (before, 4–6 % of the
+#: tet10 elements on a groove's curvature had a Jacobian changing sign inside them).
+MESH_VERSION = 2
+
 _GMSH_LOCK = threading.Lock()
+
+#: reference points (vertices, edge midpoints, centre) at which the Jacobian of each element is checked
+_CHECK_POINTS = {
+    "tet10": np.array([[0, 1, 0, 0, .5, 0, 0, .5, .5, 0, .25], [0, 0, 1, 0, 0, .5, 0, .5, 0, .5, .25],
+                       [0, 0, 0, 1, 0, 0, .5, 0, .5, .5, .25]], float),
+    "hex27": np.array(np.meshgrid([0, .5, 1], [0, .5, 1], [0, .5, 1], indexing="ij")).reshape(3, -1),
+}
 
 
 class QuadMeshError(RuntimeError):
     """A section that gmsh cannot mesh with quadrilaterals only (hex27 needs them; tet10 does not)."""
+
+
+class GmshError(RuntimeError):
+    """gmsh could not build or mesh the geometry (its own message follows)."""
+
+
+class TangledMeshError(RuntimeError):
+    """A curved element whose Jacobian changes sign inside it (its stiffness would be wrong)."""
 
 
 @dataclass(frozen=True)
@@ -75,6 +103,9 @@ class MeshSpec:
     n_theta : int or None
         Element layers round the sector (hex27); default from ``size_m`` at the outer radius;
         rounded up to a multiple of the number of ≤ 90° revolve pieces.
+    solid : StepSolid or None
+        Mesh this STEP solid (tet10, full circle) instead of revolving the profile; the profile
+        names the faces on its segments (module docstring).
     """
 
     size_m: float
@@ -82,6 +113,7 @@ class MeshSpec:
     sector_deg: float = 360.0
     refine: dict = field(default_factory=dict)
     n_theta: int | None = None
+    solid: "StepSolid | None" = field(default=None, metadata={"hash": "if-set"})
 
     def __post_init__(self) -> None:
         check_positive("mesh spec", size_m=self.size_m)
@@ -94,6 +126,8 @@ class MeshSpec:
                 raise ValueError(f"mesh spec: refine[{k!r}] must lie in (0, 1], got {v}")
         if self.n_theta is not None and int(self.n_theta) < 3:
             raise ValueError(f"mesh spec: n_theta must be ≥ 3, got {self.n_theta}")
+        if self.solid is not None and (self.element != "tet10" or not self.full_circle):
+            raise ValueError("mesh spec: a STEP solid is meshed whole with element='tet10' (hex27 sweeps a section)")
 
     @property
     def full_circle(self) -> bool:
@@ -162,6 +196,8 @@ def mesh_ring(profile: Profile, spec: MeshSpec, pockets: CagePockets | None = No
 
     if pockets is not None and spec.element != "tet10":
         raise ValueError("mesh spec: cage pockets need element='tet10' (a boolean cut cannot be swept)")
+    if pockets is not None and spec.solid is not None:
+        raise ValueError("mesh spec: a STEP solid carries its own pockets; pockets are for revolved sections")
     unknown = set(spec.refine) - set(profile.names)
     if unknown:
         raise ValueError(f"mesh spec: refine names {sorted(unknown)} are not segments of profile "
@@ -170,9 +206,17 @@ def mesh_ring(profile: Profile, spec: MeshSpec, pockets: CagePockets | None = No
         msh = Path(tmp) / "ring.msh"
         _gmsh_mesh(profile, spec, pockets, msh)
         mesh = _read_volume_mesh(msh, ELEMENT_TYPES[spec.element])
-    facet_sets = classify_boundary(mesh, profile, spec, pockets)
+    bad = tangled_elements(mesh, spec.element)
+    if len(bad):
+        raise TangledMeshError(f"{profile.name}: {len(bad)} of {mesh.t.shape[1]} curved elements are tangled (their "
+                               f"Jacobian changes sign inside them) at element size {spec.size_m * 1e3:.4g} mm; "
+                               "mesh finer")
+    leftover = "pocket" if pockets is not None else ("other" if spec.solid is not None else None)
+    facet_sets = classify_boundary(mesh, profile, spec, leftover)
     missing = [n for n in profile.names if n not in facet_sets]
-    if missing:
+    if missing and spec.solid is not None:  # the section's faces the solid leaves out (teeth cut the outer face)
+        log.info("%s: the STEP solid has no facets on the section's segments %s", profile.name, missing)
+    elif missing:
         raise ValueError(f"profile {profile.name!r}: segments {missing} got no boundary facets "
                          "(cut away by pockets, or shorter than the element size and merged)")
     node_sets = {k: facet_nodes(mesh, f) for k, f in facet_sets.items()}
@@ -213,20 +257,27 @@ def gmsh_session(model_name: str):
 def _gmsh_mesh(profile: Profile, spec: MeshSpec, pockets, path: Path) -> None:
     with gmsh_session("ring") as gmsh:
         try:
-            if spec.element == "tet10":
+            if spec.solid is not None:
+                _build_solid(gmsh, spec)
+                if spec.refine:
+                    _refine_fields(gmsh, profile, spec)
+            elif spec.element == "tet10":
                 _build_tet(gmsh, profile, spec, pockets)
             else:
                 _build_hex(gmsh, profile, spec)
             gmsh.option.setNumber("Mesh.ElementOrder", 2)
             gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
-            gmsh.option.setNumber("Mesh.HighOrderOptimize", 0)
+            # tetrahedra: curving the edges onto a groove tangles some elements, which gmsh's
+            # high-order optimisation repairs (1: optimisation; Gmsh reference manual, Mesh.HighOrderOptimize)
+            gmsh.option.setNumber("Mesh.HighOrderOptimize", 1 if spec.element == "tet10" else 0)
             if spec.element == "hex27":
                 _quadrilateral_section(gmsh)
             gmsh.model.mesh.generate(3)
             gmsh.model.mesh.removeDuplicateNodes()
             gmsh.write(str(path))
         except Exception as exc:  # gmsh raises bare Exceptions with its log message
-            raise RuntimeError(f"gmsh failed to mesh profile {profile.name!r}: {exc}") from exc
+            what = f"the STEP solid {Path(spec.solid.path).name}" if spec.solid is not None else f"profile {profile.name!r}"
+            raise GmshError(f"gmsh failed to mesh {what}: {exc}") from exc
 
 
 def _split_arcs(profile: Profile):
@@ -267,11 +318,24 @@ def _build_tet(gmsh, profile: Profile, spec: MeshSpec, pockets) -> None:
         tools = _pocket_tools(occ, pockets, profile)
         vol, _ = occ.cut(vol, tools)
     occ.synchronize()
+    _tet_sizes(gmsh, spec)
+    if spec.refine:
+        _refine_fields(gmsh, profile, spec)
+
+
+def _tet_sizes(gmsh, spec: MeshSpec) -> None:
     gmsh.option.setNumber("Mesh.MeshSizeMax", spec.size_m)
     gmsh.option.setNumber("Mesh.MeshSizeMin", spec.size_m * min([1.0, *spec.refine.values()]) * 0.5)
     gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 12)  # elements per 2π of curvature
-    if spec.refine:
-        _refine_fields(gmsh, profile, spec)
+
+
+def _build_solid(gmsh, spec: MeshSpec) -> None:
+    """Import the STEP solid in metres (OpenCASCADE converts from the file's declared unit)."""
+    spec.solid.check_unchanged()
+    gmsh.option.setString("Geometry.OCCTargetUnit", "M")
+    gmsh.model.occ.importShapes(spec.solid.path)
+    gmsh.model.occ.synchronize()
+    _tet_sizes(gmsh, spec)
 
 
 def _refine_fields(gmsh, profile: Profile, spec: MeshSpec) -> None:
@@ -376,6 +440,14 @@ def _quadrilateral_section(gmsh) -> None:
             return
         gmsh.model.mesh.clear()
     raise QuadMeshError("the section could not be meshed with quadrilaterals only; use element='tet10'")
+
+
+def tangled_elements(mesh: skfem.Mesh, element: str) -> np.ndarray:
+    """Indices of the elements whose Jacobian determinant changes sign (or vanishes) between their
+    vertices, edge midpoints and centre: such an element maps part of itself inside out, and its
+    stiffness and mass are wrong. (A consistently negative determinant is only an orientation.)"""
+    J = mesh.mapping().detDF(_CHECK_POINTS[element])
+    return np.flatnonzero((J.min(axis=1) <= 0.0) & (J.max(axis=1) >= 0.0))
 
 
 def _read_volume_mesh(path: Path, cell_type: str) -> skfem.Mesh:

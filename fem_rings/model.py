@@ -22,7 +22,7 @@ from foundation.progress import phase
 
 from . import cache
 from .assembly import DEFAULT_INTORDER, mass_matrix, scalar_basis, stiffness_matrix
-from .mesh import MeshSpec, RingMesh, facet_nodes, mesh_ring
+from .mesh import MESH_VERSION, MeshSpec, RingMesh, facet_nodes, mesh_ring
 from .profile import Profile
 
 if TYPE_CHECKING:
@@ -115,7 +115,7 @@ def build_model(
     """
     mesh_type = _MESH_TYPES[spec.element]
     intorder = tuple(intorder or DEFAULT_INTORDER[mesh_type])
-    key = cache.input_hash("fe-model", profile, spec, material, pockets, intorder)
+    key = cache.input_hash("fe-model", MESH_VERSION, profile, spec, material, pockets, intorder)
     if use_cache:
         stored = cache.load_arrays("fe-model", key)
         if stored is not None:

@@ -65,8 +65,10 @@ def cylindrical(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.hypot(x[0], x[1]), np.arctan2(x[1], x[0]) % (2.0 * math.pi), x[2]
 
 
-def classify_boundary(mesh, profile: Profile, spec, pockets=None, rel_tol: float = REL_TOL) -> dict:
-    """Name every boundary facet after the profile segment (or sector end, or pocket) it lies on.
+def classify_boundary(mesh, profile: Profile, spec, leftover: str | None = None, rel_tol: float = REL_TOL) -> dict:
+    """Name every boundary facet after the profile segment (or sector end) it lies on; the facets
+    on none take the name ``leftover`` (``"pocket"`` for a cage's pockets, ``"other"`` for the parts
+    of a STEP solid its section leaves out).
 
     Returns
     -------
@@ -76,7 +78,7 @@ def classify_boundary(mesh, profile: Profile, spec, pockets=None, rel_tol: float
     Raises
     ------
     ValueError
-        When a boundary facet lies on no segment (and no pockets were cut), which means the mesh
+        When a boundary facet lies on no segment and ``leftover`` is None, which means the mesh
         does not belong to the profile.
     """
     bf = mesh.boundary_facets()
@@ -102,13 +104,13 @@ def classify_boundary(mesh, profile: Profile, spec, pockets=None, rel_tol: float
         name_of[free & on] = seg.name
     left = name_of == ""
     if left.any():
-        if pockets is None:
+        if leftover is None:
             i = int(np.argmax(left))
             raise ValueError(
                 f"profile {profile.name!r}: {int(left.sum())} boundary facets lie on no profile "
                 f"segment (first at r = {r[0, i]:.6g} m, z = {z[0, i]:.6g} m)"
             )
-        name_of[left] = "pocket"
+        name_of[left] = leftover
     return {n: bf[name_of == n] for n in dict.fromkeys(name_of)}
 
 

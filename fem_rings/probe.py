@@ -47,7 +47,8 @@ def locate(basis: skfem.CellBasis, points_m: np.ndarray, n_candidates: int = 12,
         Any basis on the mesh (its isoparametric mapping is used).
     points_m : (n, 3) float64, m
     n_candidates : int
-        Nearest elements (by centroid) tried per point.
+        Nearest elements (by centroid) tried per point first (then 8× and 64× as many for the
+        points that none of them holds).
     tol : float
         Accepted distance outside the reference cell (reference units): points on the exact
         curved surface may lie just outside the quadratic approximation of it.
@@ -66,28 +67,39 @@ def locate(basis: skfem.CellBasis, points_m: np.ndarray, n_candidates: int = 12,
     mesh = basis.mesh
     x = np.ascontiguousarray(np.atleast_2d(points_m).T)
     centroids = mesh.p[:, mesh.t].mean(axis=1).T
-    k = min(n_candidates, centroids.shape[0])
-    _, cand = cKDTree(centroids).query(x.T, k=k)
-    cand = cand.reshape(x.shape[1], k)
-    best_cell = cand[:, 0].copy()
+    tree = cKDTree(centroids)
+    best_cell = np.zeros(x.shape[1], dtype=np.int64)
     best_X = np.zeros_like(x)
     best_out = np.full(x.shape[1], np.inf)
     scale = np.maximum(1.0, np.abs(x).max(axis=0))
     # per point: candidates in order of distance, stop at the first that contains it, else keep
     # the least-outside one (a point on the curved surface may sit just outside every element);
-    # the result of a point does not depend on the other points located with it
-    for j in range(k):
-        todo = np.flatnonzero(best_out > 1e-6)   # 1e-6 of an element: inside for every purpose
-        if not len(todo):
+    # the result of a point does not depend on the other points located with it. Where small
+    # elements crowd (a bolt hole beside a groove) the containing element can lie beyond the
+    # first candidates: the points not yet inside are tried on 8× and 64× as many.
+    done = 0
+    for k in (n_candidates, 8 * n_candidates, 64 * n_candidates):
+        k = min(k, centroids.shape[0])
+        left = np.flatnonzero(best_out > 1e-6)
+        if not len(left) or k <= done:
             break
-        cells = cand[todo, j]
-        xt = x[:, todo]
-        X = _newton(basis.mapping, xt, cells)
-        err = np.linalg.norm(basis.mapping.F(X[:, :, None], cells)[:, :, 0] - xt, axis=0)
-        out = _outside(mesh, X) + np.where(err < 1e-9 * scale[todo], 0.0, np.inf)
-        better = out < best_out[todo]
-        idx = todo[better]
-        best_cell[idx], best_X[:, idx], best_out[idx] = cells[better], X[:, better], out[better]
+        _, cand = tree.query(x[:, left].T, k=k)
+        cand = cand.reshape(len(left), k)
+        for j in range(done, k):
+            todo = np.flatnonzero(best_out[left] > 1e-6)   # 1e-6 of an element: inside for every purpose
+            if not len(todo):
+                break
+            pts, cells = left[todo], cand[todo, j]
+            xt = x[:, pts]
+            X = _newton(basis.mapping, xt, cells)
+            err = np.linalg.norm(basis.mapping.F(X[:, :, None], cells)[:, :, 0] - xt, axis=0)
+            out = _outside(mesh, X) + np.where(err < 1e-9 * scale[pts], 0.0, np.inf)
+            better = out < best_out[pts]
+            idx = pts[better]
+            best_cell[idx], best_X[:, idx], best_out[idx] = cells[better], X[:, better], out[better]
+        if not (best_out > tol).any():
+            break
+        done = k
     bad = np.flatnonzero(best_out > tol)
     if len(bad):
         p = x[:, bad[0]]

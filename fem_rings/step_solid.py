@@ -12,18 +12,28 @@ the ``SI_UNIT(prefix, .METRE.)`` of the file's length unit (ISO 10303-41, ``si_u
 
 A ring about z: the bounding box is centred on the z axis (within 1e-6 of its size) and the point
 of the axis at mid-height lies outside every volume (the bore).
+
+A ring meshed from a STEP solid (:class:`StepSolid` in :class:`fem_rings.mesh.MeshSpec`) keeps a
+nominal (r, z) section that names its faces: a boundary facet of the solid that lies on a revolved
+segment of the section takes the segment's name (raceway, bolt face); the rest of the solid (gear
+teeth, bolt holes, chamfers the section leaves out) is named ``other``. ``probes_m`` of
+:func:`check_step_solid` measures, before any meshing, how far given points (the raceways' contact
+points, the support face) lie from the solid's faces, so a section that does not describe the
+solid is refused early.
 """
 
 from __future__ import annotations
 
+import hashlib
 import logging
+import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from .mesh import gmsh_session
 
-__all__ = ["StepInfo", "check_step_solid"]
+__all__ = ["StepInfo", "StepSolid", "check_step_solid", "step_solid"]
 
 log = logging.getLogger(__name__)
 
@@ -60,9 +70,43 @@ class StepInfo:
     bbox_max_m: tuple[float, float, float]
     is_ring_about_z: bool
     not_ring_reason: str = ""
+    probe_distances_m: tuple = ()
 
 
-def check_step_solid(path, *, unit: str = "file") -> StepInfo:
+@dataclass(frozen=True)
+class StepSolid:
+    """A ring solid to mesh from a STEP file (:class:`fem_rings.mesh.MeshSpec` ``solid``).
+
+    ``unit`` is checked against the file as in :func:`check_step_solid`; the geometry is read in
+    the file's declared unit and converted to metres. The cache keys hold ``sha256`` (the file's
+    bytes) and not the path, so an edited file is meshed afresh and a moved one is not.
+    """
+
+    path: str = field(metadata={"hash": False})
+    unit: str = "file"
+    sha256: str = ""
+
+    def check_unchanged(self) -> None:
+        """ValueError when the file no longer has the digest it was described with."""
+        if _digest(self.path) != self.sha256:
+            raise ValueError(f"{self.path}: the file changed after it was checked; run again")
+
+
+def _digest(path) -> str:
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    except OSError as exc:
+        raise ValueError(f"{path}: cannot be read ({exc.strerror})") from None
+
+
+def step_solid(path, unit: str = "file") -> StepSolid:
+    """The :class:`StepSolid` of a file (its digest taken now)."""
+    if unit not in (*_UNIT_M, "file"):
+        raise ValueError(f"{path}: unit must be 'file', 'mm' or 'm', got {unit!r}")
+    return StepSolid(str(path), unit, _digest(path))
+
+
+def check_step_solid(path, *, unit: str = "file", probes_m=None) -> StepInfo:
     """Read a STEP file and check that it holds a solid ring about the z axis.
 
     Parameters
@@ -70,6 +114,9 @@ def check_step_solid(path, *, unit: str = "file") -> StepInfo:
     path : str or Path
     unit : {"file", "mm", "m"}
         ``"file"`` uses the file's declared length unit; ``"mm"`` / ``"m"`` must agree with it.
+    probes_m : (n, 3) array, optional
+        Points (x, y, z), m, whose distances to the nearest face of the solid are returned in
+        ``probe_distances_m``.
 
     Returns
     -------
@@ -103,9 +150,10 @@ def check_step_solid(path, *, unit: str = "file") -> StepInfo:
         box_mm = gmsh.model.getBoundingBox(-1, -1)
         volume_mm3 = sum(gmsh.model.occ.getMass(3, t) for t in vols)
         reason = _not_ring_reason(gmsh, vols, box_mm)
+        probes = () if probes_m is None else tuple(1e-3 * _distance_to_faces_mm(gmsh, 1e3 * p) for p in probes_m)
     info = StepInfo(label, len(vols), n_surf, volume_mm3 * 1e-9,
                     tuple(v * 1e-3 for v in box_mm[:3]), tuple(v * 1e-3 for v in box_mm[3:]),
-                    not reason, reason)
+                    not reason, reason, probes)
     log.info("%s: %d volumes, %d surfaces, %.6g m³, %s", label, info.n_volumes, info.n_surfaces,
              info.volume_m3, "a ring about z" if not reason else f"not a ring about z ({reason})")
     return info
@@ -136,3 +184,9 @@ def _not_ring_reason(gmsh, vols, box_mm) -> str:
     if inside:
         return f"the z axis at mid-height (z = {axis_point[2] * 1e-3:.6g} m) lies inside volume {inside[0]}: no bore"
     return ""
+
+
+def _distance_to_faces_mm(gmsh, point_mm) -> float:
+    """Distance of a point to the nearest face of the model (OpenCASCADE's projection on each face)."""
+    p = [float(v) for v in point_mm]
+    return min(math.dist(gmsh.model.getClosestPoint(2, t, p)[0], p) for _, t in gmsh.model.getEntities(2))
