@@ -304,8 +304,9 @@ def _step_solid(keys: RingKeys, profile: Profile, places: dict, where: str, base
     try:
         info = check_step_solid(path, unit=keys.step_unit, probes_m=np.concatenate([p for _, p in probes]))
         solid = step_solid(path, keys.step_unit)
-    except ValueError as exc:
-        raise CaseError(f"{key}: {exc}") from None
+    except ValueError as exc:  # the checker speaks of its argument unit=…; the file's key is step_unit
+        text = str(exc).replace("pass unit='file' to use", 'step_unit = "file" uses').replace("unit=", "step_unit = ")
+        raise CaseError(f"{key}: {text}") from None
     if not info.is_ring_about_z:
         raise CaseError(f"{key}: {path.name} is not a ring about the z axis ({info.not_ring_reason})")
     if info.n_volumes != 1:

@@ -20,7 +20,8 @@ import time
 import tomli_w
 import tomllib
 
-from cases.bearing_file import BUILTIN_DIR, TOP_LEVEL, BearingKeys, LoadKeys, MaterialKeys, read_bearing_file
+from cases.bearing_file import BUILTIN_DIR, TOP_LEVEL, BearingKeys, LoadKeys, MaterialKeys, loads_bearing, read_bearing_file
+from cases.bearing_rings import BoltKeys, RingKeys
 from cases.bearing_rows import ROW_TYPES
 from cases.config import CaseError
 
@@ -128,3 +129,68 @@ def test_fuzz_bearing_files(tmp_path):
             refused += 1
     assert refused > N_FILES // 2  # the generator mostly makes bad files
     assert time.perf_counter() - start < 20.0
+
+
+RING_KEYS = [f.name for f in dataclasses.fields(RingKeys)]
+BOLT_KEYS = [f.name for f in dataclasses.fields(BoltKeys)]
+#: the files a mutated ring table may name (written by the test: a STEP ring that fits, other STEP
+#: files that do not, a DXF that is not one)
+RING_FILES = ["outer.step", "junk.step", "disk.step", "nothere.step", "outer.dxf", "/", ""]
+N_RING_FILES = 150
+
+
+def _mutate_rings(rng: random.Random, data: dict) -> dict:
+    data = copy.deepcopy(data)
+    for _ in range(rng.randint(1, 3)):
+        rings = data.setdefault("rings", {})
+        if not isinstance(rings, dict):
+            break
+        name = rng.choice(["inner", "outer", "outer", "middle"])
+        table = rings.setdefault(name, {})
+        if not isinstance(table, dict):
+            continue
+        r = rng.random()
+        if r < 0.35:
+            table["step_file"] = rng.choice(RING_FILES)
+            if rng.random() < 0.3:
+                table["step_unit"] = rng.choice(["mm", "m", "file", "inch", 3])
+        elif r < 0.75:
+            table[rng.choice(RING_KEYS + ["bogus"])] = _value(rng) if rng.random() < 0.6 else rng.choice(RING_FILES)
+        elif r < 0.9:
+            bolts = table.setdefault("bolts", {})
+            if isinstance(bolts, dict):
+                bolts[rng.choice(BOLT_KEYS + ["bogus"])] = _value(rng)
+        else:
+            table.pop(rng.choice(RING_KEYS), None)
+    return data
+
+
+def test_fuzz_ring_tables(tmp_path):
+    """Mutated ``[rings.X]`` tables (sections, supports, STEP and DXF files) are refused in one line
+    naming ``rings.X.key`` (or the file); a STEP ring is checked without meshing."""
+    from tests.test_bearing_rings import SMALL
+    from tests.test_step_ring import TET, write_step
+
+    from fem_rings.mesh import gmsh_session
+
+    bases = [tomllib.loads(TET), tomllib.loads(SMALL)]  # tet10 outer ring; hex27 rings
+    write_step(loads_bearing(TET).rings["outer"].profile, tmp_path / "outer.step")
+    (tmp_path / "junk.step").write_text("ISO-10303-21;\nnot really\n")
+    (tmp_path / "outer.dxf").write_text("0\nSECTION\n0\nEOF\n")
+    with gmsh_session("writer") as gmsh:
+        gmsh.model.occ.addDisk(0, 0, 0, 300, 300)
+        gmsh.model.occ.synchronize()
+        gmsh.write(str(tmp_path / "disk.step"))
+    rng = random.Random(SEED)
+    refused, start = 0, time.perf_counter()
+    for i in range(N_RING_FILES):
+        data = _mutate_rings(rng, bases[0] if rng.random() < 0.8 else bases[1])
+        path = tmp_path / f"r{i}.toml"
+        path.write_text(tomli_w.dumps(data))
+        try:
+            read_bearing_file(path)
+        except CaseError as exc:
+            _assert_names_a_key(str(exc), str(path))
+            refused += 1
+    assert refused > N_RING_FILES // 2
+    assert time.perf_counter() - start < 60.0

@@ -18,7 +18,7 @@ from cases.config import CaseError
 from fem_rings.mesh import MeshSpec, gmsh_session, mesh_ring, tangled_elements
 from fem_rings.profile import Line
 from fem_rings.step_solid import check_step_solid, step_solid
-from test_bearing_rings import SMALL
+from tests.test_bearing_rings import SMALL
 
 TET = SMALL.replace("element_size_m = 0.03\nclamped_face", 'element_size_m = 0.03\nelement = "tet10"\nclamped_face')
 #: eight axial bolt holes Ø12 mm on a Ø550 mm circle through the outer ring, at (k + ½)·45°
@@ -155,7 +155,7 @@ def test_bad_step_rings_name_the_key(files, tmp_path):
     with pytest.raises(CaseError, match=r"^rings\.outer\.step_unit: must be one of"):
         loads_bearing(_with_outer(TET, 'step_file = "outer.step"\nstep_unit = "inch"'), base_dir=folder)
     # a file in metres read as millimetres is refused by its declared unit
-    with pytest.raises(CaseError, match=r"^rings\.outer\.step_file: .*unit='m' disagrees with the file"):
+    with pytest.raises(CaseError, match=r"^rings\.outer\.step_file: .*step_unit = 'm' disagrees with the file, which declares mm; step_unit = \"file\" uses"):
         loads_bearing(_with_outer(TET, 'step_file = "outer.step"\nstep_unit = "m"'), base_dir=folder)
 
 
