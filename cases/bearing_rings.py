@@ -374,9 +374,11 @@ def _raceway_spec(m: RingModel, row, n_theta: int) -> RacewaySpec:
     """The sampled raceway of ``row`` on ring ``m``: its patch and, with ``element_load_shapes``, the
     static shapes of radial and axial element forces at the row's elements (their first position)."""
     keys, place = m.keys, m.places[row.name]
-    if keys.element_load_shapes and isinstance(row, FourPointRow):
-        raise CaseError(f"rings.{m.name}.element_load_shapes: not for the four-point row {row.name!r} yet (its "
-                        "contacts lie on the two arcs of the gothic arch, away from the raceway sample at its apex)")
+    two_sided = isinstance(row, FourPointRow) or getattr(row, "orientation", "") == "crossed"
+    if keys.element_load_shapes and two_sided:
+        kind = "four-point" if isinstance(row, FourPointRow) else "crossed roller"
+        raise CaseError(f"rings.{m.name}.element_load_shapes: not for the {kind} row {row.name!r} yet (its "
+                        "contacts lie on the two sides of its groove, away from the raceway sample at the apex)")
     spread = keys.raceway_spread_m
     if spread is None:
         spread = round(ELEMENT_PATCH_SHARE * _element_size(row), 6) if keys.element_load_shapes else 0.0

@@ -14,6 +14,12 @@ load-distribution model to round-off:
   Raceway sample: the apex (it lies on both arcs, f·D from both centres).
 - roller row (radial or thrust): the raceway is the flat or cylindrical face half a roller
   diameter from the roller axis. Raceway sample: the circle under the roller's middle.
+- crossed roller row: a V-groove, one flank per diagonal, each half a roller diameter from the
+  roller axis along that diagonal's normal (the other diagonal's normal is the first mirrored about
+  the row's mid-plane); each flank runs from the apex to the end of its roller's contact line, where
+  the land (the face) begins. Raceway sample: the apex (on both flanks); a roller's slices are
+  coupled to it as the balls of a four-point row are to theirs, through the section's displacement
+  and rotation there (:mod:`mbd_core.quasistatic.flexible`).
 
 Box section (``section = "box"``): a rectangle whose face towards the rolling elements carries the
 grooves and is placed by them (at the groove edges, or on the roller raceway); the user gives the
@@ -28,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem_rings.arc_grooves import FACE_AXES, ArcGroove
+from fem_rings.arc_grooves import FACE_AXES, ArcGroove, VGroove
 from fem_rings.nodesets import point_segment_distance
 from fem_rings.profile import Profile
 from fem_rings.sections import grooved_ring
@@ -63,6 +69,9 @@ class RacewayPlace:
         empty for a roller raceway (the face itself).
     directions : tuple of str
         Load directions of the ring's raceway load shapes (:class:`cms_reduction.RacewaySpec`).
+    flanks : tuple
+        A crossed roller row's V-groove (edge, apex, edge) for :class:`fem_rings.arc_grooves.VGroove`;
+        empty otherwise.
     """
 
     row: str
@@ -70,6 +79,7 @@ class RacewayPlace:
     face: str
     arcs: tuple
     directions: tuple
+    flanks: tuple = ()
 
 
 def _rz(p: np.ndarray, psi: float) -> np.ndarray:
@@ -122,6 +132,23 @@ def _roller_place(row: RollerRow, axis_rz: np.ndarray, normal_rz: np.ndarray, si
     return RacewayPlace(row.name, tuple(point), _face_of(into), (), ("normal",))
 
 
+def _crossed_place(row: RollerRow, axis_rz: np.ndarray, normal_rz: np.ndarray, side: str) -> RacewayPlace:
+    """The V-groove of a crossed roller row on one ring (module docstring): the apex lies half a
+    roller diameter from the roller axis along both diagonals' into-ring normals."""
+    into = [-normal_rz if side == "moving" else normal_rz]
+    into.append(np.array([into[0][0], -into[0][1]]))
+    half = 0.5 * row.roller_diameter_m
+    apex = axis_rz + np.linalg.solve(np.array(into), np.array([half, half]))
+    edges = []
+    for n in into:
+        middle = axis_rz + half * n           # the middle of the roller's contact line on this flank
+        t = (middle - apex) / np.linalg.norm(middle - apex)
+        edges.append(apex + (np.linalg.norm(middle - apex) + 0.5 * row.roller_length_m) * t)
+    face = _face_of(into[0] + into[1])
+    return RacewayPlace(row.name, tuple(apex), face, (), ("radial", "axial"),
+                        (tuple(edges[0]), tuple(apex), tuple(edges[1])))
+
+
 def raceway_places(bearing: Bearing, side: str) -> dict[str, RacewayPlace]:
     """Row name → raceway of the ``"moving"`` or ``"fixed"`` ring, from the solver's own geometry."""
     balls, slices = build_groups(bearing)
@@ -137,14 +164,15 @@ def raceway_places(bearing: Bearing, side: str) -> dict[str, RacewayPlace]:
                 out[row.name] = _ball_place(row, psi, cm, [-s for s in s_hat], row.conformity_moving * row.ball_diameter_m)
             else:
                 out[row.name] = _ball_place(row, psi, cf, s_hat, row.conformity_fixed * row.ball_diameter_m)
-        elif isinstance(row, RollerRow) and row.orientation in ("radial", "thrust"):
+        elif isinstance(row, RollerRow):
             sel = np.flatnonzero((slices.row == i) & (slices.element == 0))
             axis = _rz(slices.p_m[sel].mean(axis=0), psi)
             normal = _rz(slices.normal[sel[0]], psi)
-            out[row.name] = _roller_place(row, axis, normal, side)
+            place = _crossed_place if row.orientation == "crossed" else _roller_place
+            out[row.name] = place(row, axis, normal, side)
         else:
-            raise ValueError(f"row {row.name!r} ({getattr(row, 'orientation', type(row).__name__)} rollers): modal rings "
-                             "do not take this row type; leave out the [rings] tables (rigid rings)")
+            raise ValueError(f"row {row.name!r} ({type(row).__name__}): modal rings do not take this row type; "
+                             "leave out the [rings] tables (rigid rings)")
     return out
 
 
@@ -163,8 +191,9 @@ def box_section(name: str, places: dict[str, RacewayPlace], sides: dict[str, flo
     k = FACE_AXES[face][0]
     side_of = {"inner": "r_in_m", "outer": "r_out_m", "bottom": "z_min_m", "top": "z_max_m"}
     grooves = [ArcGroove(face, p.arcs, raceway_segment_name(p.row)) for p in places.values() if p.arcs]
+    grooves += [VGroove(face, p.flanks, raceway_segment_name(p.row)) for p in places.values() if p.flanks]
     positions = [g.face_position_m for g in grooves]
-    positions += [p.point_rz_m[k] for p in places.values() if not p.arcs]
+    positions += [p.point_rz_m[k] for p in places.values() if not (p.arcs or p.flanks)]
     land = float(np.mean(positions))
     size = max(abs(land), 1e-3)
     if max(positions) - min(positions) > 1e-9 * size:

@@ -7,6 +7,9 @@ groove). Both ends of the chain must lie on the face the groove is cut into — 
 (``"top"``/``"bottom"`` face) or a cylinder r = const (``"inner"``/``"outer"`` face) — and the chain
 must run into the material behind that face. :func:`fem_rings.sections.grooved_ring` cuts such
 grooves (and :class:`fem_rings.sections.BallGroove`) into a rectangle.
+
+A V-groove (:class:`VGroove`) is the straight counterpart: two flanks from the face to an apex
+behind it, the raceways of a crossed roller row.
 """
 
 from __future__ import annotations
@@ -16,9 +19,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .profile import Arc
+from .profile import Arc, Line
 
-__all__ = ["ArcGroove", "FACE_AXES"]
+__all__ = ["ArcGroove", "VGroove", "FACE_AXES"]
 
 #: face → (index of the coordinate that is constant on it, unit vector into the material)
 FACE_AXES = {"bottom": (1, (0.0, 1.0)), "top": (1, (0.0, -1.0)),
@@ -105,3 +108,62 @@ class ArcGroove:
         if math.dist(out[0].start, lo) > math.dist(out[0].start, hi):
             out = [a.reversed() for a in reversed(out)]
         return out, (lo, hi)
+
+
+@dataclass(frozen=True)
+class VGroove:
+    """A V-groove of two straight flanks in one face of a section (a crossed roller row's raceways).
+
+    Parameters
+    ----------
+    face : {"top", "bottom", "inner", "outer"}
+        Face the groove is cut into.
+    points : ((r, z), (r, z), (r, z)), m
+        First flank's edge on the face, the apex, second flank's edge on the face.
+    name : str
+        Segment name of both flanks (a raceway is sampled by this name).
+    """
+
+    face: str
+    points: tuple
+    name: str = "groove"
+
+    def __post_init__(self) -> None:
+        if self.face not in FACE_AXES:
+            raise ValueError(f"groove {self.name!r}: face must be one of {sorted(FACE_AXES)}, got {self.face!r}")
+        pts = tuple(tuple(map(float, q)) for q in self.points)
+        if len(pts) != 3 or any(len(q) != 2 for q in pts):
+            raise ValueError(f"groove {self.name!r}: needs three (r, z) points (edge, apex, edge)")
+        object.__setattr__(self, "points", pts)
+        a, apex, b = pts
+        j, into = FACE_AXES[self.face]
+        size = max(math.dist(a, apex), math.dist(apex, b))
+        if not size > 0.0 or abs(a[j] - b[j]) > 1e-9 * size:
+            raise ValueError(f"groove {self.name!r}: its edges lie at {'rz'[j]} = {a[j]:.9g} m and {b[j]:.9g} m, "
+                             f"not on one {self.face} face")
+        if not self.depth_m > 1e-9 * size:
+            raise ValueError(f"groove {self.name!r}: does not run into the material behind the {self.face} face")
+
+    @property
+    def face_position_m(self) -> float:
+        """z (top/bottom face) or r (inner/outer face) of the face, m."""
+        return self.points[0][FACE_AXES[self.face][0]]
+
+    @property
+    def edge_points_m(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """Where the groove meets the face, ordered by increasing coordinate along the face, m."""
+        a, b = self.points[0], self.points[2]
+        j = 1 - FACE_AXES[self.face][0]
+        return (a, b) if a[j] <= b[j] else (b, a)
+
+    @property
+    def depth_m(self) -> float:
+        """Distance of the apex behind the face, m."""
+        j, into = FACE_AXES[self.face]
+        return (self.points[1][j] - self.face_position_m) * into[j]
+
+    def segments(self) -> tuple[list[Line], tuple]:
+        """The flanks as profile segments from the lower to the higher edge point, and the edge points."""
+        lo, hi = self.edge_points_m
+        apex = self.points[1]
+        return [Line(lo, apex, self.name), Line(apex, hi, self.name)], (lo, hi)

@@ -320,10 +320,12 @@ def test_multibody_rows_refuse_crossed_rollers():
         add_roller_row(ModelBuilder(), row, None, None)
 
 
-def test_flexible_model_takes_crossed_rows_on_rigid_raceways_only():
+def test_flexible_model_takes_crossed_rows_sampled_at_the_v_apex():
     """Without flexible rings the flexible-ring solver's slices are the rigid solver's: the same roller
-    loads (to the solvers' tolerance, 1e-7 of the largest); a flexible ring naming a crossed row is
-    refused (one sampled raceway cannot describe both V-groove flanks)."""
+    loads (to the solvers' tolerance, 1e-7 of the largest). A flexible ring's raceway of a crossed
+    row is sampled at the apex of its V-groove, (D/2)/cos α0 radially beyond the roller axis (both
+    flanks half a roller diameter from it along n± = (cos α0, ±sin α0)); a sample elsewhere — here
+    half a roller diameter out, where a radial row's would be — is refused by name."""
     from mbd_core.quasistatic import FlexibleRing, build_flexible_model, solve_flexible_load_distribution
     from tests.test_quasistatic_flexible import circle, random_fields, sampled_body
 
@@ -332,7 +334,13 @@ def test_flexible_model_takes_crossed_rows_on_rigid_raceways_only():
     a = solve_load_distribution(bearing, LOADS["combined"])
     b = solve_flexible_load_distribution(build_flexible_model(bearing), LOADS["combined"])
     assert b.rows[0].load_N == pytest.approx(a.rows[0].load_N, abs=1e-7 * a.rows[0].load_N.max())
-    th, pts = circle((0.5 * DM + 0.5 * D, 0.0), 36)
-    outer = sampled_body("o", [100.0], {"raceway": (th, pts, *random_fields(np.random.default_rng(1), 36, 1), True)})
-    with pytest.raises(ValueError, match="row .crossed.: a crossed roller row"):
-        build_flexible_model(bearing, (FlexibleRing("o", outer, "fixed", {"crossed": "raceway"}),))
+
+    def outer(r_m):
+        th, pts = circle((r_m, 0.0), 36)
+        body = sampled_body("o", [100.0], {"raceway": (th, pts, *random_fields(np.random.default_rng(1), 36, 1), True)})
+        return (FlexibleRing("o", body, "fixed", {"crossed": "raceway"}),)
+
+    with pytest.raises(ValueError, match="row .crossed.: the raceway samples lie .* from the roller axis"):
+        build_flexible_model(bearing, outer(0.5 * DM + 0.5 * D))
+    model = build_flexible_model(bearing, outer(0.5 * DM + 0.5 * D / math.cos(ALPHA)))
+    assert solve_flexible_load_distribution(model, LOADS["combined"]).equilibrium_error <= 1e-9

@@ -41,8 +41,10 @@ Roller rows: slice k (centre p_k on the roller axis, normal n_k) of a roller at 
 fields at ψ the same way, the slice point moving with the section, T_k = D − [p_k − p]ₓ Ω (a tilt
 of the raceway about e_t loads one roller end more), so δ_k = n_k·(G_k x) − gap − drop with G_k as
 above and the slice forces project with G_kᵀ n_k. Offsets shift a raceway by n_k·Δc_k. Crossed roller
-rows take part with rigid raceways only: a flexible ring naming one is refused (its rollers run on
-two V-groove flanks, which one sampled raceway does not describe).
+rows: the raceway is sampled at the apex of the V-groove, which lies half a roller diameter from the
+roller axis along both diagonals' normals, and each roller's slices take the fields there the same
+way (the section between the apex and the contact line moving as a rigid piece, as the four-point
+row's two curvature centres do with their gothic-arch apex).
 
 Solution (:mod:`.flexible_solve`): Newton with backtracking (:func:`.solver.damped_newton`), first on q with η = 0 (the
 rigid-ring solution with the offsets), then on (q, η) from there. Each η_j is scaled by the
@@ -356,9 +358,6 @@ def _slice_coupling(bearing: Bearing, slices: SliceGroup, ring: FlexibleRing, i_
     """Coupling of a roller row, its slice indices and the approach per unit η (k, m) of its slices."""
     row = bearing.rows[i_row]
     who = f"flexible ring {ring.name!r}, row {row.name!r}"
-    if row.orientation == "crossed":
-        raise ValueError(f"{who}: a crossed roller row, whose two V-groove flanks one sampled raceway does not "
-                         "describe; give it rigid raceways")
     mask = slices.row == i_row
     ns = row.n_slices
     psi = row.first_azimuth_rad + 2.0 * np.pi * np.arange(row.n_rollers) / row.n_rollers
