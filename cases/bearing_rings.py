@@ -26,6 +26,7 @@ The format reference is ``cases/bearings/README.md``.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -50,7 +51,7 @@ from .mesh_budget import check_model_size
 from .ring_sections import box_section, match_raceways, raceway_places
 
 __all__ = ["RingKeys", "BoltKeys", "RingModel", "ring_models", "ring_profile", "reduce_ring", "flexible_rings",
-           "ring_part_of", "RING_NAMES"]
+           "ring_part_of", "with_fidelity", "RING_NAMES"]
 
 RING_NAMES = ("inner", "outer")
 #: Raceway samples round a ring: at least this many, and at least four per rolling element.
@@ -349,10 +350,45 @@ def ring_models(bearing: Bearing, moving_ring: str, tables: dict, materials: dic
     return out
 
 
+def _element_size_m(profile: Profile, keys: RingKeys) -> float:
+    """The ring's element size: its key, or a third of the section's smaller side."""
+    r0, r1, z0, z1 = profile.bounds_m
+    return keys.element_size_m or min(r1 - r0, z1 - z0) / 3.0
+
+
 def _mesh_spec(m: RingModel) -> MeshSpec:
-    r0, r1, z0, z1 = m.profile.bounds_m
-    size = m.keys.element_size_m or min(r1 - r0, z1 - z0) / 3.0
-    return MeshSpec(size, m.keys.mesh_element, solid=m.solid)
+    return MeshSpec(_element_size_m(m.profile, m.keys), m.keys.mesh_element, solid=m.solid)
+
+
+def with_fidelity(models: dict[str, RingModel], overrides: dict, where: str = "rings") -> dict[str, RingModel]:
+    """The ring models with ``overrides`` of their keys (``n_modes``, ``raceway_harmonics``,
+    ``element_load_shapes``; ``element_size_factor`` scales each ring's element size), checked as
+    the file's own values are; CaseError naming ``where.key``."""
+    if not overrides:
+        return dict(models)
+    if not models:
+        key = next(iter(overrides))
+        raise CaseError(f"{where}.{key}: the bearing file gives no [rings.X] tables (its rings are rigid); "
+                        "leave the key out")
+    out = {}
+    for name, m in models.items():
+        changes = {k: v for k, v in overrides.items() if k != "element_size_factor"}
+        factor = overrides.get("element_size_factor", 1.0)
+        if factor != 1.0:
+            changes["element_size_m"] = round(factor * _element_size_m(m.profile, m.keys), 9)
+        try:
+            keys = dataclasses.replace(m.keys, **changes)
+            check_model_size(m.profile, _element_size_m(m.profile, keys), keys.n_modes,
+                             f"{where}.element_size_factor", f"{where}.n_modes", n_rigid=0)
+        except ValueError as exc:
+            text = str(exc)
+            if text.startswith(f"{where}."):
+                raise CaseError(text) from None
+            head, _, rest = text.partition(": ")
+            key = "element_size_factor" if head == "element_size_m" else head
+            raise CaseError(f"{where}.{key}: {rest} (ring {name})") from None
+        out[name] = dataclasses.replace(m, keys=keys)
+    return out
 
 
 def _support(m: RingModel) -> InterfaceSpec:
@@ -370,6 +406,26 @@ def _support(m: RingModel) -> InterfaceSpec:
 ELEMENT_PATCH_SHARE = 0.3
 
 
+#: the share of a groove's room on either side of the contact point that a default patch may take
+GROOVE_ROOM_SHARE = 0.9
+
+
+def _default_spread_m(row, place) -> float:
+    """The default raceway patch with element load shapes: ``ELEMENT_PATCH_SHARE`` of the element
+    diameter, or less where the groove leaves less room on one side of the contact point (a box
+    section's groove of an angular-contact row reaches only 25° beyond the contact angle: f·D·25°
+    ≈ 0.23·D)."""
+    spread = ELEMENT_PATCH_SHARE * _element_size(row)
+    p = np.asarray(place.point_rz_m, float)
+    for c, radius, a0, a1 in place.arcs:
+        a = math.atan2(p[1] - c[1], p[0] - c[0])
+        lo, hi = min(a0, a1), max(a0, a1)
+        a = lo + (a - lo) % (2.0 * math.pi)
+        if a <= hi:
+            spread = min(spread, GROOVE_ROOM_SHARE * radius * min(a - lo, hi - a))
+    return round(spread, 6)
+
+
 def _raceway_spec(m: RingModel, row, n_theta: int) -> RacewaySpec:
     """The sampled raceway of ``row`` on ring ``m``: its patch and, with ``element_load_shapes``, the
     static shapes of radial and axial element forces at the row's elements (their first position)."""
@@ -381,7 +437,7 @@ def _raceway_spec(m: RingModel, row, n_theta: int) -> RacewaySpec:
                         "contacts lie on the two sides of its groove, away from the raceway sample at the apex)")
     spread = keys.raceway_spread_m
     if spread is None:
-        spread = round(ELEMENT_PATCH_SHARE * _element_size(row), 6) if keys.element_load_shapes else 0.0
+        spread = _default_spread_m(row, place) if keys.element_load_shapes else 0.0
     angles = ()
     if keys.element_load_shapes:
         first = math.degrees(row.first_azimuth_rad)

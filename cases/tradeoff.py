@@ -28,6 +28,8 @@ from pathlib import Path
 from fem_rings.cache import atomic_path, cache_dir, input_hash
 
 from .config import CaseError, dumps_case
+from .described import fidelity as described_fidelity
+from .described.case import DescribedCase
 from .fidelity import (ERROR_NAMES, Ladder, Outcome, Rung, choose_rung, observed_order, rung_errors, rungs,
                        sweep_members)
 from .outdir import atomic_folder
@@ -46,7 +48,7 @@ log = logging.getLogger(__name__)
 #: case class → the module that declares its ladder (``ladder``, ``scene``, ``rung_case``,
 #: ``measure``, ``describe``, ``rung_overrides``, ``element_columns``; optional ``WARM_REPEAT``,
 #: False when a second, warm measurement of each rung is not worth its time)
-LADDERS = {SlewingCase: slewing_fidelity, WindCase: wind_fidelity}
+LADDERS = {SlewingCase: slewing_fidelity, WindCase: wind_fidelity, DescribedCase: described_fidelity}
 #: part of the ladder cache key: bump when what a rung measures changes
 TRADEOFF_VERSION = 3
 
@@ -108,10 +110,14 @@ class LadderResult:
 
 
 def _cache_key(case, module, ladder: Ladder, quick: bool) -> str:
+    """The ladder's key: the case's scene at the base rung, the ladder, and the contents of the files
+    the case reads (a bearing file and the sections, solids and loads it names: the family's
+    ``cache_inputs``)."""
     base = module.rung_case(case, dict(ladder.base))
     text = dumps_case(dataclasses.replace(base, name="tradeoff", description=""))
+    files = list(getattr(module, "cache_inputs", lambda c: ())(case))
     return input_hash("tradeoff", TRADEOFF_VERSION, text, [(k.key, k.values) for k in ladder.knobs], sorted(ladder.reference.items()),
-                      sorted((k, sorted(v.items())) for k, v in ladder.combined.items()), quick)
+                      sorted((k, sorted(v.items())) for k, v in ladder.combined.items()), quick, *([files] if files else []))
 
 
 def _cache_file(key: str) -> Path:

@@ -109,12 +109,6 @@ def test_tolerance_no_rung_meets_names_the_best(ladder_folder, scene_file, capsy
     assert not out.exists()
 
 
-def test_a_family_without_a_ladder_is_refused(tmp_path, capsys):
-    assert main(["tradeoff", "bearing-loaddist", "--quick", "--out", str(tmp_path / "t")]) == 2
-    assert "no fidelity ladder is declared for bearing cases" in capsys.readouterr().err
-    assert not (tmp_path / "t").exists()
-
-
 def test_auto_on_the_undulated_ring_is_modal_and_meets_the_reference(ladder_folder, scene_file):
     # Reference: the quick ladder's reference on the same mesh (ball load shapes with 40 modes and
     # harmonic-16 load shapes). auto keeps the ball load shapes with 5 modes and none: the static

@@ -9,6 +9,10 @@ whether its ``[rings.X]`` tables make rings modal, the rating-life conditions an
 - ``limiting-curve``: the same and the limiting load curve at ``study.s0`` (or
   ``study.p0_limit_MPa``), with modal and rigid rings where the file makes rings modal.
 
+``[rings]`` sets the fidelity of the file's modal rings for this run, over every ``[rings.X]`` table
+of the file (modes, raceway load shapes, element size as a factor of each ring's, element load
+shapes): the knobs of the family's fidelity ladder (:mod:`.fidelity`, ``flexbearing tradeoff``).
+
 Example (``family = "bearing"`` first)::
 
     family = "bearing"
@@ -27,7 +31,7 @@ from typing import ClassVar, Literal
 
 from ..config import CaseTables
 
-__all__ = ["Source", "Life", "Study", "DescribedCase"]
+__all__ = ["Source", "RingFidelity", "Life", "Study", "DescribedCase"]
 
 
 @dataclass(frozen=True)
@@ -42,6 +46,36 @@ class Source:
     def __post_init__(self) -> None:
         if not self.file.strip():
             raise ValueError("file: must name a built-in bearing or a description file (.toml)")
+
+
+@dataclass(frozen=True)
+class RingFidelity:
+    """``[rings]``: the modal rings' fidelity for this run, over what every ``[rings.X]`` table of the
+    bearing file says (unset: the file's value): ``n_modes``, ``raceway_harmonics``,
+    ``element_load_shapes`` (the keys of the file's tables, cases/bearings/README.md) and
+    ``element_size_factor`` (each ring's element size times this)."""
+
+    n_modes: int | None = None
+    raceway_harmonics: int | None = None
+    element_size_factor: float = 1.0
+    element_load_shapes: bool | None = None
+
+    def __post_init__(self) -> None:
+        if self.n_modes is not None and not 1 <= self.n_modes <= 400:
+            raise ValueError(f"n_modes: must lie in 1 … 400, got {self.n_modes}")
+        if self.raceway_harmonics is not None and not 0 <= self.raceway_harmonics <= 60:
+            raise ValueError(f"raceway_harmonics: must lie in 0 … 60, got {self.raceway_harmonics}")
+        if not (math.isfinite(self.element_size_factor) and 0.05 <= self.element_size_factor <= 10.0):
+            raise ValueError(f"element_size_factor: must lie in [0.05, 10], got {self.element_size_factor!r}")
+
+    @property
+    def overrides(self) -> dict:
+        """The ``[rings.X]`` keys this table sets (element size as a factor), for :func:`cases.bearing_rings.with_fidelity`."""
+        out = {k: getattr(self, k) for k in ("n_modes", "raceway_harmonics", "element_load_shapes")
+               if getattr(self, k) is not None}
+        if self.element_size_factor != 1.0:
+            out["element_size_factor"] = self.element_size_factor
+        return out
 
 
 @dataclass(frozen=True)
@@ -82,6 +116,7 @@ class DescribedCase(CaseTables):
     name: str = "bearing"
     description: str = ""
     bearing: Source = field(default_factory=Source)
+    rings: RingFidelity = field(default_factory=RingFidelity)
     life: Life = field(default_factory=Life)
     study: Study = field(default_factory=Study)
 

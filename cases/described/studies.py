@@ -4,12 +4,26 @@ from __future__ import annotations
 
 import math
 
+import dataclasses
+
+from ..bearing_rings import with_fidelity
 from ..bearing_solver import bearing_solver
+from ..config import CaseError
 from ..loaddist_command import LoaddistOptions, bearing_description, loaddist_outputs
 from ..overrides import StudyEntry, unused_keys
-from .case import DescribedCase
+from .case import DescribedCase, RingFidelity
 
-__all__ = ["STUDIES", "case_unused_keys", "uses_dynamics", "run_study"]
+__all__ = ["STUDIES", "case_unused_keys", "uses_dynamics", "run_study", "described_bearing"]
+
+
+def described_bearing(case: DescribedCase):
+    """(name, description) of the case's bearing, its modal rings at the case's ``[rings]`` fidelity."""
+    try:
+        name, desc = bearing_description(case.bearing.file)
+    except ValueError as exc:
+        raise CaseError(f"bearing.file: {exc}") from None
+    rings = with_fidelity(dict(desc.rings), case.rings.overrides)
+    return name, dataclasses.replace(desc, rings=rings)
 
 
 def _options(case: DescribedCase, folder: str, curve: bool) -> LoaddistOptions:
@@ -39,7 +53,7 @@ def _figures(summary: dict, out) -> None:
 
 def _run(curve: bool):
     def run(case: DescribedCase, out, progress=None) -> None:
-        name, desc = bearing_description(case.bearing.file)
+        name, desc = described_bearing(case)
         solver = bearing_solver(desc, rigid=case.bearing.rings == "rigid")
         loads = desc.load_cases
         results = [solver.solve(load) for load in (progress(loads, "load cases") if progress else loads)]
@@ -61,6 +75,9 @@ def case_unused_keys(case: DescribedCase) -> dict[str, str]:
     out = unused_keys(case.study.kind, STUDIES, {}, ())
     if case.life.rotating_ring == "none":
         out["life.speed_rpm"] = _LIFE
+    if case.bearing.rings == "rigid":
+        out.update({f"rings.{f.name}": 'bearing.rings = "rigid" (no modal rings)'
+                    for f in dataclasses.fields(RingFidelity)})
     return out
 
 

@@ -1,0 +1,205 @@
+"""The fidelity ladder of a described bearing, beside its case schema: the ``[rings]`` keys that trade
+speed for accuracy in the quasi-static load distribution of a bearing file with modal rings.
+
+Knobs (keys of :class:`.case.DescribedCase`, cheap → expensive):
+
+- ``bearing.rings``: rigid, file (the file's ``[rings.X]`` tables make those rings modal);
+- ``rings.n_modes``: fixed-interface normal modes per ring, 5 … 80;
+- ``rings.raceway_harmonics``: raceway load shapes cos nθ, sin nθ up to this n, 0 … 32;
+- ``rings.element_size_factor``: each ring's element size times 1.4, 1, 0.7;
+- ``rings.element_load_shapes``: off, on (the static shapes of the element forces at their places,
+  spread over a raceway patch of 0.3 × the element diameter; with them the equilibrium is the
+  finite-element solution of the rings under the element forces). Not offered when a row is a
+  four-point or crossed roller row (cases/bearings/README.md).
+
+Reference: 80 modes, harmonics to 32, the finest mesh (0.7×) and, where offered, the element load
+shapes: the most accurate model of the rings the project builds on this machine. The quick ladder
+keeps every ring's mesh twice as coarse as the file's, and measures modes, load shapes and element
+shapes there against a reference on that mesh (40 modes, harmonics to 16).
+
+Scene: the load case of the file whose largest element load under rigid rings is the largest (the
+most demanding one; the file's only load when it has one), solved quasi-statically.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+from foundation.materials import BEARING_STEEL
+from mbd_core.contact.subsurface import subsurface_shear
+from mbd_core.quasistatic import solve_load_distribution
+from mbd_core.quasistatic.contacts import contact_sets
+from mbd_core.quasistatic.rows import FourPointRow
+
+from ..bearing_solver import bearing_solver
+from ..fidelity import Knob, Ladder, Outcome, case_tables
+from .case import DescribedCase
+from .studies import described_bearing
+
+__all__ = ["ladder", "scene", "measure", "rung_case", "describe", "rung_overrides", "element_columns", "cache_inputs",
+           "LOADS_FILE"]
+
+#: the mesh of every quick rung, as a factor of each ring's element size in the file
+QUICK_SIZE_FACTOR = 2.0
+#: element sizes of the mesh knob, as factors of each ring's element size in the file
+SIZE_FACTORS = (1.4, 1.0, 0.7)
+#: an element counts as unloaded below this share of the mean load
+UNLOADED_SHARE = 1e-3
+#: the file of ``flexbearing tradeoff`` that holds every rung's element loads
+LOADS_FILE = "element_loads.csv"
+
+
+def _shapes_offered(desc) -> bool:
+    return not any(isinstance(r, FourPointRow) or getattr(r, "orientation", "") == "crossed" for r in desc.bearing.rows)
+
+
+def _description(case: DescribedCase):
+    """The case's bearing with its rings at the file's fidelity (the knobs are the ladder's)."""
+    return described_bearing(dataclasses.replace(case, rings=type(case.rings)()))[1]
+
+
+def ladder(case: DescribedCase, quick: bool = False) -> Ladder:
+    """The ladder of the case's bearing file (module docstring); ValueError when the file has no
+    modal rings (nothing to trade)."""
+    desc = _description(case)
+    if not desc.rings:
+        raise ValueError("tradeoff: the bearing file gives no [rings.X] tables: its rings are rigid, and a rigid-ring "
+                         "load distribution has no fidelity to trade (cases/bearings/README.md: modal rings)")
+    shapes = _shapes_offered(desc)
+    kind = Knob("bearing.rings", ("rigid", "file"), "rings")
+    modes = Knob("rings.n_modes", (5, 20) if quick else (5, 10, 20, 40, 80), "normal modes", float, "normal modes n")
+    harmonics = Knob("rings.raceway_harmonics", (0, 8) if quick else (0, 4, 8, 16, 32),
+                     "raceway load shapes up to harmonic", lambda n: n + 1.0, "highest harmonic + 1")
+    sizes = (QUICK_SIZE_FACTOR,) if quick else SIZE_FACTORS
+    mesh = Knob("rings.element_size_factor", sizes, "element size (× the file's)", lambda f: 1.0 / f,
+                "1 / element size factor")
+    knobs = [kind, modes, harmonics, mesh]
+    base = {"bearing.rings": "file", "rings.n_modes": 20, "rings.raceway_harmonics": 8,
+            "rings.element_size_factor": QUICK_SIZE_FACTOR if quick else 1.0}
+    if shapes:
+        knobs.append(Knob("rings.element_load_shapes", (False, True), "element load shapes"))
+        base["rings.element_load_shapes"] = False
+    on = {"rings.element_load_shapes": True} if shapes else {}
+    text = "one quasi-static equilibrium: " + describe_scene(case, desc)
+    if quick:
+        reference = {"rings.n_modes": 40, "rings.raceway_harmonics": 16, **on}
+        return Ladder(tuple(knobs), base, reference, primary="max_load", primary_label="largest element load",
+                      scene=text, estimates={})
+    reference = {"rings.n_modes": 80, "rings.raceway_harmonics": 32, "rings.element_size_factor": SIZE_FACTORS[-1], **on}
+    combined = {"coarse": {"rings.n_modes": 10, "rings.raceway_harmonics": 4, "rings.element_size_factor": SIZE_FACTORS[0]},
+                "fine": {"rings.n_modes": 40, "rings.raceway_harmonics": 16}}
+    if shapes:
+        combined.update({"shapes-coarse": {**on, "rings.n_modes": 10, "rings.element_size_factor": SIZE_FACTORS[0]},
+                         "shapes-default": {**on, "rings.n_modes": 10}})
+    return Ladder(tuple(knobs), base, reference, combined, primary="max_load", primary_label="largest element load",
+                  scene=text, estimates={})
+
+
+def _scene_load(desc) -> tuple[int, object]:
+    """(index, load) of the load case with the largest rigid-ring element load."""
+    worst = [max(float(np.max(r.load_N)) for r in solve_load_distribution(desc.bearing, load).rows)
+             for load in desc.load_cases]
+    k = int(np.argmax(worst))
+    return k, desc.load_cases[k]
+
+
+def describe_scene(case: DescribedCase, desc=None) -> str:
+    desc = desc or _description(case)
+    k, _ = _scene_load(desc)
+    which = f"load case {k + 1} of {len(desc.load_cases)} (the most loaded)" if len(desc.load_cases) > 1 else "its load"
+    return f"{desc.name} ({case.bearing.file}), {which}"
+
+
+def scene(case: DescribedCase) -> DescribedCase:
+    """The study the ladder measures: the load distribution (the limiting curve is many of them)."""
+    return case.with_(study={"kind": "load-distribution"})
+
+
+def _tau_max_Pa(desc, dist) -> float:
+    """Peak subsurface shear under the contact of largest Hertz pressure (rings of bearing steel's ν)."""
+    best = max(((float(np.max(s.max_pressure_Pa)), s) for s in contact_sets(desc.bearing, dist)), key=lambda x: x[0])
+    p0, s = best
+    if not p0 > 0.0:
+        return 0.0
+    i = int(np.argmax(s.max_pressure_Pa))
+    return subsurface_shear(p0, float(s.semi_major_m[i]), float(s.semi_minor_m[i]), BEARING_STEEL.nu).tau_max_Pa
+
+
+def measure(case: DescribedCase) -> Outcome:
+    """Element loads, contact angles and peak shear of the scene at the case's fidelity."""
+    _, desc = described_bearing(case)
+    _, load = _scene_load(desc)
+    dist = bearing_solver(desc, rigid=case.bearing.rings == "rigid").solve(load)
+    loads = np.concatenate([np.asarray(r.load_N, float) for r in dist.rows])
+    angles = np.concatenate([np.asarray(r.contact_angle_rad, float) for r in dist.rows])
+    return Outcome(loads, angles, _tau_max_Pa(desc, dist), unloaded_share=UNLOADED_SHARE)
+
+
+def element_columns(case: DescribedCase, n: int) -> tuple[list[str], list[tuple]]:
+    """The columns that name the ``n`` elements in :data:`LOADS_FILE`: row and element number."""
+    desc = _description(case)
+    labels = [(row.name, k + 1) for row in desc.bearing.rows for k in range(row.n_elements)]
+    return ["row", "element"], labels[:n]
+
+
+def _settings_used(settings: dict) -> dict:
+    """A rigid rung sets no ``rings.*`` key (the case refuses them with rigid rings)."""
+    if settings.get("bearing.rings") == "rigid":
+        return {"bearing.rings": "rigid"}
+    return dict(settings)
+
+
+def rung_case(case: DescribedCase, settings: dict) -> DescribedCase:
+    """``case``'s scene with the rung's knob values (dotted keys → values)."""
+    return scene(case).with_(**case_tables(_settings_used(settings)))
+
+
+def describe(settings: dict) -> str:
+    """A rung in words, as a user would set it."""
+    if settings.get("bearing.rings") == "rigid":
+        return "rigid rings"
+    shapes = "element load shapes + " if settings.get("rings.element_load_shapes") else ""
+    return (f"modal rings: {shapes}{settings['rings.n_modes']} modes, raceway load shapes to harmonic "
+            f"{settings['rings.raceway_harmonics']}, element size × {settings['rings.element_size_factor']:g}")
+
+
+def rung_overrides(case: DescribedCase, settings: dict) -> dict:
+    """The table overrides that run ``case`` at a rung's fidelity (its own study kept)."""
+    used = _settings_used(settings)
+    tables = case_tables(used)
+    if used.get("bearing.rings") == "rigid":
+        tables["rings"] = {f.name: f.default for f in dataclasses.fields(type(case.rings))}
+    return tables
+
+
+def _digest(path: Path) -> str:
+    try:
+        return hashlib.sha256(path.read_bytes()).hexdigest()
+    except OSError:
+        return "unreadable"
+
+
+def cache_inputs(case: DescribedCase) -> list[str]:
+    """SHA-256 of the bearing file and of every file it names (a DXF section, a STEP solid, a load
+    CSV), so that a cached ladder is not reused after one of them changed."""
+    desc = _description(case)
+    source = Path(desc.source)
+    out = [_digest(source)]
+    for m in desc.rings.values():
+        if m.solid is not None:
+            out.append(m.solid.sha256)
+        if m.keys.dxf_file:
+            out.append(_digest(source.parent / m.keys.dxf_file))
+    try:
+        load = tomllib.loads(source.read_text()).get("load", {})
+    except (OSError, ValueError):
+        load = {}
+    for key, value in sorted(load.items()) if isinstance(load, dict) else ():
+        if key.endswith("_csv") and isinstance(value, str):
+            out.append(_digest(source.parent / value))
+    return out
