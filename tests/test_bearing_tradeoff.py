@@ -48,7 +48,7 @@ z_min_m = -0.02
 z_max_m = 0.02
 n_modes = 20
 raceway_harmonics = 8
-element_size_m = 0.02
+element_size_m = 0.04
 [rings.inner.bolts]
 count = 8
 pitch_diameter_m = 0.26
@@ -60,7 +60,7 @@ z_min_m = -0.02
 z_max_m = 0.02
 n_modes = 20
 raceway_harmonics = 8
-element_size_m = 0.02
+element_size_m = 0.04
 clamped_face = "bottom"
 
 [load]
@@ -107,11 +107,10 @@ def test_quick_ladder_errors_and_the_reference(ladder_folder, folder):
         # CSV: 9 digits (±0.5e-4 N on each load)
         assert float(rows[name]["max_load"]) == pytest.approx(abs(q.max() - ref.max()) / ref.max(), rel=1e-6, abs=1e-8)
         assert float(rows[name]["load_rms"]) == pytest.approx(np.sqrt(np.mean(d * d)) / ref.max(), rel=1e-6, abs=1e-8)
-    # reference: the file solved directly with the reference's settings (quick: every ring's mesh ×2,
-    # 40 modes, harmonics to 16, element load shapes)
+    # reference: the file solved directly with the reference's settings (quick: every ring's mesh as
+    # the file's, 40 modes, harmonics to 16, element load shapes)
     desc = loads_bearing(BEARING)
-    rings = with_fidelity(dict(desc.rings), {"n_modes": 40, "raceway_harmonics": 16, "element_load_shapes": True,
-                                             "element_size_factor": 2.0})
+    rings = with_fidelity(dict(desc.rings), {"n_modes": 40, "raceway_harmonics": 16, "element_load_shapes": True})
     import dataclasses
 
     direct = bearing_solver(dataclasses.replace(desc, rings=rings)).solve(desc.default_load).rows[0].load_N
@@ -162,5 +161,5 @@ def test_element_size_factor_scales_each_ring():
     desc = loads_bearing(BEARING)
     rings = with_fidelity(dict(desc.rings), {"element_size_factor": 1.5})
     for name in ("inner", "outer"):
-        assert rings[name].keys.element_size_m == pytest.approx(1.5 * 0.02, rel=1e-12)
-        assert math.isclose(desc.rings[name].keys.element_size_m, 0.02)
+        assert rings[name].keys.element_size_m == pytest.approx(1.5 * 0.04, rel=1e-12)
+        assert math.isclose(desc.rings[name].keys.element_size_m, 0.04)

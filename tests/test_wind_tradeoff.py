@@ -148,3 +148,67 @@ def test_step_factor_scales_the_automatic_step():
     h = stable_timestep(sc.model, sc.state).timestep_s
     _, rec = dynamic.run(case.with_(analysis={"step_factor": 0.5}))
     assert rec["timestep_s"] == pytest.approx(0.5 * h, rel=1e-12)
+
+
+def test_auto_rings_bound_tracks_the_rigid_rung_error(ladder_folder):
+    """``bodies.rings = "auto"`` (cases.wind.auto) on the ladder's scene: the cheap pass bounds the
+    change of the largest roller load that ring bending causes by η/(1 + η); the ladder measures it
+    (the rigid base rung against the modal reference, on the quick meshes). The indicators of the
+    fidelity issue are to lie within a factor 3 of the true error they estimate."""
+    from cases.wind.auto import MODAL_N_MODES, resolve
+    from cases.wind.fidelity import scene
+
+    case = scene(preset("wind-speeds")).with_(bodies={"rings": "auto", "cages": "auto"})
+    resolved, decisions = resolve(case)
+    rings, cages = decisions
+    assert resolved.bodies.rings == "modal" and resolved.bodies.n_modes == MODAL_N_MODES
+    assert resolved.bodies.cages == "rigid" and cages["body"] == "cages" and "no raceway load" in cages["reason"]
+    base = next(r for r in _rows(ladder_folder / "tradeoff.csv") if r["rung"] == "base")
+    assert base["bodies_rings"] == "rigid"
+    true_error = float(base["max_load"])
+    assert true_error / 3.0 <= rings["load_change_bound"] <= 3.0 * true_error
+    # the rigid pass is the quasi-static distribution of the same rows (test above): same largest load
+    assert rings["rigid_max_roller_load_N"] == pytest.approx(float(base["max_load_N"]), rel=5e-3)
+
+
+@pytest.mark.parametrize("tables, key", [
+    ({"bodies": {"rings": "auto"}, "study": {"kind": "rigid-flexible"}}, "bodies.rings"),
+    ({"bodies": {"rings": "auto", "cages": "modal"}}, "bodies.cages"),
+])
+def test_auto_where_it_cannot_decide_names_the_key(tables, key):
+    from cases.config import from_mapping
+    from cases.wind.case import WindCase
+
+    with pytest.raises(CaseError, match="^" + key.replace(".", r"\.")):
+        from_mapping(WindCase, tables)
+
+
+def test_auto_chooses_the_modes_it_uses(tmp_path, capsys):
+    # bodies.n_modes is auto's choice: setting it beside rings = "auto" is refused before any work
+    out = tmp_path / "r"
+    assert main(["run", "wind-speeds", "--quick", "--set", "bodies.rings=auto", "--set", "bodies.n_modes=12",
+                 "--out", str(out)]) == 2
+    assert "bodies.n_modes" in capsys.readouterr().err and not out.exists()
+
+
+def test_run_study_hands_the_decided_case_to_its_study(monkeypatch):
+    import dataclasses
+
+    from cases.wind import studies
+
+    seen = {}
+    entry = dataclasses.replace(studies.STUDIES["speeds"], run=lambda case, out, progress=None: seen.update(case=case))
+    monkeypatch.setitem(studies.STUDIES, "speeds", entry)
+
+    class Out:
+        def __init__(self):
+            self.summary, self.notes = {}, []
+
+        def note(self, text):
+            self.notes.append(text)
+
+    out = Out()
+    studies.run_study(preset("wind-speeds").with_(bodies={"cages": "auto"}), out)
+    assert seen["case"].bodies.cages == "rigid" and seen["case"].bodies.rings == "rigid"
+    assert [d["body"] for d in out.summary["fidelity_decisions"]] == ["cages"]
+    assert out.notes and out.notes[0].startswith("fidelity auto: bodies.cages = rigid")

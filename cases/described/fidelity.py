@@ -6,16 +6,17 @@ Knobs (keys of :class:`.case.DescribedCase`, cheap → expensive):
 - ``bearing.rings``: rigid, file (the file's ``[rings.X]`` tables make those rings modal);
 - ``rings.n_modes``: fixed-interface normal modes per ring, 5 … 80;
 - ``rings.raceway_harmonics``: raceway load shapes cos nθ, sin nθ up to this n, 0 … 32;
-- ``rings.element_size_factor``: each ring's element size times 1.4, 1, 0.7;
+- ``rings.element_size_factor``: each ring's element size times 1, 0.7, 0.5 (never coarser than the
+  file's: a coarser mesh can leave a bolt's washer patch too few nodes to hold the ring);
 - ``rings.element_load_shapes``: off, on (the static shapes of the element forces at their places,
   spread over a raceway patch of 0.3 × the element diameter; with them the equilibrium is the
   finite-element solution of the rings under the element forces). Not offered when a row is a
   four-point or crossed roller row (cases/bearings/README.md).
 
-Reference: 80 modes, harmonics to 32, the finest mesh (0.7×) and, where offered, the element load
+Reference: 80 modes, harmonics to 32, the finest mesh (0.5×) and, where offered, the element load
 shapes: the most accurate model of the rings the project builds on this machine. The quick ladder
-keeps every ring's mesh twice as coarse as the file's, and measures modes, load shapes and element
-shapes there against a reference on that mesh (40 modes, harmonics to 16).
+keeps every ring's mesh as the file gives it, and measures modes, load shapes and element shapes
+there against a reference on that mesh (40 modes, harmonics to 16).
 
 Scene: the load case of the file whose largest element load under rigid rings is the largest (the
 most demanding one; the file's only load when it has one), solved quasi-statically.
@@ -45,9 +46,9 @@ __all__ = ["ladder", "scene", "measure", "rung_case", "describe", "rung_override
            "LOADS_FILE"]
 
 #: the mesh of every quick rung, as a factor of each ring's element size in the file
-QUICK_SIZE_FACTOR = 2.0
+QUICK_SIZE_FACTOR = 1.0
 #: element sizes of the mesh knob, as factors of each ring's element size in the file
-SIZE_FACTORS = (1.4, 1.0, 0.7)
+SIZE_FACTORS = (1.0, 0.7, 0.5)
 #: an element counts as unloaded below this share of the mean load
 UNLOADED_SHARE = 1e-3
 #: the file of ``flexbearing tradeoff`` that holds every rung's element loads
@@ -80,7 +81,7 @@ def ladder(case: DescribedCase, quick: bool = False) -> Ladder:
                 "1 / element size factor")
     knobs = [kind, modes, harmonics, mesh]
     base = {"bearing.rings": "file", "rings.n_modes": 20, "rings.raceway_harmonics": 8,
-            "rings.element_size_factor": QUICK_SIZE_FACTOR if quick else 1.0}
+            "rings.element_size_factor": QUICK_SIZE_FACTOR if quick else SIZE_FACTORS[0]}
     if shapes:
         knobs.append(Knob("rings.element_load_shapes", (False, True), "element load shapes"))
         base["rings.element_load_shapes"] = False
@@ -91,11 +92,11 @@ def ladder(case: DescribedCase, quick: bool = False) -> Ladder:
         return Ladder(tuple(knobs), base, reference, primary="max_load", primary_label="largest element load",
                       scene=text, estimates={})
     reference = {"rings.n_modes": 80, "rings.raceway_harmonics": 32, "rings.element_size_factor": SIZE_FACTORS[-1], **on}
-    combined = {"coarse": {"rings.n_modes": 10, "rings.raceway_harmonics": 4, "rings.element_size_factor": SIZE_FACTORS[0]},
-                "fine": {"rings.n_modes": 40, "rings.raceway_harmonics": 16}}
+    combined = {"cheap": {"rings.n_modes": 10, "rings.raceway_harmonics": 4},
+                "fine": {"rings.n_modes": 40, "rings.raceway_harmonics": 16, "rings.element_size_factor": SIZE_FACTORS[1]}}
     if shapes:
-        combined.update({"shapes-coarse": {**on, "rings.n_modes": 10, "rings.element_size_factor": SIZE_FACTORS[0]},
-                         "shapes-default": {**on, "rings.n_modes": 10}})
+        combined.update({"shapes-cheap": {**on, "rings.n_modes": 10},
+                         "shapes-fine": {**on, "rings.n_modes": 10, "rings.element_size_factor": SIZE_FACTORS[1]}})
     return Ladder(tuple(knobs), base, reference, combined, primary="max_load", primary_label="largest element load",
                   scene=text, estimates={})
 

@@ -68,6 +68,10 @@ class Rollers:
 class Bodies:
     """Rigid or modal rings and cages (the paper: 20 modes each).
 
+    ``auto`` (:mod:`.auto`): a cheap pass decides the rings (rigid, or modal with its modes) from
+    the ring's deflection under the rigid-ring roller loads against the rollers' Hertz approach,
+    and keeps the cages rigid, saying why in ``summary.json`` (``fidelity_decisions``).
+
     Modal rings: the inner ring floats on free–free modes (its frame carries the drive, the loads
     and gravity), the outer ring is held at ``bolts`` patches of its rear (bolt) face; their
     raceways are sampled on ``n_theta`` × ``n_across`` grids (roller slices interpolate between
@@ -76,8 +80,8 @@ class Bodies:
     the cages; ``modal_damping_ratio`` of critical on every mode.
     """
 
-    rings: Literal["rigid", "modal"] = "rigid"
-    cages: Literal["rigid", "modal"] = "rigid"
+    rings: Literal["rigid", "modal", "auto"] = "rigid"
+    cages: Literal["rigid", "modal", "auto"] = "rigid"
     n_modes: int = 20
     modal_damping_ratio: float = 0.02
     n_theta: int = 360
@@ -95,10 +99,16 @@ class Bodies:
             raise ValueError(f"n_theta ≥ 8, n_across ≥ 2 and bolts ≥ 3 are needed, got {self.n_theta}, "
                              f"{self.n_across}, {self.bolts}")
         _positive(ring_element_size_m=self.ring_element_size_m, cage_element_size_m=self.cage_element_size_m)
+        self._check_auto()
 
     @property
     def any_modal(self) -> bool:
         return "modal" in (self.rings, self.cages)
+
+    def _check_auto(self) -> None:
+        if self.rings == "auto" and self.cages == "modal":
+            raise ValueError('cages: with rings = "auto" the cages are "rigid" or "auto" (one n_modes serves rings '
+                             'and cages, and auto chooses it for the rings)')
 
 
 #: the paper's Adams IMPACT settings for every roller contact (Pang et al. 2024, §3): K = 1e5 N/mm^1.5,
@@ -232,6 +242,9 @@ class WindCase(CaseTables):
     study: Study = field(default_factory=Study)
 
     def __post_init__(self) -> None:
+        if "auto" in (self.bodies.rings, self.bodies.cages) and self.study.kind == "rigid-flexible":
+            raise ValueError('bodies.rings: the rigid-flexible study runs rigid and modal rings and cages itself; '
+                             '"auto" is for the other dynamic studies')
         if self.contact.preset == "adams" and self.analysis.step_factor != 1.0:
             raise ValueError("analysis.step_factor: the adams preset takes the automatic step of each piece of "
                              "the run (its soft contacts stiffen as the loads grow); leave step_factor at 1")
@@ -245,7 +258,7 @@ class WindCase(CaseTables):
         from ..mesh_budget import cached_profile, check_model_size
 
         b = self.bodies
-        if b.rings == "modal":
+        if b.rings in ("modal", "auto"):
             for profile in (cached_profile(three_row_inner_ring), cached_profile(three_row_outer_ring)):
                 check_model_size(profile, b.ring_element_size_m, b.n_modes, "bodies.ring_element_size_m",
                                  "bodies.n_modes")

@@ -204,11 +204,14 @@ def _fidelity_unused(case: WindCase) -> dict[str, str]:
     """The ``bodies`` keys of rigid rings or cages and the damping ratio the Adams preset replaces."""
     b, out = case.bodies, {}
     if case.study.kind != "rigid-flexible":  # (it runs both)
-        if b.rings != "modal":
+        if b.rings == "rigid":
             out.update({f"bodies.{k}": 'the rings are rigid here; set bodies.rings = "modal"' for k in _RING_KEYS})
         if b.cages != "modal":
-            out["bodies.cage_element_size_m"] = 'the cages are rigid here; set bodies.cages = "modal"'
-        if not b.any_modal:
+            out["bodies.cage_element_size_m"] = ('bodies.cages = "auto" keeps the cages rigid' if b.cages == "auto"
+                                                 else 'the cages are rigid here; set bodies.cages = "modal"')
+        if b.rings == "auto":
+            out["bodies.n_modes"] = 'bodies.rings = "auto" chooses it'
+        elif not b.any_modal:
             out.update({f"bodies.{k}": 'rings and cages are rigid here; set bodies.rings or bodies.cages = "modal"'
                         for k in ("n_modes", "modal_damping_ratio")})
     if case.contact.preset == "adams":
@@ -227,4 +230,11 @@ def uses_dynamics(case: WindCase) -> bool:
 
 
 def run_study(case: WindCase, out, progress=None) -> None:
+    if "auto" in (case.bodies.rings, case.bodies.cages):
+        from .auto import resolve
+
+        case, decisions = resolve(case)
+        out.summary["fidelity_decisions"] = decisions
+        for d in decisions:
+            out.note(f"fidelity auto: {d['choice']}, because {d['reason']}")
     STUDIES[case.study.kind].run(case, out, progress)
