@@ -28,6 +28,11 @@ FACE_AXES = {"bottom": (1, (0.0, 1.0)), "top": (1, (0.0, -1.0)),
              "inner": (0, (1.0, 0.0)), "outer": (0, (-1.0, 0.0))}
 
 
+def _check_face(name: str, face: str) -> None:
+    if face not in FACE_AXES:
+        raise ValueError(f"groove {name!r}: face must be one of {sorted(FACE_AXES)}, got {face!r}")
+
+
 def _point(centre, radius_m: float, angle_rad: float) -> tuple[float, float]:
     return (float(centre[0] + radius_m * math.cos(angle_rad)), float(centre[1] + radius_m * math.sin(angle_rad)))
 
@@ -52,8 +57,7 @@ class ArcGroove:
     name: str = "groove"
 
     def __post_init__(self) -> None:
-        if self.face not in FACE_AXES:
-            raise ValueError(f"groove {self.name!r}: face must be one of {sorted(FACE_AXES)}, got {self.face!r}")
+        _check_face(self.name, self.face)
         arcs = tuple((tuple(map(float, c)), float(r), float(a0), float(a1)) for c, r, a0, a1 in self.arcs)
         if not arcs:
             raise ValueError(f"groove {self.name!r}: needs at least one arc")
@@ -129,8 +133,7 @@ class VGroove:
     name: str = "groove"
 
     def __post_init__(self) -> None:
-        if self.face not in FACE_AXES:
-            raise ValueError(f"groove {self.name!r}: face must be one of {sorted(FACE_AXES)}, got {self.face!r}")
+        _check_face(self.name, self.face)
         pts = tuple(tuple(map(float, q)) for q in self.points)
         if len(pts) != 3 or any(len(q) != 2 for q in pts):
             raise ValueError(f"groove {self.name!r}: needs three (r, z) points (edge, apex, edge)")

@@ -17,9 +17,10 @@ from cases.bearing_solver import bearing_solver
 from cases.config import CaseError
 from cms_reduction.body import with_stiffness_scaled
 from fem_rings.profile import Line
-from mbd_core.quasistatic import RingLoad, solve_load_distribution
+from mbd_core.quasistatic import solve_load_distribution
 from mbd_core.quasistatic.flexible import FlexibleRing, build_flexible_model
 from mbd_core.quasistatic.flexible_solve import solve_flexible_load_distribution
+from tests.test_bearing_rings import check_equilibrium_and_condensed_stiffness
 
 D, L, DM, ALPHA = 0.02, 0.018, 0.5, 45.0
 
@@ -102,21 +103,7 @@ def test_v_groove_of_the_row(desc, ring, side):
 
 def test_crossed_rows_equilibrium_and_condensed_stiffness(desc, solver):
     assert solver.flexible and {r.name for r in solver.rings} == {"inner", "outer"}
-    load = desc.default_load
-    dist = solver.solve(load)
-    assert dist.equilibrium_error <= 1e-9  # acceptance of the bearing files: residual ≤ 1e-9 relative
-    K = dist.stiffness
-    assert np.max(np.abs(K - K.T)) <= 1e-9 * np.max(np.abs(K))
-    base = load.as_array()
-    scale = np.array([2.0, 2.0, 2.0, 0.2, 0.2])
-    C = np.zeros((5, 5))
-    for j in range(5):
-        h = np.zeros(5)
-        h[j] = scale[j]
-        qp = solver.solve(RingLoad(*(base + h))).displacement
-        qm = solver.solve(RingLoad(*(base - h))).displacement
-        C[:, j] = (qp - qm) / (2.0 * scale[j])
-    assert np.max(np.abs(K @ C - np.eye(5))) <= 1e-5  # acceptance: central difference to 1e-5
+    check_equilibrium_and_condensed_stiffness(desc, solver)
 
 
 def test_very_stiff_rings_give_the_rigid_ring_roller_loads(desc, solver):
