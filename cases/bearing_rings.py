@@ -385,8 +385,8 @@ def with_fidelity(models: dict[str, RingModel], overrides: dict, where: str = "r
             if text.startswith(f"{where}."):
                 raise CaseError(text) from None
             head, _, rest = text.partition(": ")
-            key = "element_size_factor" if head == "element_size_m" else head
-            raise CaseError(f"{where}.{key}: {rest} (ring {name})") from None
+            key = {"element_size_m": "element_size_factor", "raceway_spread_m": "element_load_shapes"}.get(head, head)
+            raise CaseError(f"{where}.{key}: {rest} (ring {name}: {head} in the bearing file)") from None
         out[name] = dataclasses.replace(m, keys=keys)
     return out
 
