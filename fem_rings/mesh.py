@@ -48,8 +48,8 @@ if TYPE_CHECKING:
     from .cages import CagePockets
     from .step_solid import StepSolid
 
-__all__ = ["MeshSpec", "RingMesh", "mesh_ring", "gmsh_session", "ELEMENT_TYPES", "MESH_VERSION", "GmshError",
-           "QuadMeshError", "TangledMeshError", "tangled_elements"]
+__all__ = ["MeshSpec", "RingMesh", "mesh_ring", "gmsh_session", "revolved_volumes", "ELEMENT_TYPES", "MESH_VERSION",
+           "GmshError", "QuadMeshError", "TangledMeshError", "tangled_elements"]
 
 log = logging.getLogger(__name__)
 
@@ -292,28 +292,33 @@ def _split_arcs(profile: Profile):
     return out
 
 
-def _add_section(kernel, profile: Profile):
-    """Add the section in the x–z plane (y = 0); return (surface tag, [(curve tag, segment)])."""
+def _add_section(kernel, profile: Profile, scale: float = 1.0):
+    """Add the section in the x–z plane (y = 0), lengths × ``scale``; return (surface tag, [(curve tag, segment)])."""
     segs = _split_arcs(profile)
-    pts = [kernel.addPoint(s.start[0], 0.0, s.start[1]) for s in segs]
+    pts = [kernel.addPoint(scale * s.start[0], 0.0, scale * s.start[1]) for s in segs]
     curves = []
     for i, s in enumerate(segs):
         a, b = pts[i], pts[(i + 1) % len(segs)]
         if isinstance(s, Line):
             c = kernel.addLine(a, b)
         else:
-            cen = kernel.addPoint(s.center[0], 0.0, s.center[1])
+            cen = kernel.addPoint(scale * s.center[0], 0.0, scale * s.center[1])
             c = kernel.addCircleArc(a, cen, b)
         curves.append((c, s))
     loop = kernel.addCurveLoop([c for c, _ in curves])
     return kernel.addPlaneSurface([loop]), curves
 
 
+def revolved_volumes(occ, profile: Profile, sector_rad: float = 2.0 * math.pi, scale: float = 1.0) -> list:
+    """The solid of revolution of ``profile`` about z in gmsh's OpenCASCADE kernel ``occ``, lengths
+    × ``scale`` (1e3: millimetres); its volume (dim, tag) pairs."""
+    surf, _ = _add_section(occ, profile, scale)
+    return [d for d in occ.revolve([(2, surf)], 0, 0, 0, 0, 0, 1, sector_rad) if d[0] == 3]
+
+
 def _build_tet(gmsh, profile: Profile, spec: MeshSpec, pockets) -> None:
     occ = gmsh.model.occ
-    surf, _ = _add_section(occ, profile)
-    out = occ.revolve([(2, surf)], 0, 0, 0, 0, 0, 1, spec.sector_rad)
-    vol = [d for d in out if d[0] == 3]
+    vol = revolved_volumes(occ, profile, spec.sector_rad)
     if pockets is not None:
         tools = _pocket_tools(occ, pockets, profile)
         vol, _ = occ.cut(vol, tools)

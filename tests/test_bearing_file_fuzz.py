@@ -169,12 +169,12 @@ def test_fuzz_ring_tables(tmp_path):
     """Mutated ``[rings.X]`` tables (sections, supports, STEP and DXF files) are refused in one line
     naming ``rings.X.key`` (or the file); a STEP ring is checked without meshing."""
     from tests.test_bearing_rings import SMALL
-    from tests.test_step_ring import TET, write_step
+    from tests.test_step_ring import TET, write_ring_step
 
     from fem_rings.mesh import gmsh_session
 
     bases = [tomllib.loads(TET), tomllib.loads(SMALL)]  # tet10 outer ring; hex27 rings
-    write_step(loads_bearing(TET).rings["outer"].profile, tmp_path / "outer.step")
+    write_ring_step(loads_bearing(TET).rings["outer"].profile, tmp_path / "outer.step")
     (tmp_path / "junk.step").write_text("ISO-10303-21;\nnot really\n")
     (tmp_path / "outer.dxf").write_text("0\nSECTION\n0\nEOF\n")
     with gmsh_session("writer") as gmsh:

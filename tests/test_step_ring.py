@@ -1,7 +1,8 @@
 """Rings of bearing description files meshed from STEP solids (``[rings.X] step_file``).
 
-The STEP files are written here with gmsh's OpenCASCADE kernel (in millimetres) from the box
-section that the description builds for the ring, optionally with axial bolt holes. References:
+The STEP files are written with :func:`fem_rings.step_solid.write_step` (gmsh's OpenCASCADE kernel,
+in millimetres) from the box section that the description builds for the ring, optionally with
+axial bolt holes. References:
 the same section revolved and meshed directly (an independent path through gmsh: a revolve, not a
 STEP import), OpenCASCADE's exact volume of the solid, and the area of the holes' walls (2π·r·h).
 """
@@ -16,8 +17,7 @@ from cases.bearing_file import loads_bearing
 from cases.bearing_solver import bearing_solver
 from cases.config import CaseError
 from fem_rings.mesh import MeshSpec, gmsh_session, mesh_ring, tangled_elements
-from fem_rings.profile import Line
-from fem_rings.step_solid import check_step_solid, step_solid
+from fem_rings.step_solid import check_step_solid, step_solid, write_step
 from tests.test_bearing_rings import SMALL
 
 TET = SMALL.replace("element_size_m = 0.03\nclamped_face", 'element_size_m = 0.03\nelement = "tet10"\nclamped_face')
@@ -25,34 +25,23 @@ TET = SMALL.replace("element_size_m = 0.03\nclamped_face", 'element_size_m = 0.0
 HOLES = (0.275, 0.006, 8)
 
 
-def write_step(profile, path, holes=None, cylinder_only=False):
+def write_ring_step(profile, path, holes=None, cylinder_only=False):
     """The solid of revolution of ``profile`` (or of its bounding box) in mm, less axial holes."""
     r0, r1, z0, z1 = (1e3 * v for v in profile.bounds_m)
-    with gmsh_session("writer") as gmsh:
-        occ = gmsh.model.occ
+
+    def modify(occ, vol):
         if cylinder_only:
+            occ.remove(vol, recursive=True)
             out = occ.addCylinder(0, 0, z0, 0, 0, z1 - z0, r1)
             vol, _ = occ.cut([(3, out)], [(3, occ.addCylinder(0, 0, z0, 0, 0, z1 - z0, r0))])
-        else:
-            segs = profile.segments
-            pts = [occ.addPoint(1e3 * s.start[0], 0, 1e3 * s.start[1]) for s in segs]
-            curves = []
-            for i, s in enumerate(segs):
-                a, b = pts[i], pts[(i + 1) % len(segs)]
-                if isinstance(s, Line):
-                    curves.append(occ.addLine(a, b))
-                else:
-                    curves.append(occ.addCircleArc(a, occ.addPoint(1e3 * s.center[0], 0, 1e3 * s.center[1]), b))
-            surface = occ.addPlaneSurface([occ.addCurveLoop(curves)])
-            vol = [d for d in occ.revolve([(2, surface)], 0, 0, 0, 0, 0, 1, 2 * math.pi) if d[0] == 3]
         if holes:
             r_h, radius, n = holes
             tools = [(3, occ.addCylinder(1e3 * r_h * math.cos(a), 1e3 * r_h * math.sin(a), z0 - 1, 0, 0, z1 - z0 + 2,
                                          1e3 * radius)) for a in (2 * math.pi * (k + 0.5) / n for k in range(n))]
-            occ.cut(vol, tools)
-        occ.synchronize()
-        gmsh.write(str(path))
-    return path
+            vol, _ = occ.cut(vol, tools)
+        return vol
+
+    return write_step(path, profile, modify)
 
 
 def _with_outer(text, line):
@@ -63,9 +52,9 @@ def _with_outer(text, line):
 def files(tmp_path_factory):
     folder = tmp_path_factory.mktemp("step")
     outer = loads_bearing(TET).rings["outer"].profile
-    return folder, {"plain": write_step(outer, folder / "outer.step"),
-                    "holes": write_step(outer, folder / "outer_holes.step", HOLES),
-                    "no_groove": write_step(outer, folder / "no_groove.step", cylinder_only=True)}
+    return folder, {"plain": write_ring_step(outer, folder / "outer.step"),
+                    "holes": write_ring_step(outer, folder / "outer_holes.step", HOLES),
+                    "no_groove": write_ring_step(outer, folder / "no_groove.step", cylinder_only=True)}
 
 
 def _max_load(desc):

@@ -43,8 +43,8 @@ def test_not_rings_say_why(tmp_path):
                                        lambda occ: occ.addCylinder(0, 0, Z0, 0, 0, H, R_OUT)))
     assert not full.is_ring_about_z and "lies inside volume" in full.not_ring_reason
     off = check_step_solid(write_step(tmp_path / "off.step", lambda occ: ring(occ, x0=5.0)))
-    # reference: the ring moved 5 mm along x has its box centred 5 mm = 0.005 m off the axis
-    assert not off.is_ring_about_z and "centred 0.005 m off the z axis" in off.not_ring_reason
+    # reference: the ring moved 5 mm along x has its centre of mass 5 mm = 0.005 m off the axis
+    assert not off.is_ring_about_z and "centre of mass lies 0.005 m off the z axis" in off.not_ring_reason
 
 
 def test_errors_name_the_file(tmp_path):
