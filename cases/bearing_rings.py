@@ -51,7 +51,7 @@ from .mesh_budget import check_model_size
 from .ring_sections import box_section, match_raceways, raceway_places
 
 __all__ = ["RingKeys", "BoltKeys", "RingModel", "ring_models", "ring_profile", "reduce_ring", "flexible_rings",
-           "ring_part_of", "with_fidelity", "RING_NAMES"]
+           "ring_part_of", "ring_mesh_spec", "with_fidelity", "RING_NAMES"]
 
 RING_NAMES = ("inner", "outer")
 #: Raceway samples round a ring: at least this many, and at least four per rolling element.
@@ -342,7 +342,7 @@ def ring_models(bearing: Bearing, moving_ring: str, tables: dict, materials: dic
         solid = None if keys.step_file is None else _step_solid(keys, profile, places, where, base_dir)
         model = RingModel(ring, side, profile, raceways, places, keys, materials[keys.material], solid)
         try:  # the mesh can give the modes and fits in memory (estimated before any meshing)
-            check_model_size(profile, _mesh_spec(model).size_m, keys.n_modes, f"{where}.element_size_m",
+            check_model_size(profile, ring_mesh_spec(model).size_m, keys.n_modes, f"{where}.element_size_m",
                              f"{where}.n_modes", n_rigid=0)
         except ValueError as exc:
             raise CaseError(str(exc)) from None
@@ -356,7 +356,8 @@ def _element_size_m(profile: Profile, keys: RingKeys) -> float:
     return keys.element_size_m or min(r1 - r0, z1 - z0) / 3.0
 
 
-def _mesh_spec(m: RingModel) -> MeshSpec:
+def ring_mesh_spec(m: RingModel) -> MeshSpec:
+    """The mesh a ring model is reduced on (its element, size and, for a STEP ring, its solid)."""
     return MeshSpec(_element_size_m(m.profile, m.keys), m.keys.mesh_element, solid=m.solid)
 
 
@@ -455,7 +456,7 @@ def reduce_ring(m: RingModel, bearing: Bearing):
     raceways = tuple(_raceway_spec(m, rows[name], n_theta) for name in m.places)
     spec = ReductionSpec(n_modes=m.keys.n_modes, interfaces=(_support(m),), raceways=raceways)
     try:
-        return reduced_body(m.profile, _mesh_spec(m), m.material, spec, name=f"{bearing.name}: {m.name} ring")
+        return reduced_body(m.profile, ring_mesh_spec(m), m.material, spec, name=f"{bearing.name}: {m.name} ring")
     except PatchError as exc:
         raise CaseError(f"rings.{m.name}.raceway_spread_m: {exc}; give a smaller patch (with element_load_shapes "
                         f"its default is {ELEMENT_PATCH_SHARE:g} × the element diameter)") from None
@@ -469,7 +470,7 @@ def reduce_ring(m: RingModel, bearing: Bearing):
     except InterfaceError as exc:
         key = "bolts.washer_diameter_m" if m.keys.bolts is not None else "clamped_face"
         raise CaseError(f"rings.{m.name}.{key}: the support cannot be built on this mesh ({exc}); change the washer "
-                        f"or element_size_m (now {_mesh_spec(m).size_m * 1e3:.4g} mm)") from None
+                        f"or element_size_m (now {ring_mesh_spec(m).size_m * 1e3:.4g} mm)") from None
 
 
 def flexible_rings(models: dict[str, RingModel], bearing: Bearing) -> tuple[FlexibleRing, ...]:
@@ -490,5 +491,5 @@ def ring_part_of(desc, ring: str):
         raise ValueError(f"--ring {ring}: the description file gives no [rings.{ring}] table (rings given: {given})")
     m = desc.rings[ring]
     what = f"STEP solid {Path(m.solid.path).name}" if m.solid is not None else f"{m.keys.section} section"
-    return RingPart(f"{desc.name}: {ring} ring", lambda: (m.profile, None), m.material, _mesh_spec(m).size_m,
+    return RingPart(f"{desc.name}: {ring} ring", lambda: (m.profile, None), m.material, ring_mesh_spec(m).size_m,
                     m.keys.mesh_element, f"{ring} ring of {desc.name} ({what})", m.solid)

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from cases.bearing_file import read_bearing_file
+from cases.bearing_rings import ring_mesh_spec
 from cases.bearing_solver import bearing_solver
 from fem_rings.model import build_model
 from fem_rings.step_solid import check_step_solid, write_step
@@ -127,9 +128,7 @@ for name, desc in (("plain", plain), ("geared", geared)):
           f"equilibrium residual {results[name].equilibrium_error:.1e}")
 
 m = geared.rings["outer"]
-from cases.bearing_rings import _mesh_spec  # noqa: E402  (the mesh the solver used)
-
-ring = build_model(m.profile, _mesh_spec(m), m.material)
+ring = build_model(m.profile, ring_mesh_spec(m), m.material)  # the mesh the solver used (cached)
 ones = np.zeros(ring.n_dofs)
 ones[0::3] = 1.0
 mass_kg = float(ones @ ring.M @ ones)

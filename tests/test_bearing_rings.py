@@ -161,12 +161,12 @@ def test_very_stiff_modal_rings_give_the_rigid_ring_loads(desc, solver):
 
 def test_bolt_patches_are_washer_discs(desc):
     """Independent: the top-face nodes within the washer radius of a bolt point, in Cartesian x, y."""
-    from cases.bearing_rings import _mesh_spec
+    from cases.bearing_rings import ring_mesh_spec
     from fem_rings.model import build_model
     from fem_rings.nodesets import patch_nodes
 
     m = desc.rings["inner"]
-    ring = build_model(m.profile, _mesh_spec(m), m.material).ring
+    ring = build_model(m.profile, ring_mesh_spec(m), m.material).ring
     bolts = m.keys.bolts
     radius = 0.25 * math.pi * bolts.pitch_diameter_m / bolts.count  # default washer: half the bolt spacing
     theta = 360.0 * 0.5 / bolts.count

@@ -34,11 +34,12 @@ import numpy as np
 from cms_reduction.pipeline import RacewaySpec, ReductionSpec, reduced_body
 from fem_rings import MeshSpec
 from fem_rings.sections import three_row_inner_ring
-from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
+from mbd_core.multibody.bearings import LINE_EXPONENT
+from mbd_core.quasistatic import Bearing, solve_load_distribution
 
 from ..parts import STEEL_42CRMO
-from .case import INNER_RING_MASS_KG, WindCase
-from .scene import G_M_S2, load_history, rows
+from .case import WindCase
+from .scene import inner_ring_load, load_history, rows
 
 __all__ = ["AUTO_TOLERANCE", "MODAL_N_MODES", "resolve"]
 
@@ -52,8 +53,6 @@ MODAL_N_MODES = 20
 #: raceway of each row on the inner ring, and its contact normal in the (r, z) section
 _RACEWAY = {"radial": ("radial_raceway", (1.0, 0.0)), "front thrust": ("front_thrust_raceway", (0.0, 1.0)),
             "rear thrust": ("rear_thrust_raceway", (0.0, 1.0))}
-#: exponent of the line contact law Q ∝ δ^e (ISO/TS 16281)
-LINE_EXPONENT = 10.0 / 9.0
 
 
 def _rigid_pass(case: WindCase):
@@ -62,8 +61,7 @@ def _rigid_pass(case: WindCase):
     _, loads = load_history(case)
     best = None
     for f in np.unique(loads, axis=0):
-        res = solve_load_distribution(bearing, RingLoad(Fx_N=f[0], Fy_N=f[1] - INNER_RING_MASS_KG * G_M_S2,
-                                                        Fz_N=f[2], Mx_Nm=f[3], My_Nm=f[4]))
+        res = solve_load_distribution(bearing, inner_ring_load(f))
         row = max(res.rows, key=lambda r: float(r.load_N.max()))
         if best is None or row.load_N.max() > best.load_N.max():
             best = row

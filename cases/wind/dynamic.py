@@ -25,10 +25,10 @@ from cases.integrate import integrate
 from cases.results import RPM_PER_RAD_S, plural
 from mbd_core.multibody import largest_load_step_error, stable_timestep
 from mbd_core.multibody.step_error import richardson
-from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
+from mbd_core.quasistatic import Bearing, solve_load_distribution
 
 from .case import INNER_RING_MASS_KG, WindCase
-from .scene import G_M_S2, WindScene, build_scene, load_history, rolling_speeds, rows
+from .scene import G_M_S2, WindScene, build_scene, inner_ring_load, load_history, rolling_speeds, rows
 
 __all__ = ["LOADED_SHARE", "run", "settled", "step_error", "slice_error", "roller_speeds", "cage_speeds",
            "ring_reaction", "cage_forces", "applied_load"]
@@ -68,8 +68,7 @@ def slice_error(case: WindCase) -> dict | None:
 
     def largest(k: int, load) -> float:
         bearing = Bearing("three-row roller", rows(case.with_(rollers={"n_slices": k * n})))
-        res = solve_load_distribution(bearing, RingLoad(Fx_N=load[0], Fy_N=load[1] - INNER_RING_MASS_KG * G_M_S2,
-                                                        Fz_N=load[2], Mx_Nm=load[3], My_Nm=load[4]))
+        res = solve_load_distribution(bearing, inner_ring_load(load))
         return max(float(r.load_N.max()) for r in res.rows)
 
     worst = max(np.unique(loads, axis=0), key=lambda f: largest(1, f))

@@ -43,7 +43,7 @@ from .case import (ADAMS_CONTACT, INNER_RING_MASS_KG, OUTER_RING_MASS_KG, RADIAL
                    WindCase)
 from .spectrum import load_cases, read_csv, sequence
 
-__all__ = ["ALUMINIUM_BRONZE", "G_M_S2", "WindScene", "rows", "load_history", "build_scene"]
+__all__ = ["ALUMINIUM_BRONZE", "G_M_S2", "WindScene", "rows", "load_history", "inner_ring_load", "build_scene"]
 
 #: aluminium bronze ZCuAl10Fe3Mn2 (paper Table 2: E = 110 GPa, ν = 0.32; density of the alloy 7600 kg/m³)
 ALUMINIUM_BRONZE = ElasticMaterial("aluminium bronze", 110e9, 0.32, 7600.0)
@@ -117,14 +117,18 @@ def _damping(case: WindCase, row) -> float:
     return case.contact.damping_ratio * 2.0 * math.sqrt(k_lin * m) / row.n_slices
 
 
+def inner_ring_load(f: np.ndarray) -> RingLoad:
+    """The load on the inner ring for the quasi-static solver: the load case ``f`` (Fx, Fy, Fz, Mx,
+    My at its centre, N and N·m) and the ring's weight (−y)."""
+    return RingLoad(Fx_N=f[0], Fy_N=f[1] - INNER_RING_MASS_KG * G_M_S2, Fz_N=f[2], Mx_Nm=f[3], My_Nm=f[4])
+
+
 def initial_displacement(case: WindCase, row_defs, load0: np.ndarray) -> np.ndarray:
     """(x, y, z, θx, θy) of the inner ring at the quasi-static equilibrium under ``load0`` and its weight."""
     from mbd_core.quasistatic import Bearing
 
     bearing = Bearing("three-row roller", tuple(row_defs))
-    load = RingLoad(Fx_N=load0[0], Fy_N=load0[1] - INNER_RING_MASS_KG * G_M_S2, Fz_N=load0[2],
-                    Mx_Nm=load0[3], My_Nm=load0[4])
-    return np.asarray(solve_load_distribution(bearing, load).displacement, float)
+    return np.asarray(solve_load_distribution(bearing, inner_ring_load(load0)).displacement, float)
 
 
 def build_scene(case: WindCase) -> WindScene:

@@ -10,13 +10,13 @@ import time
 
 import numpy as np
 
-from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
+from mbd_core.quasistatic import Bearing, solve_load_distribution
 
 from ..overrides import StudyEntry, unused_keys
 from . import dynamic, plots
 from .bodies import modal_bodies, stress_maps
-from .case import INNER_RING_MASS_KG, WindCase
-from .scene import G_M_S2, load_history, rows
+from .case import WindCase
+from .scene import inner_ring_load, load_history, rows
 from .spectrum import load_cases, write_csv
 
 __all__ = ["STUDIES", "case_unused_keys", "run_study"]
@@ -43,8 +43,7 @@ def study_static(case: WindCase, out, progress=None) -> None:
     worst = 0.0
     for k in (progress(range(len(loads)), "load cases") if progress else range(len(loads))):
         f = loads[k]
-        res = solve_load_distribution(bearing, RingLoad(Fx_N=f[0], Fy_N=f[1] - INNER_RING_MASS_KG * G_M_S2,
-                                                        Fz_N=f[2], Mx_Nm=f[3], My_Nm=f[4]))
+        res = solve_load_distribution(bearing, inner_ring_load(f))
         worst = max(worst, float(res.equilibrium_error))
         out.warn(res.warnings, f"load case {k + 1}")
         for r in res.rows:
