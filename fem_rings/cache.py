@@ -32,7 +32,7 @@ import numpy as np
 
 from foundation.npzfile import NPZ_ERRORS, read_npz
 
-__all__ = ["atomic_path", "cache_dir", "clean_stale_parts", "content_hash", "input_hash", "load_arrays",
+__all__ = ["atomic_path", "cache_dir", "clean_stale_parts", "content_hash", "file_digest", "input_hash", "load_arrays",
            "process_alive", "save_arrays"]
 
 log = logging.getLogger(__name__)
@@ -90,6 +90,12 @@ def input_hash(kind: str, *inputs) -> str:
 
 def _path(kind: str, key: str) -> Path:
     return cache_dir() / kind / f"{key}.npz"
+
+
+def file_digest(path) -> str:
+    """SHA-256 (hex) of a file's bytes (OSError when it cannot be read): what a cache key holds for
+    an input file, so that an edited file is seen and a moved one is not."""
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 
 def content_hash(arrays: dict) -> str:

@@ -26,13 +26,13 @@ solid is refused early.
 
 from __future__ import annotations
 
-import hashlib
 import logging
 import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .cache import file_digest
 from .mesh import gmsh_session, revolved_volumes
 
 __all__ = ["StepInfo", "StepSolid", "check_step_solid", "step_solid", "write_step"]
@@ -96,7 +96,7 @@ class StepSolid:
 
 def _digest(path) -> str:
     try:
-        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+        return file_digest(path)
     except OSError as exc:
         raise ValueError(f"{path}: cannot be read ({exc.strerror})") from None
 

@@ -25,12 +25,12 @@ most demanding one; the file's only load when it has one), solved quasi-statical
 from __future__ import annotations
 
 import dataclasses
-import hashlib
 import tomllib
 from pathlib import Path
 
 import numpy as np
 
+from fem_rings.cache import file_digest
 from foundation.materials import BEARING_STEEL
 from mbd_core.contact.subsurface import subsurface_shear
 from mbd_core.quasistatic import solve_load_distribution
@@ -180,7 +180,7 @@ def rung_overrides(case: DescribedCase, settings: dict) -> dict:
 
 def _digest(path: Path) -> str:
     try:
-        return hashlib.sha256(path.read_bytes()).hexdigest()
+        return file_digest(path)
     except OSError:
         return "unreadable"
 
