@@ -112,6 +112,8 @@ class BearingDescription:
     rings : dict of str → cases.bearing_rings.RingModel
         The rings given a ``[rings.X]`` table (they bend), validated but not meshed yet; the
         others are rigid.
+    separators : dict of row name → cases.row_keys.SeparatorKeys
+        The rows given a ``[rows.separator]`` table (cage, spacer balls, full complement).
     """
 
     name: str
@@ -122,6 +124,7 @@ class BearingDescription:
     source: str = "<string>"
     case_depths: Mapping[str, CaseDepth] = field(default_factory=dict)
     rings: Mapping = field(default_factory=dict)
+    separators: Mapping = field(default_factory=dict)
 
     @property
     def default_load(self) -> RingLoad:
@@ -156,9 +159,9 @@ def _row_tables(data) -> list:
     return data
 
 
-def _rows(data, ctx_of) -> tuple[tuple, dict[str, CaseDepth]]:
-    """All rows of the ``[[rows]]`` tables, in file order, and the case depths by row name."""
-    rows, first_use, case_depths = [], {}, {}
+def _rows(data, ctx_of) -> tuple[tuple, dict[str, CaseDepth], dict]:
+    """All rows of the ``[[rows]]`` tables, in file order, the case depths and the separators by row name."""
+    rows, first_use, case_depths, separators = [], {}, {}, {}
     for i, table in enumerate(_row_tables(data)):
         where = f"rows[{i}]"
         if not isinstance(table, Mapping):
@@ -177,7 +180,9 @@ def _rows(data, ctx_of) -> tuple[tuple, dict[str, CaseDepth]]:
             rows.append(row)
             if keys.case_depth_m is not None:
                 case_depths[row.name] = CaseDepth(keys.case_depth_m, keys.core_shear_fatigue_Pa)
-    return tuple(rows), case_depths
+            if keys.separator is not None:
+                separators[row.name] = keys.separator
+    return tuple(rows), case_depths, separators
 
 
 def _load(data, base_dir: Path | None) -> tuple[tuple[RingLoad, ...], tuple[float, ...] | None]:
@@ -207,7 +212,8 @@ def bearing_from_mapping(data: Mapping, base_dir: Path | None = None, source: st
         raise CaseError("bearing: missing key (a [bearing] table with at least name)")
     head = from_mapping(BearingKeys, data["bearing"], "bearing")
     materials = _materials(data.get("materials"))
-    rows, case_depths = _rows(data.get("rows"), lambda where: RowContext(head.moving_ring, materials, where))
+    rows, case_depths, separators = _rows(data.get("rows"),
+                                          lambda where: RowContext(head.moving_ring, materials, where))
     loads, shares = _load(data.get("load"), base_dir)
     try:
         bearing = Bearing(head.name, rows)
@@ -217,7 +223,8 @@ def bearing_from_mapping(data: Mapping, base_dir: Path | None = None, source: st
     if not isinstance(rings, Mapping):
         raise CaseError(f"rings: expected [rings.inner] and/or [rings.outer] tables, got {rings!r:.60}")
     rings = ring_models(bearing, head.moving_ring, rings, materials, base_dir)
-    return BearingDescription(head.name, head.description, bearing, loads, shares, source, case_depths, rings)
+    return BearingDescription(head.name, head.description, bearing, loads, shares, source, case_depths, rings,
+                              separators)
 
 
 def loads_bearing(text: str, source: str = "<string>", base_dir: Path | None = None) -> BearingDescription:

@@ -9,7 +9,7 @@ from typing import Literal
 
 from mbd_core.quasistatic import RollerRow
 
-from .row_keys import Direction, RowContext, _CaseDepthKeys, _check_fits, _sign
+from .row_keys import Direction, RowContext, SeparatorKeys, _CaseDepthKeys, _check_fits, _sign
 
 __all__ = ["RadialRollerKeys", "ThrustRollerKeys", "CrossedRollerKeys"]
 
@@ -37,6 +37,8 @@ class _RollerKeys(_CaseDepthKeys):
     stiffness_law : {"iso16281", "palmgren"}
     roller_material, ring_material : str
         Material names.
+    separator : SeparatorKeys or None
+        ``[rows.separator]``: a cage or full complement (the rotation study's).
     """
 
     name: str
@@ -53,6 +55,7 @@ class _RollerKeys(_CaseDepthKeys):
     stiffness_law: Literal["iso16281", "palmgren"] = "iso16281"
     roller_material: str = "bearing_steel"
     ring_material: str = "bearing_steel"
+    separator: SeparatorKeys | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -76,6 +79,8 @@ class _RollerKeys(_CaseDepthKeys):
 
 def _roller_common(keys: _RollerKeys, ctx: RowContext) -> dict:
     _check_fits(ctx.where, keys.count, keys.roller_diameter_m, keys.pitch_diameter_m, "rollers")
+    if keys.separator is not None:
+        keys.separator.check_row(ctx.where, keys.count, keys.roller_diameter_m, keys.pitch_diameter_m, "rollers")
     return dict(name=keys.name, n_rollers=keys.count, roller_diameter_m=keys.roller_diameter_m,
                 roller_length_m=keys.roller_length_m, pitch_diameter_m=keys.pitch_diameter_m,
                 axial_position_m=keys.axial_position_m, n_slices=keys.n_slices,

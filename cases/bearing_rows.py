@@ -30,8 +30,8 @@ from mbd_core.quasistatic import BallRow, FourPointRow
 from .bearing_roller_rows import (CrossedRollerKeys, RadialRollerKeys, ThrustRollerKeys, _crossed_roller,
                                   _radial_roller, _thrust_roller)
 from .config import CaseError
-from .row_keys import (CORE_STRENGTH_KEYS, MAX_ELEMENTS, Direction, RowContext, _CaseDepthKeys, _check_fits,
-                       _sign)
+from .row_keys import (CORE_STRENGTH_KEYS, MAX_ELEMENTS, Direction, RowContext, SeparatorKeys, _CaseDepthKeys,
+                       _check_fits, _sign)
 
 __all__ = ["ROW_TYPES", "RowType", "RowContext", "build_rows", "MAX_ELEMENTS", "CORE_STRENGTH_KEYS"]
 
@@ -60,6 +60,8 @@ class _BallKeys(_CaseDepthKeys):
         Azimuth of ball 1, deg.
     ball_material, ring_material : str
         Material names (``[materials.NAME]`` or ``"bearing_steel"``).
+    separator : SeparatorKeys or None
+        ``[rows.separator]``: cage, spacer balls or full complement (the rotation study's).
     """
 
     name: str
@@ -73,6 +75,7 @@ class _BallKeys(_CaseDepthKeys):
     first_azimuth_deg: float = 0.0
     ball_material: str = "bearing_steel"
     ring_material: str = "bearing_steel"
+    separator: SeparatorKeys | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -103,6 +106,8 @@ def _conformities(keys: _BallKeys, ctx: RowContext) -> dict:
 
 def _ball_common(keys: _BallKeys, ctx: RowContext) -> dict:
     _check_fits(ctx.where, keys.count, keys.ball_diameter_m, keys.pitch_diameter_m, "balls")
+    if keys.separator is not None:
+        keys.separator.check_row(ctx.where, keys.count, keys.ball_diameter_m, keys.pitch_diameter_m, "balls")
     return dict(name=keys.name, n_balls=keys.count, ball_diameter_m=keys.ball_diameter_m,
                 pitch_diameter_m=keys.pitch_diameter_m, diametral_clearance_m=keys.diametral_clearance_m,
                 axial_position_m=keys.axial_position_m, first_azimuth_rad=math.radians(keys.first_azimuth_deg),

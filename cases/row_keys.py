@@ -13,7 +13,7 @@ from mbd_core.bearing.case_depth import core_shear_fatigue_strength_Pa
 
 from .config import CaseError
 
-__all__ = ["MAX_ELEMENTS", "CORE_STRENGTH_KEYS", "RowContext", "Direction"]
+__all__ = ["MAX_ELEMENTS", "CORE_STRENGTH_KEYS", "RowContext", "Direction", "SeparatorKeys", "DEFAULT_POCKET_CLEARANCE"]
 
 Direction = Literal["+z", "-z"]
 #: Most rolling elements in one row (a guard against a mistyped count, before any array is built).
@@ -51,6 +51,76 @@ def _check_fits(where: str, count: int, diameter_m: float, pitch_diameter_m: flo
     if not count * diameter_m <= math.pi * pitch_diameter_m * (1 + 1e-9):  # the message only then: π·d_m may overflow
         raise CaseError(f"{where}.count: {count} {what} of {diameter_m:g} m do not fit on the pitch circle of "
                         f"{pitch_diameter_m:g} m (at most {int(math.pi * pitch_diameter_m / diameter_m)})")
+
+
+#: a cage pocket's circumferential play when the file gives none, as a share of the element diameter
+#: (ball and roller cages run with some 1–3 % of D; the rotation study reports the value it took)
+DEFAULT_POCKET_CLEARANCE = 0.02
+
+
+@dataclass(frozen=True)
+class SeparatorKeys:
+    """``[rows.separator]``: what keeps a row's elements apart. The dynamic ``rotation`` study of a
+    described bearing (:mod:`cases.described.rotation`) builds it; a quasi-static load distribution
+    holds every element at its azimuth and does not depend on it.
+
+    Attributes
+    ----------
+    kind : {"cage", "spacer_balls", "full_complement"}
+        A cage with a pocket per element; a spacer ball between each pair of neighbouring balls
+        (ball rows); or neither: neighbouring balls touch each other.
+    mass_kg : float or None
+        The cage's mass, kg (``cage``: required).
+    pocket_clearance_m : float or None
+        Circumferential play of an element in its pocket, m (``cage``; default
+        ``DEFAULT_POCKET_CLEARANCE`` × the element diameter).
+    spacer_diameter_m : float or None
+        Diameter of the spacer balls, m (``spacer_balls``: required; below the ball diameter, so
+        that they carry no load).
+    """
+
+    kind: Literal["cage", "spacer_balls", "full_complement"]
+    mass_kg: float | None = None
+    pocket_clearance_m: float | None = None
+    spacer_diameter_m: float | None = None
+
+    def __post_init__(self) -> None:
+        used = {"cage": ("mass_kg", "pocket_clearance_m"), "spacer_balls": ("spacer_diameter_m",),
+                "full_complement": ()}[self.kind]
+        for key in ("mass_kg", "pocket_clearance_m", "spacer_diameter_m"):
+            value = getattr(self, key)
+            if value is None:
+                continue
+            if key not in used:
+                raise ValueError(f"{key}: not used with kind = {self.kind!r}")
+            if not (value >= 0.0 if key == "pocket_clearance_m" else value > 0.0):
+                raise ValueError(f"{key}: must be {'≥' if key == 'pocket_clearance_m' else '>'} 0, got {value!r}")
+        if self.kind == "cage" and self.mass_kg is None:
+            raise ValueError("mass_kg: missing key (the cage's mass, kg)")
+        if self.kind == "spacer_balls" and self.spacer_diameter_m is None:
+            raise ValueError("spacer_diameter_m: missing key (the spacer balls' diameter, m)")
+
+    def check_row(self, where: str, count: int, diameter_m: float, pitch_diameter_m: float, what: str) -> None:
+        """The separator fits the row: spacer balls smaller than the balls and fitting between them,
+        a pocket play below the element's radius."""
+        at = f"{where}.separator"
+        if self.kind == "spacer_balls":
+            if what != "balls":
+                raise CaseError(f"{at}.kind: spacer balls separate balls; a roller row takes 'cage' or 'full_complement'")
+            d = self.spacer_diameter_m
+            _check(f"{at}.spacer_diameter_m", d < diameter_m,
+                   f"must be below the ball diameter ({diameter_m:g} m; a spacer ball carries no load), got {d!r}")
+            _check(f"{at}.spacer_diameter_m", count * (diameter_m + d) <= math.pi * pitch_diameter_m * (1 + 1e-9),
+                   f"{count} balls of {diameter_m:g} m and {count} spacer balls of {d:g} m do not fit on the "
+                   f"pitch circle of {pitch_diameter_m:g} m")
+        if self.kind == "cage" and self.pocket_clearance_m is not None:
+            _check(f"{at}.pocket_clearance_m", self.pocket_clearance_m < 0.5 * diameter_m,
+                   f"must be below half the element diameter ({0.5 * diameter_m:g} m), got {self.pocket_clearance_m!r}")
+
+    def pocket_clearance(self, diameter_m: float) -> float:
+        """The pocket play, m (the file's, or the default share of ``diameter_m``)."""
+        given = self.pocket_clearance_m
+        return DEFAULT_POCKET_CLEARANCE * diameter_m if given is None else given
 
 
 # --- keys every row has --------------------------------------------------------------------------

@@ -7,7 +7,10 @@ whether its ``[rings.X]`` tables make rings modal, the rating-life conditions an
   and contact loads, static safety s0 per row (ISO 76), the stiffness matrix, L10 when the life
   conditions are given — the outputs of ``flexbearing loaddist`` in ``loaddist/``;
 - ``limiting-curve``: the same and the limiting load curve at ``study.s0`` (or
-  ``study.p0_limit_MPa``), with modal and rigid rings where the file makes rings modal.
+  ``study.p0_limit_MPa``), with modal and rigid rings where the file makes rings modal;
+- ``rotation``: a dynamic run: the moving ring turning at ``rotation.speed_rpm`` under the file's
+  load, the balls with their cage, spacer balls or as a full complement (each row's
+  ``[rows.separator]``), against the quasi-static load distribution (:mod:`.rotation`).
 
 ``[rings]`` sets the fidelity of the file's modal rings for this run, over every ``[rings.X]`` table
 of the file (modes, raceway load shapes, element size as a factor of each ring's, element load
@@ -31,7 +34,7 @@ from typing import ClassVar, Literal
 
 from ..config import CaseTables
 
-__all__ = ["Source", "RingFidelity", "Life", "Study", "DescribedCase"]
+__all__ = ["Source", "RingFidelity", "Life", "Study", "Rotation", "DescribedCase"]
 
 
 @dataclass(frozen=True)
@@ -97,7 +100,7 @@ class Study:
     """``[study]``: ``kind``; the limiting load curve's criterion: ``s0`` (ISO 76) or ``p0_limit_MPa``
     (0: use s0)."""
 
-    kind: Literal["load-distribution", "limiting-curve"] = "load-distribution"
+    kind: Literal["load-distribution", "limiting-curve", "rotation"] = "load-distribution"
     s0: float = 1.0
     p0_limit_MPa: float = 0.0
 
@@ -106,6 +109,84 @@ class Study:
             raise ValueError(f"s0: must be > 0, got {self.s0!r}")
         if not (math.isfinite(self.p0_limit_MPa) and self.p0_limit_MPa >= 0.0):
             raise ValueError(f"p0_limit_MPa: must be ≥ 0 (0: the ISO 76 limit over s0), got {self.p0_limit_MPa!r}")
+
+
+@dataclass(frozen=True)
+class Rotation:
+    """``[rotation]``: the dynamic study (rigid rings, explicit integration).
+
+    Attributes
+    ----------
+    speed_rpm : float
+        Speed of the moving ring about the bearing axis, rev/min (> 0).
+    moving_ring_mass_kg : float or None
+        Mass of the moving ring and of what turns with it, kg (required by the study); its inertia
+        is that of a thin ring on the largest pitch circle.
+    duration_s : float
+        Simulated time, s.
+    timestep_s : float or None
+        Explicit step, s (None: the automatic step from the stiffest contact).
+    record_every : int
+        Steps between recorded samples.
+    damping_ratio : float
+        Normal damping of every element contact, as a share of the critical damping of one element
+        on its linearised Hertz stiffness at the row's largest quasi-static load.
+    mu_static, mu_dynamic, v_static_m_s, v_dynamic_m_s : float
+        Friction at the raceways, between elements and in the pockets (regularised Coulomb:
+        μ_static at v_static, μ_dynamic from v_dynamic on). The defaults stand for the traction
+        of lubricated contacts (some 0.02–0.06); the transition speeds bound the explicit step.
+    friction : bool
+        False: frictionless contacts (the elements then keep their start speeds).
+    gravity_m_s2 : float
+        Gravity along −z on the rolling elements, spacers and cages (9.81 for a bearing with a
+        vertical axis: spacer balls then rest in the lower groove); the moving ring's own weight
+        is part of the file's load and is not added again.
+    """
+
+    speed_rpm: float = 60.0
+    moving_ring_mass_kg: float | None = None
+    duration_s: float = 0.1
+    timestep_s: float | None = None
+    record_every: int = 50
+    damping_ratio: float = 0.2
+    mu_static: float = 0.05
+    mu_dynamic: float = 0.04
+    v_static_m_s: float = 0.05
+    v_dynamic_m_s: float = 0.1
+    friction: bool = True
+    gravity_m_s2: float = 0.0
+
+    def __post_init__(self) -> None:
+        for key in ("speed_rpm", "duration_s"):
+            if not (math.isfinite(getattr(self, key)) and getattr(self, key) > 0.0):
+                raise ValueError(f"{key}: must be > 0, got {getattr(self, key)!r}")
+        for key in ("moving_ring_mass_kg", "timestep_s"):
+            value = getattr(self, key)
+            if value is not None and not (math.isfinite(value) and value > 0.0):
+                raise ValueError(f"{key}: must be > 0, got {value!r}")
+        if self.timestep_s is not None and self.timestep_s > self.duration_s:
+            raise ValueError(f"timestep_s: must not exceed duration_s ({self.duration_s!r}), got {self.timestep_s!r}")
+        if not 1 <= self.record_every <= 1_000_000:
+            raise ValueError(f"record_every: must lie in 1 … 1e6, got {self.record_every!r}")
+        if not 0.0 <= self.damping_ratio <= 2.0:
+            raise ValueError(f"damping_ratio: must lie in [0, 2], got {self.damping_ratio!r}")
+        if not 0.0 <= self.gravity_m_s2 <= 100.0:
+            raise ValueError(f"gravity_m_s2: must lie in [0, 100], got {self.gravity_m_s2!r}")
+        self.friction_law()
+
+    def friction_law(self):
+        """The contacts' :class:`~mbd_core.contact.friction.Coulomb` law (None: frictionless)."""
+        from mbd_core.contact.friction import Coulomb
+
+        if not self.friction:
+            return None
+        try:
+            return Coulomb(self.mu_static, self.mu_dynamic, self.v_static_m_s, self.v_dynamic_m_s)
+        except ValueError as exc:
+            message = str(exc).partition(": ")[2]
+            key = next((k for k in ("mu_static", "mu_dynamic", "v_static_m_s", "v_dynamic_m_s")
+                        if message.startswith(k) or message.startswith(f"need 0 < {k}")), "mu_static")
+            raise ValueError(f"{key}: {message}") from None
 
 
 @dataclass(frozen=True)
@@ -119,6 +200,7 @@ class DescribedCase(CaseTables):
     rings: RingFidelity = field(default_factory=RingFidelity)
     life: Life = field(default_factory=Life)
     study: Study = field(default_factory=Study)
+    rotation: Rotation = field(default_factory=Rotation)
 
     def input_files(self) -> dict[str, str]:
         """The files the case reads, by key (checked when a run is resolved)."""

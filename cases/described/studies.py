@@ -63,10 +63,20 @@ def _run(curve: bool):
     return run
 
 
+def _rotation(case: DescribedCase, out, progress=None) -> None:
+    from .rotation import run_rotation
+
+    name, desc = described_bearing(case)
+    run_rotation(case, desc, out, progress)
+
+
 _LIFE = "the rating life needs life.rotating_ring"
+_QUASI = "read by the quasi-static studies only"
 STUDIES = {
-    "load-distribution": StudyEntry(run=_run(False)),
-    "limiting-curve": StudyEntry(run=_run(True), sweeps=("s0", "p0_limit_MPa")),
+    "load-distribution": StudyEntry(run=_run(False), unused={"rotation": "read by the rotation study only"}),
+    "limiting-curve": StudyEntry(run=_run(True), sweeps=("s0", "p0_limit_MPa"),
+                                 unused={"rotation": "read by the rotation study only"}),
+    "rotation": StudyEntry(run=_rotation, unused={"life": _QUASI, "rings": _QUASI}),
 }
 
 
@@ -82,7 +92,7 @@ def case_unused_keys(case: DescribedCase) -> dict[str, str]:
 
 
 def uses_dynamics(case: DescribedCase) -> bool:
-    return False
+    return case.study.kind == "rotation"
 
 
 def run_study(case: DescribedCase, out, progress=None) -> None:

@@ -43,7 +43,8 @@ LINE_EXPONENT = 10.0 / 9.0
 
 @dataclass(frozen=True)
 class RowBodies:
-    """Indices of what a row added: element bodies, their contact pairs per raceway, the cage."""
+    """Indices of what a row added: element bodies, their contact pairs per raceway, the cage, and
+    (ball rows) the moving and the fixed ring's groove."""
 
     elements: tuple[int, ...]
     moving_pairs: tuple[int, ...]
@@ -51,6 +52,7 @@ class RowBodies:
     cage: int | None = None
     pocket_pairs: tuple[int, ...] = ()
     other_pairs: tuple[int, ...] = ()
+    grooves: tuple[int, ...] = ()
 
 
 def ball_mass_kg(diameter_m: float, density_kg_m3: float) -> float:
@@ -131,7 +133,7 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
             pockets.append(builder.add_element_pocket(
                 b, cage, p, D / 2, _law(cage_stiffness_N_per_m, 1.0, damping_N_s_m, d_max_m, pocket_friction),
                 name=f"{row.name} ball {j}–pocket"))
-    return RowBodies(tuple(balls), tuple(mov), tuple(fix), cage, tuple(pockets))
+    return RowBodies(tuple(balls), tuple(mov), tuple(fix), cage, tuple(pockets), grooves=(g_m, g_f))
 
 
 def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_ring, *, friction=None,
