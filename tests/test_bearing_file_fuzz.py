@@ -24,6 +24,7 @@ from cases.bearing_file import BUILTIN_DIR, TOP_LEVEL, BearingKeys, LoadKeys, Ma
 from cases.bearing_rings import BoltKeys, RingKeys
 from cases.bearing_rows import ROW_TYPES
 from cases.config import CaseError
+from cases.row_keys import SeparatorKeys
 
 from tests.fuzz_values import random_value
 from tests.test_bearing_file import EVERY_TYPE
@@ -54,6 +55,17 @@ def _value(rng: random.Random):
     return random_value(rng, NUMBERS, WORDS, ["a", "name", "count"], max_depth=2, max_items=3, exponent=9)
 
 
+SEPARATOR_KEYS = [f.name for f in dataclasses.fields(SeparatorKeys)]
+
+
+def _separator(rng: random.Random) -> dict:
+    """A ``[rows.separator]`` table: a kind (or a bad one) and some of the keys, valued at random."""
+    table = {"kind": rng.choice(["cage", "spacer_balls", "full_complement", "basket", 1])}
+    for key in rng.sample(SEPARATOR_KEYS + ["bogus"], rng.randint(0, 3)):
+        table[key] = rng.choice(NUMBERS + [0.012, 0.0119, 0.05]) if rng.random() < 0.8 else _value(rng)
+    return table
+
+
 def _mutate(rng: random.Random, data: dict) -> dict:
     data = copy.deepcopy(data)
     for _ in range(rng.randint(1, 4)):
@@ -65,7 +77,9 @@ def _mutate(rng: random.Random, data: dict) -> dict:
                 own = ROW_TYPES.get(row.get("type")) if isinstance(row.get("type"), str) else None
                 keys = [f.name for f in dataclasses.fields(own.keys)] if own and rng.random() < 0.8 else ROW_KEYS
                 key = rng.choice(keys + ["bogus"])
-                if rng.random() < 0.8:
+                if key == "separator" and rng.random() < 0.7:
+                    row[key] = _separator(rng)
+                elif rng.random() < 0.8:
                     row[key] = _value(rng) if key != "type" or rng.random() < 0.3 else rng.choice(list(ROW_TYPES))
                 else:
                     row.pop(key, None)
