@@ -22,7 +22,8 @@ Reference: the quasi-static load distribution of the same rows under the same lo
 (:func:`mbd_core.quasistatic.solve_load_distribution`), evaluated with the balls at the azimuths
 they have in the run (one solve per compared sample, each ball a one-ball row at its azimuth), and
 the no-slip cage speed ω_c = ω_m (1 ∓ D cos α/d_m)/2 of the loaded contact angle (Harris &
-Kotzalas, *Essential Concepts*, ch. 8).
+Kotzalas, *Essential Concepts*, ch. 8). The quasi-static model has neither friction nor the balls'
+centrifugal and gyroscopic forces: the deviation from it measures them.
 
 Rows the multibody model does not have (four-point and roller rows) and modal rings are refused,
 naming the key, before anything is built.
