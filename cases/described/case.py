@@ -120,8 +120,9 @@ class Rotation:
     speed_rpm : float
         Speed of the moving ring about the bearing axis, rev/min (> 0).
     moving_ring_mass_kg : float or None
-        Mass of the moving ring and of what turns with it, kg (required by the study); its inertia
-        is that of a thin ring on the largest pitch circle.
+        Mass of the moving ring and of what turns with it, kg (required with a rigid moving ring;
+        its inertia is that of a thin ring on the largest pitch circle); a modal moving ring has
+        its finite-element model's mass and refuses the key.
     duration_s : float
         Simulated time, s.
     timestep_s : float or None

@@ -25,8 +25,14 @@ the no-slip cage speed ω_c = ω_m (1 ∓ D cos α/d_m)/2 of the loaded contact 
 Kotzalas, *Essential Concepts*, ch. 8). The quasi-static model has neither friction nor the balls'
 centrifugal and gyroscopic forces: the deviation from it measures them.
 
-Rows the multibody model does not have (four-point and roller rows) and modal rings are refused,
-naming the key, before anything is built.
+Modal rings: the rings the file gives ``[rings.X]`` tables (unless ``bearing.rings = "rigid"``) are
+modal bodies (their reductions as for the quasi-static study, raceways sampled the same way): the
+moving one driven, its mass that of its finite-element model; the fixed one held at its frame.
+Their reference is then the flexible-ring quasi-static solution
+(:func:`flexible_reference_loads`), each row evenly spaced at the phase of its balls.
+
+Rows the multibody model does not have (four-point and roller rows) are refused, naming the key,
+before anything is built.
 """
 
 from __future__ import annotations
@@ -48,8 +54,9 @@ from mbd_core.quasistatic import BallRow, Bearing, solve_load_distribution
 from ..config import CaseError
 from ..integrate import integrate
 
-__all__ = ["RotationScene", "check_rotation", "build_scene", "start_state", "reference_loads", "run_rotation",
-           "CAGE_GUIDE_STIFFNESS_N_PER_M", "POCKET_STIFFNESS_N_PER_M"]
+__all__ = ["RotationScene", "check_rotation", "modal_rings", "build_scene", "start_state", "reference_loads",
+           "flexible_reference_loads", "compare", "run_rotation", "CAGE_GUIDE_STIFFNESS_N_PER_M",
+           "POCKET_STIFFNESS_N_PER_M"]
 
 #: radial stiffness of a cage's land guidance on the fixed ring, N/m; its damping ratio
 CAGE_GUIDE_STIFFNESS_N_PER_M = 1e7
@@ -66,7 +73,8 @@ COMPARED_SAMPLES = 12
 
 @dataclasses.dataclass
 class RotationScene:
-    """The model, its start state and what a run reads back, per row: the ``RowBodies`` and the spacers."""
+    """The model, its start state and what a run reads back, per row: the ``RowBodies`` and the
+    spacers; ``modal``: the modal rings by side (:func:`modal_rings`)."""
 
     model: object
     state: object
@@ -77,20 +85,22 @@ class RotationScene:
     spacers: tuple
     spacer_pairs: tuple
     neighbour_pairs: tuple
+    modal: dict = dataclasses.field(default_factory=dict)
 
 
 def check_rotation(desc, rings: str, rotation) -> None:
     """Refuse, naming the key, what the rotation study does not model (before anything is built)."""
-    if rotation.moving_ring_mass_kg is None:
+    modal_moving = rings == "file" and any(m.side == "moving" for m in desc.rings.values())
+    if rotation.moving_ring_mass_kg is None and not modal_moving:
         raise CaseError("rotation.moving_ring_mass_kg: missing key (the mass of the moving ring and of what turns "
                         "with it, kg; the rotation study needs it)")
-    if rings == "file" and desc.rings:
-        raise CaseError(f"bearing.rings: the rotation study runs rigid rings; the file makes the "
-                        f"{' and '.join(sorted(desc.rings))} ring modal: set bearing.rings = \"rigid\"")
+    if rotation.moving_ring_mass_kg is not None and modal_moving:
+        raise CaseError("rotation.moving_ring_mass_kg: the moving ring is modal ([rings.X] of the file): its mass is "
+                        "its finite-element model's; leave the key out (or set bearing.rings = \"rigid\")")
     if len(desc.load_cases) != 1:
         raise CaseError(f"bearing.file: the rotation study applies one constant load; the file gives "
                         f"{len(desc.load_cases)} load cases (a spectrum or a time history)")
-    for i, row in enumerate(desc.bearing.rows):
+    for row in desc.bearing.rows:
         where = f"the row {row.name!r}"
         if not isinstance(row, BallRow):
             raise CaseError(f"bearing.file: {where}: the rotation study runs deep-groove, angular-contact and thrust "
@@ -98,6 +108,25 @@ def check_rotation(desc, rings: str, rotation) -> None:
         if row.name not in desc.separators:
             raise CaseError(f"bearing.file: {where} has no [rows.separator] table: the rotation study needs "
                             "kind = 'cage', 'spacer_balls' or 'full_complement'")
+
+
+def modal_rings(desc, rings: str) -> dict:
+    """side ("moving", "fixed") → (RingModel, ReducedBody) of the rings the file makes modal
+    (reduced here or loaded from the cache); none with ``rings = "rigid"``."""
+    if rings == "rigid" or not desc.rings:
+        return {}
+    from foundation.progress import phase
+
+    from ..bearing_rings import reduce_ring
+
+    with phase(f"modal rings of {desc.name}"):
+        return {m.side: (m, reduce_ring(m, desc.bearing)) for m in desc.rings.values()}
+
+
+def _modal_mass_kg(body) -> float:
+    from cms_reduction.invariants import Invariants
+
+    return float(Invariants.from_arrays(body.extras).mass_kg)
 
 
 def _contact_constants(row: BallRow) -> tuple[float, float]:
@@ -154,18 +183,30 @@ def _add_neighbours(b, row: BallRow, rb, damping: float, friction) -> tuple:
                                  name=f"{row.name} ball {j}–ball {(j + 1) % n}") for j in range(n))
 
 
-def build_scene(desc, rotation, reference) -> RotationScene:
+def _ring(b, name: str, motion, omega: float, modal: tuple | None, mass_kg: float, radius_m: float):
+    """A ring body: the modal one of ``modal`` (RingModel, ReducedBody), else rigid, a thin ring of
+    ``mass_kg`` on ``radius_m``; returns (index, mass kg)."""
+    if modal is not None:
+        return b.add_modal_body(name, modal[1], motion=motion, omega_rad_s=(0.0, 0.0, omega)), _modal_mass_kg(modal[1])
+    m, R = mass_kg, radius_m
+    return b.add_body(name, m, (0.5 * m * R * R, 0.5 * m * R * R, m * R * R), motion=motion,
+                      omega_rad_s=(0.0, 0.0, omega)), m
+
+
+def build_scene(desc, rotation, reference, modal: dict | None = None) -> RotationScene:
     """The multibody model of the described bearing at rest (``reference``: its quasi-static
-    load distribution, for the damping scale)."""
+    load distribution, for the damping scale; ``modal``: :func:`modal_rings`)."""
     rows = desc.bearing.rows
+    modal = modal or {}
     omega = rotation.speed_rpm * 2.0 * math.pi / 60.0
     g = rotation.gravity_m_s2
     b = ModelBuilder(gravity_m_s2=(0.0, 0.0, -g))
     R = max(r.pitch_diameter_m for r in rows) / 2
-    m = rotation.moving_ring_mass_kg
-    moving = b.add_body("moving ring", m, (0.5 * m * R * R, 0.5 * m * R * R, m * R * R),
-                        motion=Driven(omega, translation_free=True, tilt_free=True), omega_rad_s=(0.0, 0.0, omega))
-    fixed = b.add_body("fixed ring", m, (0.5 * m * R * R, 0.5 * m * R * R, m * R * R), motion=Fixed())
+    m_given = rotation.moving_ring_mass_kg
+    moving, m = _ring(b, "moving ring", Driven(omega, translation_free=True, tilt_free=True), omega,
+                      modal.get("moving"), m_given or 0.0, R)
+    fixed, _ = _ring(b, "fixed ring", Fixed(), 0.0, modal.get("fixed"), m, R)
+    samples = {side: ring[0].raceways for side, ring in modal.items()}
     friction = rotation.friction_law()
     added, spacers, spacer_pairs, neighbours = [], [], [], []
     for row, loads in zip(rows, reference.rows):
@@ -175,7 +216,9 @@ def build_scene(desc, rotation, reference) -> RotationScene:
         if sep.kind == "cage":
             cage = dict(cage_mass_kg=sep.mass_kg, pocket_clearance_m=sep.pocket_clearance(row.ball_diameter_m),
                         cage_stiffness_N_per_m=POCKET_STIFFNESS_N_PER_M, pocket_friction=friction)
-        rb = add_ball_row(b, row, moving, fixed, friction=friction, damping_N_s_m=c, d_max_m=D_MAX_M, **cage)
+        rb = add_ball_row(b, row, moving, fixed, friction=friction, damping_N_s_m=c, d_max_m=D_MAX_M,
+                          moving_sample=samples.get("moving", {}).get(row.name),
+                          fixed_sample=samples.get("fixed", {}).get(row.name), **cage)
         if rb.cage is not None:
             k = CAGE_GUIDE_STIFFNESS_N_PER_M
             c_g = CAGE_GUIDE_DAMPING_RATIO * 2.0 * math.sqrt(k * sep.mass_kg)
@@ -194,7 +237,7 @@ def build_scene(desc, rotation, reference) -> RotationScene:
     b.add_force(moving, (load.Fx_N, load.Fy_N, load.Fz_N + m * g), (load.Mx_Nm, load.My_Nm, 0.0))
     model, state = b.finalize()
     return RotationScene(model, state, moving, fixed, tuple(rows), tuple(added), tuple(spacers), tuple(spacer_pairs),
-                         tuple(neighbours))
+                         tuple(neighbours), modal)
 
 
 def _orbit_rad_s(q: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -244,6 +287,30 @@ def reference_loads(desc, q_elements: list[np.ndarray]) -> tuple[list[np.ndarray
     return [loads[a:b] for a, b in zip(ends[:-1], ends[1:])], np.asarray(res.displacement, float)
 
 
+def _row_phase_rad(row: BallRow, q: np.ndarray) -> float:
+    """The row's first azimuth that fits its balls' azimuths best (circular mean of ψ_j − 2πj/Z)."""
+    psi = np.arctan2(q[:, 1], q[:, 0]) - 2.0 * math.pi * np.arange(row.n_balls) / row.n_balls
+    return float(np.arctan2(np.sin(psi).mean(), np.cos(psi).mean()))
+
+
+def flexible_reference_loads(desc, modal: dict, q_elements: list[np.ndarray],
+                             ring_angle_rad: float) -> tuple[list[np.ndarray], np.ndarray]:
+    """As :func:`reference_loads` with the file's modal rings (:func:`modal_rings`), the moving one
+    turned by ``ring_angle_rad``: each row evenly spaced at the phase that fits its balls (the
+    flexible model samples each row's raceway as a whole, so a ball off the even spacing is not
+    placed on its own; with a cage they stay within the pocket play)."""
+    from mbd_core.quasistatic.flexible import FlexibleRing, build_flexible_model
+    from mbd_core.quasistatic.flexible_solve import solve_flexible_load_distribution
+
+    rows = tuple(dataclasses.replace(r, first_azimuth_rad=_row_phase_rad(r, q))
+                 for r, q in zip(desc.bearing.rows, q_elements))
+    rings = tuple(FlexibleRing(m.name, body, side, dict(m.raceways), ring_angle_rad if side == "moving" else 0.0)
+                  for side, (m, body) in modal.items())
+    res = solve_flexible_load_distribution(build_flexible_model(Bearing(desc.bearing.name, rows), rings),
+                                           desc.default_load)
+    return [np.asarray(r.load_N) for r in res.rows], np.asarray(res.displacement, float)[:5]
+
+
 def _kinematic_cage_rad_s(row: BallRow, alpha_rad: float, omega_rad_s: float) -> float:
     inner, outer = (omega_rad_s, 0.0) if row.moving_raceway == "inner" else (0.0, omega_rad_s)
     return rolling_kinematics(row.ball_diameter_m, row.pitch_diameter_m, alpha_rad, row.n_balls, inner,
@@ -271,7 +338,14 @@ def compare(sc: RotationScene, desc, run: dict, omega_rad_s: float) -> dict:
     t = run["t"]
     settled = t >= t[0] + START_UP_SHARE * (t[-1] - t[0])
     picks = np.flatnonzero(settled)[np.linspace(0, settled.sum() - 1, min(COMPARED_SAMPLES, settled.sum())).astype(int)]
-    refs = [reference_loads(desc, [run["q"][k, list(rb.elements), :3] for rb in sc.row_bodies]) for k in picks]
+    refs = []
+    for k in picks:
+        q_elements = [run["q"][k, list(rb.elements), :3] for rb in sc.row_bodies]
+        if sc.modal:
+            qw, qz = run["q"][k, sc.moving, 3], run["q"][k, sc.moving, 6]
+            refs.append(flexible_reference_loads(desc, sc.modal, q_elements, 2.0 * math.atan2(qz, qw)))
+        else:
+            refs.append(reference_loads(desc, q_elements))
     rows_out = []
     for i, (row, rb) in enumerate(zip(sc.rows, sc.row_bodies)):
         idx, pairs = list(rb.elements), list(rb.moving_pairs)
@@ -310,7 +384,7 @@ def run_rotation(case, desc, out, progress=None) -> None:
     check_rotation(desc, case.bearing.rings, case.rotation)
     rot = case.rotation
     reference = solve_load_distribution(desc.bearing, desc.default_load)
-    sc = build_scene(desc, rot, reference)
+    sc = build_scene(desc, rot, reference, modal_rings(desc, case.bearing.rings))
     state = start_state(sc)
     try:
         run = integrate(sc.model, state, rot.duration_s, rot.record_every, progress, timestep_s=rot.timestep_s)
@@ -320,6 +394,9 @@ def run_rotation(case, desc, out, progress=None) -> None:
     fig = compare(sc, desc, run, omega)
     moving = [p for rb in sc.row_bodies for p in rb.moving_pairs]
     fig["error_estimates"] = {"time_step": largest_load_step_error(sc.model, state, run["timestep_s"], moving)}
+    fig["rings"] = {side: {"modal": side in sc.modal, **({"n_modes": int(sc.modal[side][1].n_modes),
+                                                         "mass_kg": _modal_mass_kg(sc.modal[side][1])}
+                                                      if side in sc.modal else {})} for side in ("moving", "fixed")}
     fig.update(timestep_s=run["timestep_s"], steps=int(round(rot.duration_s / run["timestep_s"])),
                pocket_clearance_m={r.name: desc.separators[r.name].pocket_clearance(r.ball_diameter_m)
                                    for r in sc.rows if desc.separators[r.name].kind == "cage"})

@@ -76,7 +76,7 @@ STUDIES = {
     "load-distribution": StudyEntry(run=_run(False), unused={"rotation": "read by the rotation study only"}),
     "limiting-curve": StudyEntry(run=_run(True), sweeps=("s0", "p0_limit_MPa"),
                                  unused={"rotation": "read by the rotation study only"}),
-    "rotation": StudyEntry(run=_rotation, unused={"life": _QUASI, "rings": _QUASI}),
+    "rotation": StudyEntry(run=_rotation, unused={"life": _QUASI}),
 }
 
 
