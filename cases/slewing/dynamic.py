@@ -6,10 +6,13 @@ structure spinning at the case speed about the axis, free to sink and tilt, load
 friction and damping; spacer balls in the bottom groove between them (touching the bottom race
 and their two neighbours only), which keep the balls apart instead of a cage.
 
-Start: the static equilibrium with every ball held at its azimuth
-(:func:`mbd_core.multibody.statics.static_equilibrium`), then the no-slip rolling velocities of
-the load balls (:func:`mbd_core.multibody.bearings.set_rolling_velocities`) and of the spacers
-(orbit speed of the load balls, rolling on the bottom race).
+Start: the flexible quasi-static equilibrium (:func:`.quasistatic.equilibrium`, Newton with the
+balls condensed: milliseconds) mapped onto the scene — the top structure's displacement and modal
+coordinates, each ball on its loaded contact line (:func:`state_from_quasistatic`) — and, with
+modal bodies, polished by the multibody static equilibrium from there with every ball held at its
+azimuth (:func:`mbd_core.multibody.statics.static_equilibrium`); then the no-slip rolling
+velocities of the load balls (:func:`mbd_core.multibody.bearings.set_rolling_velocities`) and of
+the spacers (orbit speed of the load balls, rolling on the bottom race).
 
 Contact damping: ``damping_ratio`` × the critical damping 2√(k m) of a load ball on the
 linearised Hertz stiffness k = 1.5 K δ^0.5 of one contact at the nominal load (``thesis``
@@ -145,20 +148,24 @@ def _add_spacers(b, case: SlewingCase, row, bottom, balls, fixed_tab, sample, da
     return spacers, pairs
 
 
-def state_from_quasistatic(sc: DynamicScene, case: SlewingCase):
-    """The rigid-top scene placed at the quasi-static equilibrium (:func:`.quasistatic.equilibrium`).
+def state_from_quasistatic(sc: DynamicScene, case: SlewingCase, bodies: scene.Bodies | None = None):
+    """The scene placed at the (flexible) quasi-static equilibrium (:func:`.quasistatic.equilibrium`).
 
-    The top structure takes the solution's displacement (x, y, z, θx, θy); ball i sits on its
-    loaded contact line at ψ_i, at f·D − D/2 + δ_f,i from the bottom groove's (offset) curvature
-    centre, δ_f,i = (Q_i / K_f)^(2/3) its share of the approach (Hertz, bottom contact);
-    spacers sit on the (undulated) groove bottom. Exact for the contacts the quasi-static model
-    has; the spacers' own weight settles in the first steps.
+    The top structure takes the solution's displacement (x, y, z, θx, θy) and, when modal, its modal
+    coordinates η (the same reduced body, so the same coordinates); a modal bottom race its own η.
+    Ball i sits on its loaded contact line at ψ_i, at f·D − D/2 + δ_f,i from the bottom groove's
+    (offset, and with a modal bottom race displaced) curvature centre, δ_f,i = (Q_i / K_f)^(2/3)
+    its share of the approach (Hertz, bottom contact); spacers sit on the (undulated) groove
+    bottom. Exact for the contacts the quasi-static model has with a rigid top; with modal bodies
+    the multibody grooves interpolate the same raceway samples their own way (measured 4e-4 of the
+    largest load on the 2 m ring), and the balls' and spacers' weights are not in it.
     """
     from mbd_core.multibody.builder import quat_from_axis_angle
 
     from .quasistatic import equilibrium
 
-    res = equilibrium(case, scene.Bodies(None, None))
+    bodies = bodies or scene.Bodies(None, None)
+    res = equilibrium(case, bodies)
     g = case.geometry
     D, f = g.ball_diameter_m, g.conformity
     a0 = math.radians(g.contact_angle_deg)
@@ -171,16 +178,25 @@ def state_from_quasistatic(sc: DynamicScene, case: SlewingCase):
     angle = math.hypot(tx, ty)
     if angle > 0.0:
         state.q[sc.top, 3:] = quat_from_axis_angle((tx / angle, ty / angle, 0.0), angle)
+    a = sc.model.arrays
+    for name, body in (("top", sc.top), ("bottom", sc.model.body("bottom race"))):
+        if name in res.ring_names:
+            o = a.modal_off[int(np.flatnonzero(a.modal_body == body)[0])]
+            eta = res.modal(name)
+            state.eta[o:o + eta.size] = eta
     c0 = _bottom_groove_centre_rz(case)
     r = res.rows[0]
     h = scene.undulation_m(case.undulation, r.azimuth_rad)
     dr = scene.thermal_offset_m(case, "bottom", r.azimuth_rad)
+    moved = np.zeros((len(sc.balls), 3))
+    if "bottom" in res.ring_names:
+        moved = res.raceway_deflection("bottom", r.name).groove_centre_displacement_m
     for i, b in enumerate(sc.balls):
         psi, al = r.azimuth_rad[i], (r.contact_angle_rad[i] if r.load_N[i] > 0 else a0)
         d_f = (r.load_N[i] / k_f) ** (2.0 / 3.0)
         rc = c0[0] + dr[i] - (f * D - D / 2 + d_f) * -math.cos(al)
         zc = c0[1] + h[i] - (f * D - D / 2 + d_f) * math.sin(al)
-        state.q[b, :3] = (rc * math.cos(psi), rc * math.sin(psi), zc)
+        state.q[b, :3] = (rc * math.cos(psi), rc * math.sin(psi), zc) + moved[i]
     for s in sc.spacers:
         psi = math.atan2(state.q[s, 1], state.q[s, 0])
         state.q[s, 2] += float(scene.undulation_m(case.undulation, psi))
@@ -189,15 +205,15 @@ def state_from_quasistatic(sc: DynamicScene, case: SlewingCase):
     return state
 
 
-def start_state(sc: DynamicScene, case: SlewingCase | None = None):
-    """The start of a run: rigid top structure (``case`` given): the quasi-static equilibrium
-    (:func:`state_from_quasistatic`); modal: the static equilibrium with the balls held at their
-    azimuths. Then the rolling velocities."""
+def start_state(sc: DynamicScene, case: SlewingCase, bodies: scene.Bodies | None = None):
+    """The start of a run: the quasi-static equilibrium mapped onto the scene
+    (:func:`state_from_quasistatic`); with modal bodies, or spacers to settle, polished by the
+    multibody static equilibrium from there (balls and spacers held at their azimuths), which then
+    takes seconds instead of the minutes a start from rest needs. Then the rolling velocities."""
     spin = sc.state.v[sc.top, 3:].copy()
-    if case is not None:
-        state = state_from_quasistatic(sc, case)
-    else:
-        state = static_equilibrium(sc.model, sc.state, fixed_azimuth=list(sc.balls) + list(sc.spacers)).state
+    state = state_from_quasistatic(sc, case, bodies)
+    if sc.model.n_modal:
+        state = static_equilibrium(sc.model, state, fixed_azimuth=list(sc.balls) + list(sc.spacers)).state
     state.v[sc.top, 3:] = spin  # the drive's spin
     set_rolling_velocities(sc.model, state, sc.balls, sc.top, sc.model.body("bottom race"))
     if sc.spacers:
@@ -252,7 +268,7 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
 
     bodies = scene.Bodies(scene.top_body(case), scene.bottom_body(case))
     sc = build_scene(case, bodies)
-    state = start_state(sc, case if bodies.top is None else None)
+    state = start_state(sc, case, bodies)
     a = case.analysis
     try:
         run = integrate(sc.model, state, a.duration_s, a.record_every, progress, timestep_s=a.timestep_s)
