@@ -157,7 +157,7 @@ def state_from_quasistatic(sc: DynamicScene, case: SlewingCase, bodies: scene.Bo
     (offset, and with a modal bottom race displaced) curvature centre, δ_f,i = (Q_i / K_f)^(2/3)
     its share of the approach (Hertz, bottom contact); spacers sit on the (undulated) groove
     bottom. Exact for the contacts the quasi-static model has with a rigid top; with modal bodies
-    the multibody grooves interpolate the same raceway samples their own way (measured 4e-4 of the
+    the multibody grooves interpolate the same raceway samples their own way (measured 5e-5 of the
     largest load on the 2 m ring), and the balls' and spacers' weights are not in it.
     """
     from mbd_core.multibody.builder import quat_from_axis_angle
@@ -207,9 +207,9 @@ def state_from_quasistatic(sc: DynamicScene, case: SlewingCase, bodies: scene.Bo
 
 def start_state(sc: DynamicScene, case: SlewingCase, bodies: scene.Bodies | None = None):
     """The start of a run: the quasi-static equilibrium mapped onto the scene
-    (:func:`state_from_quasistatic`); with modal bodies, or spacers to settle, polished by the
-    multibody static equilibrium from there (balls and spacers held at their azimuths), which then
-    takes seconds instead of the minutes a start from rest needs. Then the rolling velocities."""
+    (:func:`state_from_quasistatic`); with modal bodies polished by the multibody static
+    equilibrium from there (balls and spacers held at their azimuths), which then takes seconds
+    instead of the minutes a start from rest needs. Then the rolling velocities."""
     spin = sc.state.v[sc.top, 3:].copy()
     state = state_from_quasistatic(sc, case, bodies)
     if sc.model.n_modal:
