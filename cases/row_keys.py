@@ -106,7 +106,8 @@ class SeparatorKeys:
         at = f"{where}.separator"
         if self.kind == "spacer_balls":
             if what != "balls":
-                raise CaseError(f"{at}.kind: spacer balls separate balls; a roller row takes 'cage' or 'full_complement'")
+                raise CaseError(f"{at}.kind: spacer balls separate balls; a roller row takes 'cage' or "
+                                "'full_complement'")
             d = self.spacer_diameter_m
             _check(f"{at}.spacer_diameter_m", d < diameter_m,
                    f"must be below the ball diameter ({diameter_m:g} m; a spacer ball carries no load), got {d!r}")

@@ -144,9 +144,11 @@ def test_the_moving_ring_mass_is_required():
 
 @pytest.mark.parametrize("separator, message", [
     ('kind = "cage"', "separator.mass_kg: missing key"),
-    ('kind = "spacer_balls"\nspacer_diameter_m = 0.012', "separator.spacer_diameter_m: must be below the ball diameter"),
+    ('kind = "spacer_balls"\nspacer_diameter_m = 0.012',
+     "separator.spacer_diameter_m: must be below the ball diameter"),
     ('kind = "spacer_balls"\nspacer_diameter_m = 0.0119\n', None),
-    ('kind = "cage"\nmass_kg = 0.05\nspacer_diameter_m = 0.01', "separator.spacer_diameter_m: not used with kind = 'cage'"),
+    ('kind = "cage"\nmass_kg = 0.05\nspacer_diameter_m = 0.01',
+     "separator.spacer_diameter_m: not used with kind = 'cage'"),
     ('kind = "cage"\nmass_kg = 0.05\npocket_clearance_m = 0.007', "separator.pocket_clearance_m: must be below half"),
     ('kind = "basket"', "separator.kind: must be one of"),
 ])
@@ -164,7 +166,8 @@ def test_bad_separators_name_their_key(separator, message):
 def test_modal_rings_turning_keep_the_flexible_quasistatic_loads():
     from tests.test_bearing_tradeoff import BEARING  # 16 balls in two box rings, the inner bolted, 20 modes each
 
-    desc = loads_bearing(BEARING.replace("[rings.inner]", f'[rows.separator]\n{SEPARATORS["cage"]}\n\n[rings.inner]', 1))
+    separator = f'[rows.separator]\n{SEPARATORS["cage"]}\n\n[rings.inner]'
+    desc = loads_bearing(BEARING.replace("[rings.inner]", separator, 1))
     modal = modal_rings(desc, "file")
     assert set(modal) == {"moving", "fixed"}
     rotation = Rotation(speed_rpm=100.0, duration_s=0.02, record_every=50, friction=False)

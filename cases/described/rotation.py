@@ -166,8 +166,8 @@ def _add_spacers(b, row: BallRow, rb, moving, fixed, diameter_m: float, damping:
         psi = row.first_azimuth_rad + 2.0 * math.pi * (j + 0.5) / n
         s = b.add_body(f"{row.name} spacer {j}", m, (0.1 * m * d * d,) * 3,
                        position_m=(R * math.cos(psi), R * math.sin(psi), row.axial_position_m))
-        for ring, groove, law in zip((moving, fixed), rb.grooves, laws):
-            b.add_ball_groove(s, ring, groove, d / 2, law, name=f"{row.name} spacer {j}–{'moving' if ring == moving else 'fixed'}")
+        for ring, side, groove, law in zip((moving, fixed), ("moving", "fixed"), rb.grooves, laws):
+            b.add_ball_groove(s, ring, groove, d / 2, law, name=f"{row.name} spacer {j}–{side}")
         for k in (j, (j + 1) % n):
             pairs.append(b.add_ball_ball(rb.elements[k], s, D / 2, d / 2, law_ball,
                                          name=f"{row.name} ball {k}–spacer {j}"))
@@ -353,7 +353,9 @@ def compare(sc: RotationScene, desc, run: dict, omega_rad_s: float) -> dict:
         q_max = float(qs.max())
         dev = np.abs(run["fn"][picks][:, pairs] - qs) / q_max if q_max > 0 else np.full(qs.shape, math.nan)
         fn = run["fn"][settled][:, pairs]
-        alpha = float(run["angle"][settled][:, pairs][fn > 0.05 * fn.max()].mean()) if fn.max() > 0 else row.contact_angle_rad
+        alpha = row.contact_angle_rad
+        if fn.max() > 0:
+            alpha = float(run["angle"][settled][:, pairs][fn > 0.05 * fn.max()].mean())
         kin = _kinematic_cage_rad_s(row, alpha, omega_rad_s)
         if rb.cage is not None:
             w = run["v"][settled, rb.cage, 5]  # a cage turns about its own z, the axis
@@ -373,7 +375,8 @@ def compare(sc: RotationScene, desc, run: dict, omega_rad_s: float) -> dict:
     ring = {"components": ["x_um", "y_um", "z_um", "theta_x_mrad", "theta_y_mrad"],
             "dynamic_mean": [float(v) for v in _ring_displacement(run["q"][picks, sc.moving]).mean(axis=0) * scale],
             "quasistatic": [float(v) for v in np.mean([d for _, d in refs], axis=0) * scale]}
-    return {"rows": rows_out, "max_deviation_from_quasistatic": max(r["max_deviation_from_quasistatic"] for r in rows_out),
+    worst = max(r["max_deviation_from_quasistatic"] for r in rows_out)
+    return {"rows": rows_out, "max_deviation_from_quasistatic": worst,
             "settled_from_s": float(t[settled][0]), "compared_samples": len(picks), "moving_ring": ring}
 
 

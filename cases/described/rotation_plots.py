@@ -30,7 +30,8 @@ def plot_rotation(sc, desc, run: dict, figures: dict):
             idx = list(rb.elements)
             q, v = run["q"][:, idx, :3], run["v"][:, idx, :3]
             w = ((q[..., 0] * v[..., 1] - q[..., 1] * v[..., 0]) / (q[..., 0] ** 2 + q[..., 1] ** 2)).mean(axis=1)
-        bx.plot(t, w * 30 / math.pi, color=colour, lw=1, label=f"{row.name}: {'cage' if rb.cage is not None else 'ball orbit'}")
+        what = "cage" if rb.cage is not None else "ball orbit"
+        bx.plot(t, w * 30 / math.pi, color=colour, lw=1, label=f"{row.name}: {what}")
         bx.axhline(fr["kinematic_cage_speed_rpm"], color=colour, ls="--", lw=1, label=f"{row.name}: no slip")
     for a in (ax, bx):
         a.axvspan(t[0], figures["settled_from_s"], color="0.9", zorder=0)
