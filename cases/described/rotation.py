@@ -31,7 +31,9 @@ moving one driven, its mass that of its finite-element model; the fixed one held
 Their reference is then the flexible-ring quasi-static solution
 (:func:`flexible_reference_loads`), each row evenly spaced at the phase of its balls.
 
-Rows the multibody model does not have (four-point and roller rows) are refused, naming the key,
+Four-point rows: each ring's gothic arch is two grooves, one per diagonal, and each ball has four
+contacts (:func:`mbd_core.multibody.bearings.add_ball_row`); loads are compared per ball and
+diagonal. Rows the multibody model does not have (roller rows) are refused, naming the key,
 before anything is built.
 """
 
@@ -49,7 +51,7 @@ from mbd_core.multibody import Driven, Fixed, ModelBuilder, StepTooLargeError, l
 from mbd_core.multibody.bearings import _rotate, _rotate_back, add_ball_row, ball_mass_kg, set_rolling_velocities
 from mbd_core.multibody.builder import ContactLaw
 from mbd_core.multibody.statics import static_equilibrium
-from mbd_core.quasistatic import BallRow, Bearing, solve_load_distribution
+from mbd_core.quasistatic import BallRow, Bearing, FourPointRow, solve_load_distribution
 
 from ..config import CaseError
 from ..integrate import integrate
@@ -102,9 +104,9 @@ def check_rotation(desc, rings: str, rotation) -> None:
                         f"{len(desc.load_cases)} load cases (a spectrum or a time history)")
     for row in desc.bearing.rows:
         where = f"the row {row.name!r}"
-        if not isinstance(row, BallRow):
-            raise CaseError(f"bearing.file: {where}: the rotation study runs deep-groove, angular-contact and thrust "
-                            "ball rows; four-point and roller rows are modelled quasi-statically only")
+        if not isinstance(row, (BallRow, FourPointRow)):
+            raise CaseError(f"bearing.file: {where}: the rotation study runs ball rows; roller rows are modelled "
+                            "quasi-statically only")
         if row.name not in desc.separators:
             raise CaseError(f"bearing.file: {where} has no [rows.separator] table: the rotation study needs "
                             "kind = 'cage', 'spacer_balls' or 'full_complement'")
@@ -166,8 +168,9 @@ def _add_spacers(b, row: BallRow, rb, moving, fixed, diameter_m: float, damping:
         psi = row.first_azimuth_rad + 2.0 * math.pi * (j + 0.5) / n
         s = b.add_body(f"{row.name} spacer {j}", m, (0.1 * m * d * d,) * 3,
                        position_m=(R * math.cos(psi), R * math.sin(psi), row.axial_position_m))
-        for ring, side, groove, law in zip((moving, fixed), ("moving", "fixed"), rb.grooves, laws):
-            b.add_ball_groove(s, ring, groove, d / 2, law, name=f"{row.name} spacer {j}–{side}")
+        for k, diagonal in enumerate(rb.grooves):  # both arches of a four-point groove
+            for ring, side, groove, law in zip((moving, fixed), ("moving", "fixed"), diagonal, laws):
+                b.add_ball_groove(s, ring, groove, d / 2, law, name=f"{row.name} spacer {j}–{side} {k}")
         for k in (j, (j + 1) % n):
             pairs.append(b.add_ball_ball(rb.elements[k], s, D / 2, d / 2, law_ball,
                                          name=f"{row.name} ball {k}–spacer {j}"))
@@ -273,18 +276,24 @@ def start_state(sc: RotationScene):
 
 def reference_loads(desc, q_elements: list[np.ndarray]) -> tuple[list[np.ndarray], np.ndarray]:
     """The quasi-static solution with every ball at its azimuth in ``q_elements`` (per row,
-    (balls, 3) positions): per row the ball loads, N, and the moving ring's displacement (x, y, z,
-    θx, θy). Each ball is a one-ball row of its own, so that balls that a cage's play or their free
-    orbits have moved off the even spacing are where the run has them."""
+    (balls, 3) positions): per row the contact loads, N (:func:`_contact_loads`), and the moving
+    ring's displacement (x, y, z, θx, θy). Each ball is a one-ball row of its own, so that balls that
+    a cage's play or their free orbits have moved off the even spacing are where the run has them."""
     singles = []
     for row, q in zip(desc.bearing.rows, q_elements):
         psi = np.arctan2(q[:, 1], q[:, 0])
         singles += [dataclasses.replace(row, name=f"{row.name} #{j}", n_balls=1, first_azimuth_rad=float(p))
                     for j, p in enumerate(psi)]
     res = solve_load_distribution(Bearing(desc.bearing.name, tuple(singles)), desc.default_load)
-    loads = np.array([r.load_N[0] for r in res.rows])
+    loads = [_contact_loads(r) for r in res.rows]
     ends = np.cumsum([0] + [len(q) for q in q_elements])
-    return [loads[a:b] for a, b in zip(ends[:-1], ends[1:])], np.asarray(res.displacement, float)
+    return [np.concatenate(loads[a:b]) for a, b in zip(ends[:-1], ends[1:])], np.asarray(res.displacement, float)
+
+
+def _contact_loads(r) -> np.ndarray:
+    """A row's loads in the order of its moving contact pairs: per ball, or (four-point rows) per
+    ball and diagonal, +α then −α."""
+    return np.asarray(r.load_N if r.contact_load_N is None else r.contact_load_N, float).reshape(-1)
 
 
 def _row_phase_rad(row: BallRow, q: np.ndarray) -> float:
@@ -308,7 +317,7 @@ def flexible_reference_loads(desc, modal: dict, q_elements: list[np.ndarray],
                   for side, (m, body) in modal.items())
     res = solve_flexible_load_distribution(build_flexible_model(Bearing(desc.bearing.name, rows), rings),
                                            desc.default_load)
-    return [np.asarray(r.load_N) for r in res.rows], np.asarray(res.displacement, float)[:5]
+    return [_contact_loads(r) for r in res.rows], np.asarray(res.displacement, float)[:5]
 
 
 def _kinematic_cage_rad_s(row: BallRow, alpha_rad: float, omega_rad_s: float) -> float:
@@ -407,7 +416,9 @@ def run_rotation(case, desc, out, progress=None) -> None:
     t = run["t"]
     for i, (row, rb) in enumerate(zip(sc.rows, sc.row_bodies)):
         name = "".join(c if c.isalnum() else "_" for c in row.name)
-        out.write_csv(f"element_loads_{name}.csv", ["t_s"] + [f"ball_{j + 1}_N" for j in range(row.n_balls)],
+        columns = ([f"ball_{j + 1}_{d}_N" for j in range(row.n_balls) for d in ("plus_alpha", "minus_alpha")]
+                   if isinstance(row, FourPointRow) else [f"ball_{j + 1}_N" for j in range(row.n_balls)])
+        out.write_csv(f"element_loads_{name}.csv", ["t_s"] + columns,
                       (np.concatenate([[ti], fi]) for ti, fi in zip(t, run["fn"][:, list(rb.moving_pairs)])))
     out.save_figure(plot_rotation(sc, desc, run, fig), "rotation.png")
     for r in fig["rows"]:

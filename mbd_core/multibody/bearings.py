@@ -33,6 +33,7 @@ from ..contact.hertz import ball_on_groove
 from foundation.materials import effective_modulus_Pa
 from ..kernels.ball_groove import groove_point
 from ..quasistatic.rows import BallRow, RollerRow
+from ..quasistatic.rows_four_point import FourPointRow
 from .builder import ContactLaw, ModelBuilder, quat_z_to
 from .model import Model, State
 
@@ -43,8 +44,9 @@ LINE_EXPONENT = 10.0 / 9.0
 
 @dataclass(frozen=True)
 class RowBodies:
-    """Indices of what a row added: element bodies, their contact pairs per raceway, the cage, and
-    (ball rows) the moving and the fixed ring's groove."""
+    """Indices of what a row added: element bodies, their contact pairs per raceway (a four-point row's
+    two per ball, +α then −α), the cage, and (ball rows) per contact diagonal the moving and the
+    fixed ring's groove."""
 
     elements: tuple[int, ...]
     moving_pairs: tuple[int, ...]
@@ -79,26 +81,14 @@ def _cage_body(builder, name, mass_kg, radius_m, motion):
     return builder.add_body(name, mass_kg, inertia, motion=motion or Free())
 
 
-def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *, friction=None,
-                 damping_N_s_m: float = 0.0, d_max_m: float = 1e-6, cage_mass_kg: float | None = None,
-                 pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8,
-                 pocket_friction=None, moving_sample=None, fixed_sample=None, moving_groove_m=None,
-                 fixed_groove_m=None, cage_motion=None) -> RowBodies:
-    """Add the balls of ``row`` with their two ball–groove contacts (and a cage if ``cage_mass_kg``).
-
-    ``damping_N_s_m`` is the IMPACT damping of every ball contact, reached at ``d_max_m``;
-    ``friction`` the law at the raceways, ``pocket_friction`` the one in the cage pockets (None:
-    frictionless; pocket friction brakes the balls and makes them slip). ``moving_sample`` /
-    ``fixed_sample``: the sampled raceway of a modal ring's groove (see
-    :meth:`ModelBuilder.add_groove`); ``moving_groove_m`` / ``fixed_groove_m``: (undulation h(θ),
-    radial offset Δr(θ)) tables of that ring's groove, m (None: none); ``cage_motion``: the cage's
-    :class:`Free` (default), :class:`Fixed` (balls held at their azimuths, as in the quasi-static
-    model) or :class:`Driven` motion.
-    """
+def _diagonal(builder: ModelBuilder, row, axial_sign: int, moving_ring, fixed_ring, damping_N_s_m: float,
+              d_max_m: float, friction, moving_sample, fixed_sample, moving_groove_m, fixed_groove_m):
+    """The moving and the fixed groove of one contact diagonal of a ball row (its curvature centres,
+    module docstring) and the Hertz laws of a ball on them: (g_m, g_f, law_m, law_f)."""
     D, R = row.ball_diameter_m, row.pitch_diameter_m / 2
     a0 = row.contact_angle_rad
     s_rad = -1.0 if row.moving_raceway == "inner" else 1.0
-    u = np.array([s_rad * math.cos(a0), -row.axial_sign * math.sin(a0)])
+    u = np.array([s_rad * math.cos(a0), -axial_sign * math.sin(a0)])
     play = np.array([0.25 * row.diametral_clearance_m * s_rad, 0.0])  # each centre moves P_d/4 radially
     c_m = np.array([R, row.axial_position_m]) - (row.conformity_moving * D - D / 2) * u + play
     c_f = np.array([R, row.axial_position_m]) + (row.conformity_fixed * D - D / 2) * u - play
@@ -114,8 +104,38 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
                              *(moving_groove_m or (None, None)), raceway=moving_sample)
     g_f = builder.add_groove(fixed_ring, c_f[0], c_f[1], row.conformity_fixed * D,
                              *(fixed_groove_m or (None, None)), raceway=fixed_sample)
-    law_m = _law(k_m, 1.5, damping_N_s_m, d_max_m, friction)
-    law_f = _law(k_f, 1.5, damping_N_s_m, d_max_m, friction)
+    law_m, law_f = (_law(k, 1.5, damping_N_s_m, d_max_m, friction) for k in (k_m, k_f))
+    return g_m, g_f, law_m, law_f
+
+
+def add_ball_row(builder: ModelBuilder, row: BallRow | FourPointRow, moving_ring, fixed_ring, *, friction=None,
+                 damping_N_s_m: float = 0.0, d_max_m: float = 1e-6, cage_mass_kg: float | None = None,
+                 pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8,
+                 pocket_friction=None, moving_sample=None, fixed_sample=None, moving_groove_m=None,
+                 fixed_groove_m=None, cage_motion=None) -> RowBodies:
+    """Add the balls of ``row`` with their ball–groove contacts (and a cage if ``cage_mass_kg``).
+
+    A :class:`~mbd_core.quasistatic.BallRow` gives each ball two contacts, one per ring; a
+    :class:`~mbd_core.quasistatic.FourPointRow` four: each ring's gothic arch is two grooves, one
+    per diagonal (+α, −α), the curvature centres of a diagonal placed as for an angular-contact
+    row of that axial sign (:mod:`mbd_core.quasistatic.rows_four_point`); the contact pairs are
+    then interleaved per ball (+α, −α), as the quasi-static solver's entries. An arch is modelled as
+    its whole torus: a contact angle beyond the groove shoulder is not cut off here.
+
+    ``damping_N_s_m`` is the IMPACT damping of every ball contact, reached at ``d_max_m``;
+    ``friction`` the law at the raceways, ``pocket_friction`` the one in the cage pockets (None:
+    frictionless; pocket friction brakes the balls and makes them slip). ``moving_sample`` /
+    ``fixed_sample``: the sampled raceway of a modal ring's groove (see
+    :meth:`ModelBuilder.add_groove`); ``moving_groove_m`` / ``fixed_groove_m``: (undulation h(θ),
+    radial offset Δr(θ)) tables of that ring's groove, m (None: none); ``cage_motion``: the cage's
+    :class:`Free` (default), :class:`Fixed` (balls held at their azimuths, as in the quasi-static
+    model) or :class:`Driven` motion.
+    """
+    D, R = row.ball_diameter_m, row.pitch_diameter_m / 2
+    four_point = isinstance(row, FourPointRow)
+    signs = row.DIAGONAL_SIGNS if four_point else (row.axial_sign,)
+    diagonals = [_diagonal(builder, row, s, moving_ring, fixed_ring, damping_N_s_m, d_max_m, friction, moving_sample,
+                           fixed_sample, moving_groove_m, fixed_groove_m) for s in signs]
     mass = ball_mass_kg(D, row.ball_material.density_kg_m3)
     inertia = 0.1 * mass * D * D
     cage = None
@@ -126,14 +146,18 @@ def add_ball_row(builder: ModelBuilder, row: BallRow, moving_ring, fixed_ring, *
         b = builder.add_body(f"{row.name} ball {j}", mass, (inertia,) * 3,
                              position_m=(R * math.cos(psi), R * math.sin(psi), row.axial_position_m))
         balls.append(b)
-        mov.append(builder.add_ball_groove(b, moving_ring, g_m, D / 2, law_m, name=f"{row.name} ball {j}–moving"))
-        fix.append(builder.add_ball_groove(b, fixed_ring, g_f, D / 2, law_f, name=f"{row.name} ball {j}–fixed"))
+        for s, (g_m, g_f, law_m, law_f) in zip(signs, diagonals):
+            tag = (" +α" if s > 0 else " −α") if four_point else ""
+            mov.append(builder.add_ball_groove(b, moving_ring, g_m, D / 2, law_m,
+                                               name=f"{row.name} ball {j}–moving{tag}"))
+            fix.append(builder.add_ball_groove(b, fixed_ring, g_f, D / 2, law_f, name=f"{row.name} ball {j}–fixed{tag}"))
         if cage is not None:
             p = builder.add_pocket(cage, "cylinder", psi, R, row.axial_position_m, pocket_clearance_m)
             pockets.append(builder.add_element_pocket(
                 b, cage, p, D / 2, _law(cage_stiffness_N_per_m, 1.0, damping_N_s_m, d_max_m, pocket_friction),
                 name=f"{row.name} ball {j}–pocket"))
-    return RowBodies(tuple(balls), tuple(mov), tuple(fix), cage, tuple(pockets), grooves=(g_m, g_f))
+    return RowBodies(tuple(balls), tuple(mov), tuple(fix), cage, tuple(pockets),
+                     grooves=tuple((g_m, g_f) for g_m, g_f, _, _ in diagonals))
 
 
 def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_ring, *, friction=None,
