@@ -270,9 +270,13 @@ class Analysis:
     top race turns through ``travel_revolutions`` and the balls with it at their orbit speed);
     ``dynamic_explicit``: the top race driven at ``speed_rpm`` for ``duration_s`` from the static
     equilibrium, spacer balls included when ``spacers``, at the step ``timestep_s`` (None: the
-    automatic stable step; a step above the explicit stability limit is refused, naming the limit)."""
+    automatic stable step; a step above the explicit stability limit is refused, naming the limit).
+    ``dynamic_implicit``: the same run with the implicit generalized-α integrator
+    (:func:`mbd_core.multibody.implicit.simulate_implicit`, spectral radius at infinity ``rho_inf``)
+    at ``timestep_s`` (None: :data:`.dynamic.IMPLICIT_STEP_FACTOR` × the automatic explicit step); the rotation
+    study takes it when asked, else runs explicitly."""
 
-    type: Literal["quasi_static", "dynamic_explicit"] = "quasi_static"
+    type: Literal["quasi_static", "dynamic_explicit", "dynamic_implicit"] = "quasi_static"
     speed_rpm: float = 6.55
     travel_steps: int = 0
     travel_revolutions: float = 2.0
@@ -280,10 +284,13 @@ class Analysis:
     timestep_s: float | None = None
     record_every: int = 200
     spacers: bool = True
+    rho_inf: float = 0.9
 
     def __post_init__(self) -> None:
         _positive("analysis", speed_rpm=self.speed_rpm, duration_s=self.duration_s, timestep_s=self.timestep_s,
                   travel_revolutions=self.travel_revolutions)
+        if not (math.isfinite(self.rho_inf) and 0.0 <= self.rho_inf <= 1.0):
+            raise ValueError(f"rho_inf must lie in [0, 1], got {self.rho_inf}")
         if self.travel_steps < 0:
             raise ValueError(f"travel_steps must be ≥ 0, got {self.travel_steps}")
         if self.record_every < 1:

@@ -268,8 +268,8 @@ def study_full_scale(case: SlewingCase, out, progress=None) -> None:
 
 #: keys of each kind of run; a study that makes no run of a kind does not read its keys
 _DYNAMIC_KEYS = ("analysis.speed_rpm", "analysis.duration_s", "analysis.timestep_s", "analysis.record_every",
-                 "analysis.spacers", "contact.damping_ratio", "contact.mu_static", "contact.mu_dynamic",
-                 "contact.v_static_m_s", "contact.v_dynamic_m_s", "contact.friction")
+                 "analysis.spacers", "analysis.rho_inf", "contact.damping_ratio", "contact.mu_static",
+                 "contact.mu_dynamic", "contact.v_static_m_s", "contact.v_dynamic_m_s", "contact.friction")
 RUN_KEYS = {
     "dynamic": (dict.fromkeys(_DYNAMIC_KEYS), 'read by dynamic runs only (study.kind = "rotation", or "single" '
                 'with analysis.type = "dynamic_explicit")'),
@@ -286,8 +286,7 @@ STUDIES = {
         **_TYPE, "top.kind": "the study runs a rigid and a modal top structure",
         "undulation": 'flat races here; study.kind = "undulation" undulates the bottom race',
         "thermal": 'no offset here; study.kind = "thermal" sweeps study.offsets_m'}),
-    "rotation": StudyEntry(None, runs=("dynamic",), unused={
-        "analysis.type": "the rotation study is always a dynamic run"}),
+    "rotation": StudyEntry(None, runs=("dynamic",)),
     "undulation": StudyEntry(study_undulation, sweeps=("undulation_scales", "top_E_Pa", "spacer_run_s"),
                              runs=("equilibria", "dynamic"), unused={
         **_TYPE, **_MODAL_TOP, "top.E_Pa": "set study.top_E_Pa (the moduli it sweeps)",
@@ -354,7 +353,10 @@ def runs_of(case: SlewingCase) -> tuple[str, ...]:
 
 def case_unused_keys(case: SlewingCase) -> dict[str, str]:
     """Every key of ``case`` its study does not read → what does its job."""
-    return {**_fidelity_unused(case), **unused_keys(case.study.kind, STUDIES, RUN_KEYS, runs_of(case))}
+    out = {**_fidelity_unused(case), **unused_keys(case.study.kind, STUDIES, RUN_KEYS, runs_of(case))}
+    if "dynamic" in runs_of(case) and case.analysis.type != "dynamic_implicit":
+        out.setdefault("analysis.rho_inf", 'read by implicit runs only (analysis.type = "dynamic_implicit")')
+    return out
 
 
 def uses_dynamics(case: SlewingCase) -> bool:
