@@ -6,8 +6,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from ..results import plt
 
 __all__ = ["plot_rotation"]
