@@ -308,8 +308,10 @@ class Study:
     against Q = W/(Z sin α). ``rotation`` (b): the top race turning. ``undulation`` (c): every
     ``undulation_scales`` × every ``top_E_Pa``. ``thermal`` (d): every ``offsets_m``, balls
     travelling. ``combined`` (e): undulation × ``combined_offsets_m``. ``life`` (f): the worst
-    ball of ``combined`` at ``life_offset_m``. ``undulation`` also runs the undulated ring (×1, rigid
-    top structure) dynamically for ``spacer_run_s`` (0: not) for the spacer–load ball forces. ``full-scale`` (g): the Ø6.69 m ring with its own
+    ball of ``combined`` at ``life_offset_m``. ``undulation`` also runs the undulated ring (×1)
+    dynamically for ``spacer_run_s`` (0: not) for the spacer–load ball forces, with a rigid top
+    structure or (``spacer_run_top = "modal"``) the study's modal one at E = ``top_E_Pa[0]``,
+    started at its flexible equilibrium. ``full-scale`` (g): the Ø6.69 m ring with its own
     stiffness beside the 2 m ring with E = ``top_E_Pa[-1]``.
     """
 
@@ -321,6 +323,7 @@ class Study:
     life_offset_m: float = 0.4e-3
     case_depth_m: float = 8e-3
     spacer_run_s: float = 1.0
+    spacer_run_top: Literal["rigid", "modal"] = "rigid"
 
     def __post_init__(self) -> None:
         for name in ("undulation_scales", "top_E_Pa", "offsets_m", "combined_offsets_m"):

@@ -138,22 +138,27 @@ def study_undulation(case: SlewingCase, out, progress=None) -> None:
 
 
 def _spacer_run(case: SlewingCase, out, progress) -> None:
-    """Spacer–load ball forces: the undulated ring (×1, rigid top structure, from its quasi-static
-    equilibrium) turning for ``spacer_run_s``, into the sub-folder ``spacer_run``."""
+    """Spacer–load ball forces: the undulated ring (×1, from its quasi-static equilibrium; rigid top
+    structure, or ``study.spacer_run_top = "modal"`` the case's modal one at E = ``top_E_Pa[0]``)
+    turning for ``spacer_run_s``, into the sub-folder ``spacer_run``."""
     from ..results import RunOutput
     from .dynamic import run_dynamic
 
-    c = case.with_(top={"kind": "rigid"}, undulation={"scale": 1.0},
+    modal = case.study.spacer_run_top == "modal"
+    top = {"kind": "modal", "E_Pa": case.study.top_E_Pa[0]} if modal else {"kind": "rigid"}
+    c = case.with_(top=top, undulation={"scale": 1.0},
                    analysis={"type": "dynamic_explicit", "duration_s": case.study.spacer_run_s})
     sub = RunOutput(out.path("spacer_run/summary.json").parent)
     run_dynamic(c, sub, progress)
     sub.write_summary()
     fs = {k: sub.summary[k] for k in ("max_spacer_force_N", "mean_spacer_force_N", "p99_spacer_force_N",
                                       "start_up_excluded_s", "start_up_max_spacer_force_N") if k in sub.summary}
-    out.summary["spacer_run"] = {"duration_s": case.study.spacer_run_s, "top": "rigid", **fs}
+    what = f"modal top E {case.study.top_E_Pa[0] / 1e9:g} GPa" if modal else "rigid top"
+    out.summary["spacer_run"] = {"duration_s": case.study.spacer_run_s, "top": case.study.spacer_run_top,
+                                 "timestep_s": sub.summary["timestep_s"], **fs}
     start = (f"; the first {fs['start_up_excluded_s']:.3g} s left out (start-up, peak "
              f"{fs['start_up_max_spacer_force_N']:.0f} N)" if "start_up_max_spacer_force_N" in fs else "")
-    out.note(f"dynamic, rigid top, undulation ×1, {case.study.spacer_run_s:g} s: spacer–load ball force "
+    out.note(f"dynamic, {what}, undulation ×1, {case.study.spacer_run_s:g} s: spacer–load ball force "
              f"peak {fs['max_spacer_force_N']:.0f} N (impacts of unloaded balls), 99th percentile "
              f"{fs['p99_spacer_force_N']:.0f} N, mean {fs['mean_spacer_force_N']:.1f} N{start}")
 
@@ -287,7 +292,8 @@ STUDIES = {
         "undulation": 'flat races here; study.kind = "undulation" undulates the bottom race',
         "thermal": 'no offset here; study.kind = "thermal" sweeps study.offsets_m'}),
     "rotation": StudyEntry(None, runs=("dynamic",)),
-    "undulation": StudyEntry(study_undulation, sweeps=("undulation_scales", "top_E_Pa", "spacer_run_s"),
+    "undulation": StudyEntry(study_undulation, sweeps=("undulation_scales", "top_E_Pa", "spacer_run_s",
+                                                       "spacer_run_top"),
                              runs=("equilibria", "dynamic"), unused={
         **_TYPE, **_MODAL_TOP, "top.E_Pa": "set study.top_E_Pa (the moduli it sweeps)",
         "undulation.scale": "set study.undulation_scales (the scales it sweeps)",
