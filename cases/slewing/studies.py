@@ -152,10 +152,10 @@ def _spacer_run(case: SlewingCase, out, progress) -> None:
     run_dynamic(c, sub, progress)
     sub.write_summary()
     fs = {k: sub.summary[k] for k in ("max_spacer_force_N", "mean_spacer_force_N", "p99_spacer_force_N",
-                                      "start_up_excluded_s", "start_up_max_spacer_force_N") if k in sub.summary}
+                                      "start_up_excluded_s", "start_up_max_spacer_force_N", "timestep_s")
+          if k in sub.summary}
     what = f"modal top E {case.study.top_E_Pa[0] / 1e9:g} GPa" if modal else "rigid top"
-    out.summary["spacer_run"] = {"duration_s": case.study.spacer_run_s, "top": case.study.spacer_run_top,
-                                 "timestep_s": sub.summary["timestep_s"], **fs}
+    out.summary["spacer_run"] = {"duration_s": case.study.spacer_run_s, "top": case.study.spacer_run_top, **fs}
     start = (f"; the first {fs['start_up_excluded_s']:.3g} s left out (start-up, peak "
              f"{fs['start_up_max_spacer_force_N']:.0f} N)" if "start_up_max_spacer_force_N" in fs else "")
     out.note(f"dynamic, {what}, undulation ×1, {case.study.spacer_run_s:g} s: spacer–load ball force "
