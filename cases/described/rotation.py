@@ -46,13 +46,12 @@ import numpy as np
 
 from mbd_core.bearing import rolling_kinematics
 from mbd_core.multibody import StepTooLargeError, largest_load_step_error
-from mbd_core.multibody.bearings import _rotate
+from mbd_core.multibody.bearings import _rotate, row_speed_rad_s
 from mbd_core.quasistatic import Bearing, FourPointRow, solve_load_distribution
 
 from ..config import CaseError
 from ..integrate import integrate
-from .rotation_scene import (RotationScene, build_scene, check_rotation, modal_mass_kg, modal_rings, orbit_rad_s,
-                             start_state)
+from .rotation_scene import RotationScene, build_scene, check_rotation, modal_mass_kg, modal_rings, start_state
 
 __all__ = ["RotationScene", "check_rotation", "modal_rings", "build_scene", "start_state", "reference_loads",
            "flexible_reference_loads", "compare", "run_rotation", "START_UP_SHARE", "COMPARED_SAMPLES"]
@@ -146,7 +145,7 @@ def compare(sc: RotationScene, desc, run: dict, omega_rad_s: float) -> dict:
             refs.append(reference_loads(desc, q_elements))
     rows_out = []
     for i, (row, rb) in enumerate(zip(sc.rows, sc.row_bodies)):
-        idx, pairs = list(rb.elements), list(rb.moving_pairs)
+        pairs = list(rb.moving_pairs)
         qs = np.array([loads[i] for loads, _ in refs])
         q_max = float(qs.max())
         dev = np.abs(run["fn"][picks][:, pairs] - qs) / q_max if q_max > 0 else np.full(qs.shape, math.nan)
@@ -155,10 +154,7 @@ def compare(sc: RotationScene, desc, run: dict, omega_rad_s: float) -> dict:
         if fn.max() > 0:
             alpha = float(run["angle"][settled][:, pairs][fn > 0.05 * fn.max()].mean())
         kin = _kinematic_cage_rad_s(row, alpha, omega_rad_s)
-        if rb.cage is not None:
-            w = run["v"][settled, rb.cage, 5]  # a cage turns about its own z, the axis
-        else:
-            w = orbit_rad_s(run["q"][settled][:, idx, :3], run["v"][settled][:, idx, :3]).mean(axis=1)
+        w = row_speed_rad_s(rb, run["q"][settled], run["v"][settled])
         out = {"row": row.name, "largest_load_N": float(fn.max()), "quasistatic_largest_load_N": q_max,
                "max_deviation_from_quasistatic": float(dev.max()),
                "rms_deviation_from_quasistatic": float(np.sqrt((dev**2).mean())),

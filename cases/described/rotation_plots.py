@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import math
 
+from mbd_core.multibody.bearings import row_speed_rad_s
+
 from ..results import plt
 
 __all__ = ["plot_rotation"]
@@ -22,12 +24,7 @@ def plot_rotation(sc, desc, run: dict, figures: dict):
         ax.plot([], [], color=colour, lw=1, label=f"{row.name}: balls")
         ax.axhline(fr["quasistatic_largest_load_N"], color=colour, ls="--", lw=1,
                    label=f"{row.name}: quasi-static largest load {fr['quasistatic_largest_load_N']:.0f} N")
-        if rb.cage is not None:
-            w = run["v"][:, rb.cage, 5]
-        else:
-            idx = list(rb.elements)
-            q, v = run["q"][:, idx, :3], run["v"][:, idx, :3]
-            w = ((q[..., 0] * v[..., 1] - q[..., 1] * v[..., 0]) / (q[..., 0] ** 2 + q[..., 1] ** 2)).mean(axis=1)
+        w = row_speed_rad_s(rb, run["q"], run["v"])
         what = "cage" if rb.cage is not None else "ball orbit"
         bx.plot(t, w * 30 / math.pi, color=colour, lw=1, label=f"{row.name}: {what}")
         bx.axhline(fr["kinematic_cage_speed_rpm"], color=colour, ls="--", lw=1, label=f"{row.name}: no slip")

@@ -16,14 +16,15 @@ import numpy as np
 from mbd_core.contact import ball_on_groove
 from mbd_core.contact.hertz import sphere_on_sphere
 from mbd_core.multibody import Driven, Fixed, ModelBuilder
-from mbd_core.multibody.bearings import _rotate_back, add_ball_row, ball_mass_kg, set_rolling_velocities
+from mbd_core.multibody.bearings import (_rotate_back, add_ball_row, ball_mass_kg, orbit_rad_s,
+                                         set_rolling_velocities)
 from mbd_core.multibody.builder import ContactLaw
 from mbd_core.multibody.statics import static_equilibrium
 from mbd_core.quasistatic import BallRow, RollerRow
 
 from ..config import CaseError
 
-__all__ = ["RotationScene", "check_rotation", "modal_rings", "build_scene", "start_state", "orbit_rad_s",
+__all__ = ["RotationScene", "check_rotation", "modal_rings", "build_scene", "start_state",
            "modal_mass_kg", "CAGE_GUIDE_STIFFNESS_N_PER_M", "POCKET_STIFFNESS_N_PER_M"]
 
 #: radial stiffness of a cage's land guidance on the fixed ring, N/m; its damping ratio
@@ -212,11 +213,6 @@ def build_scene(desc, rotation, reference, modal: dict | None = None) -> Rotatio
     model, state = b.finalize()
     return RotationScene(model, state, moving, fixed, tuple(rows), tuple(added), tuple(spacers), tuple(spacer_pairs),
                          tuple(neighbours), modal)
-
-
-def orbit_rad_s(q: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Orbit speed about z of points at q moving at v (last axis x, y, z), rad/s."""
-    return (q[..., 0] * v[..., 1] - q[..., 1] * v[..., 0]) / (q[..., 0] ** 2 + q[..., 1] ** 2)
 
 
 def start_state(sc: RotationScene):

@@ -30,7 +30,8 @@ from mbd_core.contact import ball_on_groove
 from mbd_core.contact.hertz import sphere_on_sphere
 from foundation.materials import BEARING_STEEL
 from mbd_core.multibody import ModelBuilder, StepTooLargeError, largest_load_step_error
-from mbd_core.multibody.bearings import _rotate_back, add_ball_row, ball_mass_kg, set_rolling_velocities
+from mbd_core.multibody.bearings import (_rotate_back, add_ball_row, ball_mass_kg, orbit_rad_s,
+                                         set_rolling_velocities)
 from mbd_core.multibody.builder import ContactLaw, Driven, Fixed
 from mbd_core.multibody.statics import static_equilibrium
 
@@ -229,12 +230,6 @@ def start_state(sc: DynamicScene, case: SlewingCase, bodies: scene.Bodies | None
     return state
 
 
-def _ball_orbit_rad_s(sc: DynamicScene, out: dict, index) -> np.ndarray:
-    """Mean orbit speed of the bodies ``index`` at each record sample, rad/s."""
-    q, v = out["q"][:, index, :3], out["v"][:, index, :3]
-    return np.mean((q[..., 0] * v[..., 1] - q[..., 1] * v[..., 0]) / (q[..., 0] ** 2 + q[..., 1] ** 2), axis=1)
-
-
 def start_up_window(t_s: np.ndarray) -> tuple[float, np.ndarray]:
     """(time the key figures start from, mask of the samples from then on): the first
     ``START_UP_SHARE`` of the run, the transient from the start state, is left out of the
@@ -303,7 +298,7 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
     spread = (q.max(axis=1) - q.min(axis=1)) / q.mean(axis=1)
     Q, alpha = analytic_ball_load_N(case)
     w_top = case.analysis.speed_rpm * 2.0 * math.pi / 60.0
-    orbit = _ball_orbit_rad_s(sc, run, list(sc.balls))
+    orbit = orbit_rad_s(run["q"][:, list(sc.balls), :3], run["v"][:, list(sc.balls), :3]).mean(axis=1)
     fig = {"timestep_s": run["timestep_s"], "steps": int(round(a.duration_s / run["timestep_s"])),
            "max_ball_load_N": float(q[settled].max()), "min_ball_load_N": float(q[settled].min()),
            "mean_ball_load_N": float(q[settled].mean()), "analytic_ball_load_N": Q,

@@ -37,7 +37,8 @@ from ..quasistatic.rows_four_point import FourPointRow
 from .builder import ContactLaw, ModelBuilder, quat_z_to
 from .model import Model, State
 
-__all__ = ["RowBodies", "add_ball_row", "add_roller_row", "set_rolling_velocities", "ball_mass_kg", "roller_mass_kg"]
+__all__ = ["RowBodies", "add_ball_row", "add_roller_row", "set_rolling_velocities", "ball_mass_kg", "roller_mass_kg",
+           "orbit_rad_s", "row_speed_rad_s"]
 
 LINE_EXPONENT = 10.0 / 9.0
 
@@ -63,6 +64,21 @@ def ball_mass_kg(diameter_m: float, density_kg_m3: float) -> float:
 
 def roller_mass_kg(diameter_m: float, length_m: float, density_kg_m3: float) -> float:
     return density_kg_m3 * math.pi * diameter_m**2 / 4.0 * length_m
+
+
+def orbit_rad_s(q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Orbit speed about the z axis of points at ``q`` moving at ``v`` (last axis x, y, z), rad/s."""
+    return (q[..., 0] * v[..., 1] - q[..., 1] * v[..., 0]) / (q[..., 0] ** 2 + q[..., 1] ** 2)
+
+
+def row_speed_rad_s(rows: RowBodies, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Per recorded sample ((k, n_b, 7) poses ``q``, (k, n_b, 6) velocities ``v``), the speed of a
+    row's cage about its own axis (the bearing's), or without a cage its elements' mean orbit
+    speed, rad/s."""
+    if rows.cage is not None:
+        return v[:, rows.cage, 5]
+    idx = list(rows.elements)
+    return orbit_rad_s(q[:, idx, :3], v[:, idx, :3]).mean(axis=1)
 
 
 def _azimuths(n: int, first_rad: float) -> np.ndarray:
