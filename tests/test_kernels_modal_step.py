@@ -48,6 +48,7 @@ from cms_reduction.invariants import compute_invariants
 from cms_reduction.sampling import RacewaySample
 from mbd_core.contact.friction import Coulomb
 from mbd_core.kernels import explicit as EX
+from mbd_core.kernels import flexible_surface as FS
 from mbd_core.kernels import forces as FK
 from mbd_core.kernels import modal_step as MS
 from mbd_core.kernels.raceway import interp_index
@@ -477,15 +478,15 @@ def _kernel_step(m, g, eta_ring, x, th):
     thw = th % (2 * np.pi)  # evaluated at the wrapped angle, stepped from the given one
     i0, i1, w0, w1 = interp_index(theta, thw, periodic)
     rows = np.zeros((4, 3))
-    FK._groove_rows(m.samp_disp[s0:s1], m.samp_rot[s0:s1], i0, i1, np.ascontiguousarray(eta_ring), rows)
-    cx, cy, cz, tx, ty, tz = FK._deformed_groove_centre(
+    FS._groove_rows(m.samp_disp[s0:s1], m.samp_rot[s0:s1], i0, i1, np.ascontiguousarray(eta_ring), rows)
+    cx, cy, cz, tx, ty, tz = FS._deformed_groove_centre(
         theta, periodic, m.samp_point[s0:s1], rows, m.groove_rc[g], m.groove_zc[g], m.groove_h, m.groove_h_off[g],
         m.groove_h_off[g + 1], m.groove_dr, m.groove_dr_off[g], m.groove_dr_off[g + 1], thw, i0, i1, w0, w1)
     return th + ((x[0] - cx) * tx + (x[1] - cy) * ty + (x[2] - cz) * tz) / (tx * tx + ty * ty + tz * tz)
 
 
 def kernel_groove_angle(m, g, eta_ring, x, th_ball):
-    """The kernel's contact angle: two Gauss–Newton steps from the ball angle (forces._nearest_deformed_centre)."""
+    """The kernel's contact angle: two Gauss–Newton steps from the ball angle (flexible_surface._nearest_deformed_centre)."""
     return _kernel_step(m, g, eta_ring, x, _kernel_step(m, g, eta_ring, x, th_ball))
 
 

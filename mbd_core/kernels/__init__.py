@@ -8,7 +8,9 @@ be compiled.
 Modules: ``laws`` (normal force, friction), ``ball_groove`` (ball–groove geometry with race
 deviations), ``roller_slices`` (slice penetrations of tilted, skewed, crowned rollers),
 ``element_contacts`` (ball–ball, roller end–rib, element–pocket geometry), ``splines`` (load
-histories), ``forces`` (the force stage of a whole model), ``explicit`` (the compiled step loop),
+histories), ``forces`` (the force stage of a whole model) with its contact families ``ball_pairs``,
+``roller_pairs``, ``pocket_pairs`` and their shared parts ``pair_types``, ``body_frames``, ``point_contact``,
+``friction_damping``, ``flexible_surface`` (contacts on modal bodies), ``explicit`` (the compiled step loop),
 ``implicit`` (generalized-α pieces), ``rigid`` (quaternions, symplectic free rotation),
 ``raceway`` (flexible-raceway interpolation and its transpose, for modal rings), ``modal``
 (generalized mass matrix and quadratic-velocity vector of a modal body from its invariants).

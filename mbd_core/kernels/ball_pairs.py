@@ -1,0 +1,103 @@
+"""Ball contact stages: ball–groove pairs (rigid or modal rings) and ball–ball pairs (spacer balls,
+full-complement neighbours)."""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .ball_groove import groove_point_in
+from .body_frames import point_velocity, rotate, rotate_back, _add_force, _in_frame, _to_world
+from .element_contacts import ball_ball
+from .flexible_surface import _add_section_force, _nearest_deformed_centre, _section_velocity
+from .friction_damping import _note_friction
+from .pair_types import BALL_BALL, BALL_GROOVE
+from .point_contact import contact_force, point_force, _store
+
+
+@njit(cache=True)
+def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
+    e_sum = 0.0
+    bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
+    imp, fpts, fcnt = m.body_fric_implicit, w.fric_pts, w.fric_n
+    for c in range(m.pair_type.shape[0]):
+        if m.pair_type[c] != BALL_GROOVE:
+            continue
+        a, b, g = m.pair_a[c], m.pair_b[c], m.pair_geom[c]
+        ra = m.pair_radius[c]
+        lx, ly, lz = _in_frame(q, b, q[a, 0], q[a, 1], q[a, 2])
+        th, delta, nx, ny, nz = groove_point_in(
+            lx, ly, lz, m.groove_rc[g], m.groove_zc[g], m.groove_r[g] - ra,
+            m.groove_h, m.groove_h_off[g], m.groove_h_off[g + 1],
+            m.groove_dr, m.groove_dr_off[g], m.groove_dr_off[g + 1],
+        )
+        if m.groove_modal[g] < 0:
+            mx, my, mz = rotate(q, b, -nx, -ny, -nz)
+            px, py, pz = q[a, 0] - ra * mx, q[a, 1] - ra * my, q[a, 2] - ra * mz
+            fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
+                                         m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
+                                         px, py, pz)
+            _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
+        else:
+            # a groove on a modal ring (see _nearest_deformed_centre); the arrays are sliced here so
+            # that no per-contact function takes the model tuple
+            jm, s0, s1 = m.groove_modal[g], m.groove_samp_off[g], m.groove_samp_off[g + 1]
+            o0, o1 = m.modal_off[jm], m.modal_off[jm + 1]
+            disp, rot, pts = m.samp_disp[s0:s1], m.samp_rot[s0:s1], m.samp_point[s0:s1]
+            cx, cy, cz, i0, i1, w0, w1 = _nearest_deformed_centre(
+                m.samp_theta[s0:s1], m.groove_periodic[g] == 1, disp, rot, pts, eta[o0:o1], w.groove_rows, m.groove_rc[g],
+                m.groove_zc[g], m.groove_h, m.groove_h_off[g], m.groove_h_off[g + 1], m.groove_dr,
+                m.groove_dr_off[g], m.groove_dr_off[g + 1], th, lx, ly, lz)
+            dx, dy, dz = lx - cx, ly - cy, lz - cz
+            dist = math.sqrt(dx * dx + dy * dy + dz * dz)
+            if dist > 0.0:
+                nx, ny, nz = dx / dist, dy / dist, dz / dist
+            delta = dist - (m.groove_r[g] - ra)
+            fn, u, ft, e = 0.0, 0.0, 0.0, 0.0
+            if delta > 0.0:
+                # contact point (ring frame), its lever about the raceway point, the modal velocity there
+                plx, ply, plz = lx + ra * nx, ly + ra * ny, lz + ra * nz
+                bx = plx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
+                by = ply - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
+                bz = plz - (w0 * pts[i0, 2] + w1 * pts[i1, 2])
+                vx, vy, vz = _section_velocity(disp, rot, i0, i1, w0, w1, eta_dot[o0:o1], bx, by, bz)
+                vx, vy, vz = rotate(q, b, vx, vy, vz)
+                px, py, pz = _to_world(q, b, plx, ply, plz)
+                mx, my, mz = rotate(q, b, -nx, -ny, -nz)
+                vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
+                vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
+                fn, u, ft, e, fx, fy, fz = point_force(m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
+                                                       m.pair_dmax[c], m.pair_fric[c], fp[c, 0], fp[c, 1], fp[c, 2],
+                                                       fp[c, 3], delta, mx, my, mz, vax - vbx - vx, vay - vby - vy,
+                                                       vaz - vbz - vz)
+                _add_force(q, bf, bt, a, fx, fy, fz, px, py, pz)
+                _add_force(q, bf, bt, b, -fx, -fy, -fz, px, py, pz)
+                _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
+                gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
+                _add_section_force(disp, rot, i0, i1, w0, w1, gx, gy, gz, by * gz - bz * gy, bz * gx - bx * gz,
+                                   bx * gy - by * gx, w.modal_f[o0:o1])
+        _store(w, c, fn, delta, u, ft)
+        w.contact_theta[c] = th
+        w.contact_angle[c] = math.atan2(abs(nz), abs(nx * math.cos(th) + ny * math.sin(th)))
+        e_sum += e
+    return e_sum
+
+
+@njit(cache=True)
+def _ball_ball_pairs(m, q, v, w):
+    e_sum = 0.0
+    bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
+    imp, fpts, fcnt = m.body_fric_implicit, w.fric_pts, w.fric_n
+    for c in range(m.pair_type.shape[0]):
+        if m.pair_type[c] != BALL_BALL:
+            continue
+        a, b = m.pair_a[c], m.pair_b[c]
+        delta, mx, my, mz, px, py, pz = ball_ball(q[a], q[b], m.pair_radius[c], m.pair_radius_b[c])
+        fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
+                                     m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
+        _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
+        _store(w, c, fn, delta, u, ft)
+        w.contact_angle[c] = 0.0
+        e_sum += e
+    return e_sum
