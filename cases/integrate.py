@@ -121,6 +121,9 @@ def _load_piece(path: Path, state: State) -> dict | None:
     except NPZ_ERRORS as exc:
         log.warning("recomputing from %s: stored piece unreadable (%s)", path, exc)
         return None
+    if "rec:point" not in d:  # every piece of that run lacks them: the run is recomputed from its start
+        log.warning("recomputing from %s: stored piece written before contact points were recorded", path)
+        return None
     out.update({k[4:]: v for k, v in d.items() if k.startswith("rec:")})
     state.t = float(end["t"])
     state.q[:], state.v[:] = end["q"], end["v"]

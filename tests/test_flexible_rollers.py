@@ -55,6 +55,7 @@ from tests.reference import multibody as ref
 
 RTOL = 1e-12
 ATOL_M = 1e-16
+POINT_ATOL_M, NORMAL_ATOL = 1e-12, 1e-12  # contact points (m) and normals against the twin
 EPS = np.finfo(float).eps
 LEVER_M = 0.05
 SEED = 20260517
@@ -232,6 +233,8 @@ def _compare(model, st):
         _close(w.contact_ft, want.ft, atol=m.pair_fric_p[:, 0] * fn_floor),
         _close(w.contact_slip, want.slip, atol=RTOL * np.abs(want.slip).max()),
         _close(w.contact_angle, want.angle, atol=1e-14),
+        _close(w.contact_point, want.point, atol=POINT_ATOL_M),
+        _close(w.contact_normal, want.normal, atol=NORMAL_ATOL),
         _close(w.energy, [want.energy_contact, want.energy_bushing], atol=atol_m @ want.fn),
     ]
     per_unit = np.abs(m.samp_disp).max() + LEVER_M * np.abs(m.samp_rot).max()

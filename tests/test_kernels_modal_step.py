@@ -61,6 +61,7 @@ from tests.reference import multibody as ref
 
 RTOL = 1e-12
 ATOL_M = 1e-16
+POINT_ATOL_M, NORMAL_ATOL = 1e-12, 1e-12  # contact points (m) and normals against the twin
 EPS = np.finfo(float).eps
 SEED = 20260502
 R_RING = 0.05                      # radius of the rings' mass points, m
@@ -518,6 +519,9 @@ def _compare_forces(model, st):
     _close_block(w.contact_slip, want.slip)
     _close(w.contact_angle, want.angle, atol=1e-14)
     _close(w.contact_theta, want.theta, atol=1e-14)
+    # contact point and normal (a pair of several points: those of its most loaded one)
+    _close(w.contact_point, want.point, atol=POINT_ATOL_M)
+    _close(w.contact_normal, want.normal, atol=NORMAL_ATOL)
     _close(w.energy, [want.energy_contact, want.energy_bushing], atol=ATOL_M * want.fn.sum())
     per_unit = np.abs(m.samp_disp).max(initial=0.0) + F_D * np.abs(m.samp_rot).max(initial=0.0)
     _close(w.modal_f, want.modal_f, atol=RTOL * np.abs(want.modal_f).max(initial=0.0) + per_unit * fn_floor.sum())

@@ -38,7 +38,8 @@ from mbd_core.multibody.model import make_work
 from tests.reference import multibody as ref
 
 RTOL = 1e-12
-ATOL_M = 1e-16          # absolute floor on penetrations and points, m (see module docstring)
+ATOL_M = 1e-16
+POINT_ATOL_M, NORMAL_ATOL = 1e-12, 1e-12  # contact points (m) and normals against the twin          # absolute floor on penetrations and points, m (see module docstring)
 SEED = 20260311
 
 
@@ -441,6 +442,9 @@ def _compare_with_twin(model, state):
         _close_scaled(getattr(w, f"contact_{name}"), getattr(want, name))
     _close(w.contact_angle, want.angle, atol=1e-14)
     _close(w.contact_theta, want.theta, atol=1e-14)
+    # contact point and normal (a pair of several points: those of its most loaded one)
+    _close(w.contact_point, want.point, atol=POINT_ATOL_M)
+    _close(w.contact_normal, want.normal, atol=NORMAL_ATOL)
     _close(w.energy, [want.energy_contact, want.energy_bushing])
     return w
 

@@ -16,7 +16,9 @@ histories), ``forces`` (the force stage of a whole model) with its contact famil
 (generalized mass matrix and quadratic-velocity vector of a modal body from its invariants).
 """
 
-from . import compile_progress
+from pathlib import Path
+
+from . import compile_progress, disk_cache
 from .laws import (
     FRICTION_COULOMB,
     FRICTION_DREB_CONSTANT,
@@ -34,6 +36,8 @@ from .ball_groove import ball_groove_contacts
 from .rigid import free_rotation_step, quat_rotate
 
 compile_progress.install()      # a kernel about to compile (not load from the cache) shows as a phase
+# cached code that embeds kernels of other files is dropped when any kernel source changed (disk_cache)
+disk_cache.invalidate_on_source_change(__name__, Path(__file__).parent)
 
 __all__ = [
     "NORMAL_IMPACT", "NORMAL_HUNT_CROSSLEY",

@@ -55,16 +55,17 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
                 nx, ny, nz = dx / dist, dy / dist, dz / dist
             delta = dist - (m.groove_r[g] - ra)
             fn, u, ft, e = 0.0, 0.0, 0.0, 0.0
+            # contact point (ring frame and world), normal of the force on the ball
+            plx, ply, plz = lx + ra * nx, ly + ra * ny, lz + ra * nz
+            px, py, pz = _to_world(q, b, plx, ply, plz)
+            mx, my, mz = rotate(q, b, -nx, -ny, -nz)
             if delta > 0.0:
-                # contact point (ring frame), its lever about the raceway point, the modal velocity there
-                plx, ply, plz = lx + ra * nx, ly + ra * ny, lz + ra * nz
+                # its lever about the raceway point, the modal velocity there
                 bx = plx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
                 by = ply - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
                 bz = plz - (w0 * pts[i0, 2] + w1 * pts[i1, 2])
                 vx, vy, vz = _section_velocity(disp, rot, i0, i1, w0, w1, eta_dot[o0:o1], bx, by, bz)
                 vx, vy, vz = rotate(q, b, vx, vy, vz)
-                px, py, pz = _to_world(q, b, plx, ply, plz)
-                mx, my, mz = rotate(q, b, -nx, -ny, -nz)
                 vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
                 vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
                 fn, u, ft, e, fx, fy, fz = point_force(m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
@@ -77,7 +78,7 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
                 gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
                 _add_section_force(disp, rot, i0, i1, w0, w1, gx, gy, gz, by * gz - bz * gy, bz * gx - bx * gz,
                                    bx * gy - by * gx, w.modal_f[o0:o1])
-        _store(w, c, fn, delta, u, ft)
+        _store(w, c, fn, delta, u, ft, px, py, pz, mx, my, mz)
         w.contact_theta[c] = th
         w.contact_angle[c] = math.atan2(abs(nz), abs(nx * math.cos(th) + ny * math.sin(th)))
         e_sum += e
@@ -97,7 +98,7 @@ def _ball_ball_pairs(m, q, v, w):
         fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                      m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
         _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
-        _store(w, c, fn, delta, u, ft)
+        _store(w, c, fn, delta, u, ft, px, py, pz, mx, my, mz)
         w.contact_angle[c] = 0.0
         e_sum += e
     return e_sum

@@ -183,6 +183,10 @@ def _record(m, q, v, eta, eta_dot, w, t, k, rec):
     rec.ft[k] = w.contact_ft
     rec.angle[k] = w.contact_angle
     rec.theta[k] = w.contact_theta
+    for c in range(w.contact_point.shape[0]):
+        for j in range(3):
+            rec.point[k, c, j] = w.contact_point[c, j]
+            rec.normal[k, c, j] = w.contact_normal[c, j]
 
 
 @njit(cache=True)

@@ -267,7 +267,7 @@ def _flexible_contact(q, v, bf, bt, disp, rot, pts, e_j, ed_j, rows, field, corn
 def _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta, lx, ly, lz, nx, ny, nz, imp, fpts, fcnt):
     """:func:`_flexible_contact` of one point of pair c (a roller end, a pocket wall; corners set, at most
     two points per pair, so the cache has room) through slot 0 of the slice scratch; returns (n, F_n,
-    δ + n·d, |v_t|, |F_t|, energy)."""
+    δ + n·d, |v_t|, |F_t|, energy, p world, m world)."""
     sd, sp, sn = w.slice_delta, w.slice_point, w.slice_normal
     sd[0], sp[0, 0], sp[0, 1], sp[0, 2], sn[0, 0], sn[0, 1], sn[0, 2] = delta, lx, ly, lz, nx, ny, nz
     n, fn, delta, u, ft, e, px, py, pz, mx, my, mz = _flexible_contact(
@@ -275,14 +275,14 @@ def _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta, lx, ly,
         w.flex_field, w.flex_corner, w.flex_weight, n, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
         m.pair_dmax[c], m.pair_fric[c], m.pair_fric_p[c], sd, sp, sn, 0)
     _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
-    return n, fn, delta, u, ft, e
+    return n, fn, delta, u, ft, e, px, py, pz, mx, my, mz
 
 
 @njit(cache=True, inline="always")
 def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns, imp, fpts, fcnt):
     """The slices of roller pair c (rigid geometry in ``w.slice_*``) on the (θ, s)-sampled surface g of
     modal ring b. Returns (ΣF_n, largest δ, slip at the most loaded slice, Σ|F_t|, its contact angle,
-    energy)."""
+    energy, the point and normal (world) of the most loaded slice, or of the deepest when none is loaded)."""
     jm = m.race_modal[g]
     o0, o1 = m.modal_off[jm], m.modal_off[jm + 1]
     e_j, ed_j, qf = eta[o0:o1], eta_dot[o0:o1], w.modal_f[o0:o1]
@@ -296,6 +296,7 @@ def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns, imp, fpts
     law, k_c, n_exp, damp, d_mx = m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c]
     fric, fp_c = m.pair_fric[c], m.pair_fric_p[c]
     fn_sum, dmax, u_at_max, ft_sum, f_max, angle, e_sum = 0.0, -math.inf, 0.0, 0.0, -1.0, 0.0, 0.0
+    bpx = bpy = bpz = bmx = bmy = bmz = 0.0
     n = 0
     for k in range(ns):
         _grid_corners(theta, periodic, circ, kind, s0, sp[k, 0], sp[k, 1], sp[k, 2], corner, weight)
@@ -307,6 +308,8 @@ def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns, imp, fpts
             damp, d_mx, fric, fp_c, sd, sp, sn, k)
         if delta > dmax:
             dmax = delta
+            if f_max < 0.0:
+                bpx, bpy, bpz, bmx, bmy, bmz = px, py, pz, mx, my, mz
         if delta <= 0.0:
             continue
         _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
@@ -316,5 +319,6 @@ def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns, imp, fpts
         if fn > f_max:
             f_max, u_at_max = fn, u
             angle = _contact_angle(q, b, mx, my, mz, px, py, pz)
+            bpx, bpy, bpz, bmx, bmy, bmz = px, py, pz, mx, my, mz
     _flush_rows(rows, field, n, disp, rot, qf)
-    return fn_sum, dmax, u_at_max, ft_sum, angle, e_sum
+    return fn_sum, dmax, u_at_max, ft_sum, angle, e_sum, bpx, bpy, bpz, bmx, bmy, bmz

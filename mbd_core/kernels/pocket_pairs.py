@@ -34,6 +34,7 @@ def _element_pocket_pairs(m, q, v, eta, eta_dot, w):
         jm = m.pocket_modal[g]
         o0, o1 = (m.modal_off[jm], m.modal_off[jm + 1]) if jm >= 0 else (0, 0)
         n = 0
+        bpx = bpy = bpz = bmx = bmy = bmz = 0.0
         for k in range(2 if slot else 1):
             center[0], center[1], center[2] = lx, ly, lz
             if slot:
@@ -46,15 +47,18 @@ def _element_pocket_pairs(m, q, v, eta, eta_dot, w):
                 delta, nx, ny, nz, plx, ply, plz = pocket_cylinder(center, r, ang, rp, zp, clr)
             if jm >= 0:  # the force, if any, is applied here already
                 _wall_corners(m.samp_point, m.pocket_samp[g], plx, ply, plz, w.flex_corner, w.flex_weight)
-                n, fn, delta, u, ft, e = _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta,
-                                                         plx, ply, plz, nx, ny, nz, imp, fpts, fcnt)
+                n, fn, delta, u, ft, e, px, py, pz, mx, my, mz = _flexible_point(
+                    m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta, plx, ply, plz, nx, ny, nz, imp, fpts, fcnt)
+            else:
+                px, py, pz = _to_world(q, b, plx, ply, plz)
+                mx, my, mz = rotate(q, b, nx, ny, nz)
             if delta > dmax:
                 dmax = delta
+                if f_max < 0.0:  # the deepest wall while none is loaded
+                    bpx, bpy, bpz, bmx, bmy, bmz = px, py, pz, mx, my, mz
             if delta <= 0.0:
                 continue
             if jm < 0:
-                px, py, pz = _to_world(q, b, plx, ply, plz)
-                mx, my, mz = rotate(q, b, nx, ny, nz)
                 fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                              m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
                                              px, py, pz)
@@ -64,8 +68,9 @@ def _element_pocket_pairs(m, q, v, eta, eta_dot, w):
             e_sum += e
             if fn > f_max:
                 f_max, u_max = fn, u
+                bpx, bpy, bpz, bmx, bmy, bmz = px, py, pz, mx, my, mz
         if jm >= 0:
             _flush_rows(w.flex_row, w.flex_field, n, m.samp_disp, m.samp_rot, w.modal_f[o0:o1])
-        _store(w, c, fn_sum, dmax, u_max, ft_sum)
+        _store(w, c, fn_sum, dmax, u_max, ft_sum, bpx, bpy, bpz, bmx, bmy, bmz)
         w.contact_angle[c] = 0.0
     return e_sum

@@ -60,8 +60,17 @@ def contact_force(q, v, bf, bt, fric_p, c, a, b, law, k, n_exp, damping, d_max, 
 
 
 @njit(cache=True, inline="always")
-def _store(w, c, fn, delta, u, ft):
+def _store(w, c, fn, delta, u, ft, px, py, pz, mx, my, mz):
+    """The outputs of pair c: F_n N, penetration m, slip m/s, |F_t| N, contact point p (world, m) and
+    unit normal m of the force on the element (world)."""
     w.contact_fn[c] = fn
     w.contact_delta[c] = delta
     w.contact_slip[c] = u
     w.contact_ft[c] = ft
+    w.contact_point[c, 0] = px
+    w.contact_point[c, 1] = py
+    w.contact_point[c, 2] = pz
+    w.contact_normal[c, 0] = mx
+    w.contact_normal[c, 1] = my
+    w.contact_normal[c, 2] = mz
+

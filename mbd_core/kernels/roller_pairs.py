@@ -33,10 +33,10 @@ def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
         roller_slices(center, axis, m.pair_length[c], m.pair_radius[c], m.slice_drop[s0:s1],
                       m.race_kind[g], m.race_value[g], sd, sp, sn)
         if m.race_modal[g] >= 0:
-            fn_sum, dmax, u_at_max, ft_sum, angle, e = _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g,
-                                                                                 ns, imp, fpts, fcnt)
+            fn_sum, dmax, u_at_max, ft_sum, angle, e, px, py, pz, mx, my, mz = _flexible_roller_raceway(
+                m, q, v, eta, eta_dot, w, c, a, b, g, ns, imp, fpts, fcnt)
             e_sum += e
-            _store(w, c, fn_sum, dmax, u_at_max, ft_sum)
+            _store(w, c, fn_sum, dmax, u_at_max, ft_sum, px, py, pz, mx, my, mz)
             w.contact_angle[c] = angle
             continue
         fn_sum, dmax, u_at_max, ft_sum, f_max, angle = 0.0, -math.inf, 0.0, 0.0, -1.0, 0.0
@@ -46,10 +46,11 @@ def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
         law, k_s, n_exp, damp, d_mx, fric = m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c], m.pair_fric[c]
         p0, p1, p2, p3 = fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3]
         fxs = fys = fzs = tax = tay = taz = tbx = tby = tbz = 0.0
+        k_deep, k_max = 0, -1
         for k in range(ns):
             delta = sd[k]
             if delta > dmax:
-                dmax = delta
+                dmax, k_deep = delta, k
             if delta <= 0.0:
                 continue
             px, py, pz = _to_world(q, b, sp[k, 0], sp[k, 1], sp[k, 2])
@@ -77,6 +78,11 @@ def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
             if fn > f_max:
                 f_max, u_at_max = fn, u
                 angle = _contact_angle(q, b, mx, my, mz, px, py, pz)
+                k_max = k
+        # the point and normal of the most loaded slice, or of the deepest when none is loaded
+        k = k_max if k_max >= 0 else k_deep
+        px, py, pz = _to_world(q, b, sp[k, 0], sp[k, 1], sp[k, 2])
+        mx, my, mz = rotate(q, b, sn[k, 0], sn[k, 1], sn[k, 2])
         bf[a, 0] += fxs
         bf[a, 1] += fys
         bf[a, 2] += fzs
@@ -89,7 +95,7 @@ def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
         bt[b, 0] -= tbx
         bt[b, 1] -= tby
         bt[b, 2] -= tbz
-        _store(w, c, fn_sum, dmax, u_at_max, ft_sum)
+        _store(w, c, fn_sum, dmax, u_at_max, ft_sum, px, py, pz, mx, my, mz)
         w.contact_angle[c] = angle
     return e_sum
 
@@ -115,10 +121,11 @@ def _roller_rib_pairs(m, q, v, eta, eta_dot, w):
             circ = m.race_circle_s[m.race_circle_off[g]:m.race_circle_off[g + 1]]
             _grid_corners(m.samp_theta[s0:s0 + (s1 - s0) // circ.shape[0]], m.race_periodic[g] == 1, circ,
                           m.race_kind[g], s0, point[0], point[1], point[2], w.flex_corner, w.flex_weight)
-            n, fn, delta, u, ft, e = _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, 0, delta,
-                                                     point[0], point[1], point[2], nx, ny, nz, imp, fpts, fcnt)
+            n, fn, delta, u, ft, e, px, py, pz, mx, my, mz = _flexible_point(
+                m, q, v, eta, eta_dot, w, c, a, b, o0, o1, 0, delta, point[0], point[1], point[2], nx, ny, nz, imp,
+                fpts, fcnt)
             _flush_rows(w.flex_row, w.flex_field, n, m.samp_disp, m.samp_rot, w.modal_f[o0:o1])
-            _store(w, c, fn, delta, u, ft)
+            _store(w, c, fn, delta, u, ft, px, py, pz, mx, my, mz)
             w.contact_angle[c] = 0.0
             e_sum += e
             continue
@@ -127,7 +134,7 @@ def _roller_rib_pairs(m, q, v, eta, eta_dot, w):
         fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                      m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
         _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
-        _store(w, c, fn, delta, u, ft)
+        _store(w, c, fn, delta, u, ft, px, py, pz, mx, my, mz)
         w.contact_angle[c] = 0.0
         e_sum += e
     return e_sum

@@ -37,7 +37,7 @@ from ..kernels.forces import (STATUS_ENERGY, STATUS_MODAL, STATUS_NONFINITE, STA
                               compute_forces)
 from ..kernels.laws import friction_coefficient
 from ..kernels.modal import modal_mass_matrix
-from .model import Model, State, make_record_buffers, make_work
+from .model import RECORDED_CONTACT_FIELDS, Model, State, make_record_buffers, make_work
 from .recorder import RunRecord, _modal_ranges, read_run, recorded_timestep_s
 
 __all__ = ["StepLimit", "stable_timestep", "simulate", "SimulationError", "StepTooLargeError", "DivergenceError",
@@ -306,8 +306,9 @@ def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | Non
         work.body_f[:], work.body_t[:], work.modal_f[:] = ck["body_f"], ck["body_t"], ck["modal_f"]
         if "fric_c" in ck:  # (checkpoints written before implicit friction existed lack them: zero there)
             work.fric_c[:], work.fric_v[:] = ck["fric_c"], ck["fric_v"]
-        for f in ("fn", "delta", "slip", "ft", "angle", "theta"):
-            getattr(work, f"contact_{f}")[:] = ck[f]
+        for f in RECORDED_CONTACT_FIELDS:
+            if f in ck:  # (checkpoints written before points and normals were recorded lack them: zero there)
+                getattr(work, f"contact_{f}")[:] = ck[f]
         h = timestep_s
         state.t = t_origin + step * h
         if t_end_s < state.t:

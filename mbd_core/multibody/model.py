@@ -84,7 +84,10 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: Scratch arrays of one force evaluation. body_f/body_t (n_b, 3) world force N / moment N·m;
 #: contact_* (n_c,) outputs: fn N (sum over slices/points), delta m (largest), slip m/s (at the
 #: most loaded point), ft N (sum of friction magnitudes), angle rad (atan2(n_axial, n_radial) of
-#: the normal in the ring's frame), theta rad (ball angle on its groove); energy (2,) J: contact
+#: the normal in the ring's frame), theta rad (ball angle on its groove); contact_point (n_c, 3) the
+#: contact point, world m, and contact_normal (n_c, 3) the unit normal of the force on the element
+#: (body a), world: for a pair of several points (roller slices, pocket walls) those of its most loaded
+#: point (like slip and angle), for a pair without load those of its deepest point; energy (2,) J: contact
 #: and bushing potential; type_count (5,) the number of pairs of each kind; modal_f (n_η,) the
 #: contacts' modal forces, √kg·m/s²; the modal_* rest is scratch of the modal step (M the largest
 #: number of modes of a body): modal_M, modal_L (6 + M, 6 + M), modal_u, modal_u0, modal_rhs,
@@ -100,7 +103,8 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: model without them), fric_n (1,) int64 how many; fric_a (6, 6), fric_r (6,), fric_g (6,) scratch.
 WorkArrays = namedtuple(
     "WorkArrays",
-    "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta energy "
+    "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta contact_point "
+    "contact_normal energy "
     "load pi center axis point slice_delta slice_point slice_normal type_count "
     "modal_f modal_M modal_L modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta "
     "flex_row flex_field flex_corner flex_weight groove_rows fric_c fric_v fric_pts fric_n fric_a fric_r fric_g",
@@ -108,9 +112,12 @@ WorkArrays = namedtuple(
 FLEX_ROWS = 32
 
 #: Buffers for k samples: t (k,), q (k, n_b, 7), v (k, n_b, 6), eta and eta_dot (k, n_η), contact
-#: outputs (k, n_c).
-RecordBuffers = namedtuple("RecordBuffers", "t q v eta eta_dot fn delta slip ft angle theta")
-RECORDED_CONTACT_FIELDS = ("fn", "delta", "slip", "ft", "angle", "theta")
+#: outputs (k, n_c), contact point and normal (k, n_c, 3) float32 (µm resolution on a 7 m ring; they
+#: serve to rebuild force vectors, not to integrate).
+RecordBuffers = namedtuple("RecordBuffers", "t q v eta eta_dot fn delta slip ft angle theta point normal")
+RECORDED_CONTACT_FIELDS = ("fn", "delta", "slip", "ft", "angle", "theta", "point", "normal")
+#: the recorded contact fields with a vector per contact
+VECTOR_CONTACT_FIELDS = ("point", "normal")
 
 
 @dataclass(frozen=True)
@@ -198,6 +205,7 @@ def make_work(model: Model) -> WorkArrays:
         body_f=np.zeros((nb, 3)), body_t=np.zeros((nb, 3)),
         contact_fn=np.zeros(nc), contact_delta=np.zeros(nc), contact_slip=np.zeros(nc),
         contact_ft=np.zeros(nc), contact_angle=np.zeros(nc), contact_theta=np.zeros(nc),
+        contact_point=np.zeros((nc, 3)), contact_normal=np.zeros((nc, 3)),
         energy=np.zeros(2), load=np.zeros(6), pi=np.zeros(3), center=np.zeros(3), axis=np.zeros(3),
         point=np.zeros(3), slice_delta=np.zeros(ns), slice_point=np.zeros((ns, 3)),
         slice_normal=np.zeros((ns, 3)),
@@ -222,7 +230,8 @@ def make_record_buffers(model: Model, n_samples: int) -> RecordBuffers:
     return RecordBuffers(
         t=np.zeros(k), q=np.zeros((k, nb, 7)), v=np.zeros((k, nb, 6)),
         eta=np.zeros((k, model.n_modal)), eta_dot=np.zeros((k, model.n_modal)),
-        **{name: np.zeros((k, nc)) for name in RECORDED_CONTACT_FIELDS},
+        **{name: (np.zeros((k, nc, 3), np.float32) if name in VECTOR_CONTACT_FIELDS else np.zeros((k, nc)))
+           for name in RECORDED_CONTACT_FIELDS},
     )
 
 

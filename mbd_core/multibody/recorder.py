@@ -11,7 +11,8 @@ Layout of a run folder (described here only)::
                         bodies' ranges in ``modal_ranges`` of layout.json);
                         fn, delta, slip, ft, angle, theta (k, n_c): normal force N, penetration m,
                         slip speed m/s, friction force N, contact angle rad, ball angle on its
-                        groove rad (0 for other contacts)
+                        groove rad (0 for other contacts); point, normal (k, n_c, 3) float32:
+                        contact point m and unit normal of the force on the element, world
     checkpoint.npz      the integrator state after the last chunk: t_origin, step, q, v, eta,
                         eta_dot, body_f, body_t, modal_f, fric_c, fric_v, the contact outputs and n_chunks, from
                         which a run resumes bit for bit
@@ -42,9 +43,11 @@ __all__ = ["RunRecord", "RecordError", "read_run", "FORMAT_VERSION"]
 class RecordError(ValueError):
     """A run record or its checkpoint is unreadable or belongs to another run (names the file)."""
 
-FORMAT_VERSION = 1
+#: 2: contact points and normals recorded (a version 1 record is read without them, not resumed)
+FORMAT_VERSION = 2
+READABLE_VERSIONS = (1, 2)
 UNITS = {"t": "s", "q": "m | quaternion", "v": "m/s | rad/s (body)", "eta": "√kg", "eta_dot": "√kg/s", "fn": "N", "delta": "m", "slip": "m/s",
-         "ft": "N", "angle": "rad", "theta": "rad"}
+         "ft": "N", "angle": "rad", "theta": "rad", "point": "m (world)", "normal": "1 (world)"}
 
 
 def _atomic_save(path: Path, **arrays) -> None:
@@ -69,6 +72,9 @@ class RunRecord:
         fingerprint = model_fingerprint(model)
         if resume:
             layout = _read_layout(self.folder)
+            if layout.get("format_version") != FORMAT_VERSION:
+                raise RecordError(f"{self.layout_path}: the record has format {layout.get('format_version')!r}, this "
+                                  f"version writes {FORMAT_VERSION}; run again from the start")
             if "model_sha256" not in layout:
                 raise RecordError(f"{self.layout_path}: the record holds no model fingerprint (written by an "
                                   f"older version), so a resume cannot be checked; run again from the start")
@@ -164,8 +170,8 @@ def read_run(folder) -> dict:
     ``body_names``, ``pair_names``, ``pair_kinds``, ``status``, ``timestep_s`` and ``every``."""
     folder = Path(folder)
     layout = _read_layout(folder)
-    if layout.get("format_version") != FORMAT_VERSION:
-        raise ValueError(f"{folder}: record format {layout.get('format_version')} is not {FORMAT_VERSION}")
+    if layout.get("format_version") not in READABLE_VERSIONS:
+        raise ValueError(f"{folder}: record format {layout.get('format_version')} is not one of {READABLE_VERSIONS}")
     parts: dict[str, list] = {}
     for n in range(layout["n_chunks"]):
         path = folder / f"chunk_{n:06d}.npz"

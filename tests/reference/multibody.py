@@ -44,8 +44,11 @@ PARALLEL_TOL = 1e-12  # |projection of d normal to the axis| below which the rol
 #: body_f_scale, body_t_scale (n_b,): Σ of the magnitudes of the terms summed into each body's force and
 #: moment (|F|, |p − r| |F|, |M|), the scale of their round-off.
 #: modal_f (n_η,): the contacts' modal forces (flexible grooves), √kg·m/s².
+#: point, normal (n_c, 3): each pair's contact point and the unit normal of the force on its element (world):
+#: those of its most loaded point, or of its deepest point when none is loaded.
 Forces = namedtuple("Forces", "body_f body_t fn delta slip ft angle theta energy_contact energy_bushing "
-                              "body_f_scale body_t_scale modal_f", defaults=(np.zeros(0),))
+                              "body_f_scale body_t_scale modal_f point normal",
+                    defaults=(np.zeros(0), np.zeros((0, 3)), np.zeros((0, 3))))
 
 
 # -- rotations ---------------------------------------------------------------------------------
@@ -556,6 +559,7 @@ def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
         bodies.add_moment(i, load[3:])
     e_bushing = _bushings(m, q, bodies)
     out = {k: np.zeros(nc) for k in ("fn", "delta", "slip", "ft", "angle", "theta")}
+    point, normal_out = np.zeros((nc, 3)), np.zeros((nc, 3))
     e_contact = 0.0
     for c in range(nc):
         a, b = m.pair_a[c], m.pair_b[c]
@@ -581,7 +585,13 @@ def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
                 modal_f[surface.modes] += surface.modal_force(force)
             loaded.append((fn, slip, ft, normal, p))
             e_contact += e
-        out["delta"][c] = max(point[0] for point in points)
+        out["delta"][c] = max(pt[0] for pt in points)
+        if loaded:
+            top = loaded[int(np.argmax([x[0] for x in loaded]))]
+            point[c], normal_out[c] = top[4], top[3]
+        else:
+            deepest = points[int(np.argmax([pt[0] for pt in points]))]
+            point[c], normal_out[c] = deepest[2], deepest[1]
         out["fn"][c] = sum(x[0] for x in loaded)
         out["ft"][c] = sum(x[2] for x in loaded)
         if loaded:
@@ -591,4 +601,4 @@ def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
             angle = _angle_in_ring(bodies.R[b], bodies.r[b], top[3], top[4]) if loaded else 0.0
         out["angle"][c], out["theta"][c] = angle, theta
     return Forces(bodies.f, bodies.t, out["fn"], out["delta"], out["slip"], out["ft"], out["angle"], out["theta"],
-                  e_contact, e_bushing, bodies.f_scale, bodies.t_scale, modal_f)
+                  e_contact, e_bushing, bodies.f_scale, bodies.t_scale, modal_f, point, normal_out)
