@@ -178,6 +178,15 @@ class RunOutput:
         plt().close(fig)
         return p
 
+    def write_timeseries(self, model, run: dict, name: str = "timeseries.nc", **attrs) -> Path:
+        """The raw time series of a dynamic run (:mod:`mbd_core.multibody.timeseries`: NetCDF-4, readable
+        by xarray or ParaView without flexbearing); ``attrs`` become global attributes (case, study)."""
+        from mbd_core.multibody.timeseries import write_timeseries
+
+        p = write_timeseries(self.path(name), model, run, attrs)
+        self.summary.setdefault("timeseries_files", []).append(name)
+        return p
+
     def note(self, line: str) -> None:
         self.report.append(line)
 

@@ -198,6 +198,7 @@ def run_rotation(case, desc, out, progress=None) -> None:
                pocket_clearance_m={r.name: desc.separators[r.name].pocket_clearance(r.ball_diameter_m)
                                    for r in sc.rows if desc.separators[r.name].kind == "cage"})
     out.summary.update(fig)
+    out.write_timeseries(sc.model, run, case=case.name, study="rotation")
     t = run["t"]
     for i, (row, rb) in enumerate(zip(sc.rows, sc.row_bodies)):
         name = "".join(c if c.isalnum() else "_" for c in row.name)

@@ -315,6 +315,7 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
     out.summary["error_estimates"] = {"time_step": step}
     out.summary["integrator"] = ({"kind": "generalized-alpha (implicit)", "rho_inf": a.rho_inf} if implicit
                                  else {"kind": "explicit (velocity Verlet)"})
+    out.write_timeseries(sc.model, run, case=case.name, study=case.study.kind)
     out.write_csv("ball_loads_time.csv", ["t_s"] + ball_columns(q.shape[1]),
                   (np.concatenate([[ti], qi]) for ti, qi in zip(t, q)))
     if sc.spacer_pairs:

@@ -58,7 +58,8 @@ def study_static(case: WindCase, out, progress=None) -> None:
         out.note(f"{n:12s}: largest roller load {max(v[0] for v in vals):9.0f} N over the {len(loads)} load cases")
 
 
-def _one_run(case: WindCase, progress=None) -> tuple[dict, object, dict]:
+def _one_run(case: WindCase, progress=None, out=None, label: str = "") -> tuple[dict, object, dict]:
+    """One dynamic run and its figures; with ``out``, its raw time series in ``timeseries[_label].nc``."""
     t0 = time.perf_counter()
     sc, rec = dynamic.run(case, progress)
     figures = {"speeds": dynamic.roller_speeds(case, sc, rec), "cages": dynamic.cage_speeds(case, sc, rec),
@@ -67,6 +68,9 @@ def _one_run(case: WindCase, progress=None) -> tuple[dict, object, dict]:
                "error_estimates": {"time_step": dynamic.step_error(sc, rec["timestep_s"]),
                                    "slices": dynamic.slice_error(case)},
                "wall_time_s": time.perf_counter() - t0}
+    if out is not None:
+        out.write_timeseries(sc.model, rec, f"timeseries_{label}.nc" if label else "timeseries.nc", case=case.name,
+                             study=case.study.kind, **({"variant": label} if label else {}))
     return figures, sc, rec
 
 
@@ -90,7 +94,7 @@ def _speed_notes(out, fig: dict, label: str = "") -> None:
 
 def study_speeds(case: WindCase, out, progress=None) -> None:
     """Roller and cage speeds against rolling kinematics, with the inner ring's equilibrium."""
-    fig, sc, rec = _one_run(case, progress)
+    fig, sc, rec = _one_run(case, progress, out)
     _spectrum_files(case, out)
     out.save_figure(plots.roller_speed_figure(case, sc, rec), "roller_speeds.png")
     if case.bodies.any_modal:
@@ -115,7 +119,7 @@ def study_rigid_flexible(case: WindCase, out, progress=None) -> None:
     modal_bodies(case.with_(bodies={"rings": "modal", "cages": "modal"}))
     for label, kind in (("rigid", "rigid"), ("flexible", "modal")):
         c = case.with_(bodies={"rings": kind, "cages": kind})
-        fig, sc, rec = _one_run(c, progress)
+        fig, sc, rec = _one_run(c, progress, out, label)
         runs[label] = (c, sc, rec)
         _speed_notes(out, fig, f"{label:8s} ")
         figs[label] = fig
@@ -135,10 +139,10 @@ def study_rigid_flexible(case: WindCase, out, progress=None) -> None:
                  + " (paper 1.67–3.76)")
 
 
-def _sweep(case: WindCase, out, variants, label: str, progress=None) -> dict:
+def _sweep(case: WindCase, out, variants, label: str, unit: str, progress=None) -> dict:
     results = {}
     for key, c in variants:
-        fig, _, _ = _one_run(c, progress)
+        fig, _, _ = _one_run(c, progress, out, f"{key}{unit}".replace("/", "_"))
         results[key] = fig
         cf = fig["cage_forces"]
         out.note(f"{label} {key}: mean roller–cage force radial {cf['radial']['mean_N']:.1f} N, front "
@@ -150,7 +154,7 @@ def _sweep(case: WindCase, out, variants, label: str, progress=None) -> dict:
 def study_driving_speed(case: WindCase, out, progress=None) -> None:
     """Cage and raceway forces at each driving speed; front/rear thrust cage force ratio (paper 1.19–1.59)."""
     variants = [(s, case.with_(analysis={"speed_rpm": s})) for s in case.study.speeds_rpm]
-    res = _sweep(case, out, variants, "speed (r/min)", progress)
+    res = _sweep(case, out, variants, "speed (r/min)", "rpm", progress)
     ratio = {s: r["cage_forces"]["front thrust"]["mean_N"] / r["cage_forces"]["rear thrust"]["mean_N"] for s, r in res.items()}
     out.summary.update(by_speed_rpm={str(s): r["cage_forces"] for s, r in res.items()},
                        front_rear_cage_force_ratio={str(s): v for s, v in ratio.items()})
@@ -162,7 +166,7 @@ def study_friction(case: WindCase, out, progress=None) -> None:
     """Cage forces for each (μ_dynamic, μ_static); drop from the highest to the lowest friction (paper 50–76 %)."""
     variants = [(f"{md:g}/{ms:g}", case.with_(contact={"mu_dynamic": md, "mu_static": ms}))
                 for md, ms in case.study.friction_sets]
-    res = _sweep(case, out, variants, "friction μd/μs", progress)
+    res = _sweep(case, out, variants, "friction μd/μs", "", progress)
     keys = list(res)
     hi = max(keys, key=lambda k: float(k.split("/")[0]))
     lo = min(keys, key=lambda k: float(k.split("/")[0]))
