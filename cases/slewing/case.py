@@ -274,7 +274,9 @@ class Analysis:
     ``dynamic_implicit``: the same run with the implicit generalized-α integrator
     (:func:`mbd_core.multibody.implicit.simulate_implicit`, spectral radius at infinity ``rho_inf``)
     at ``timestep_s`` (None: :data:`.dynamic.IMPLICIT_STEP_FACTOR` × the automatic explicit step); the rotation
-    study takes it when asked, else runs explicitly."""
+    study takes it when asked, else runs explicitly. A dynamic run compares its ball loads at
+    ``reference_samples`` samples after the start-up with the quasi-static equilibrium at the run's
+    top rotation and ball phase there (:mod:`.dynamic_reference`; 0: no comparison)."""
 
     type: Literal["quasi_static", "dynamic_explicit", "dynamic_implicit"] = "quasi_static"
     speed_rpm: float = 6.55
@@ -285,6 +287,7 @@ class Analysis:
     record_every: int = 200
     spacers: bool = True
     rho_inf: float = 0.9
+    reference_samples: int = 5
 
     def __post_init__(self) -> None:
         _positive("analysis", speed_rpm=self.speed_rpm, duration_s=self.duration_s, timestep_s=self.timestep_s,
@@ -295,6 +298,8 @@ class Analysis:
             raise ValueError(f"travel_steps must be ≥ 0, got {self.travel_steps}")
         if self.record_every < 1:
             raise ValueError(f"record_every must be ≥ 1, got {self.record_every}")
+        if self.reference_samples < 0:
+            raise ValueError(f"reference_samples must be ≥ 0, got {self.reference_samples}")
 
 
 Kind = Literal["single", "static", "rotation", "undulation", "thermal", "combined", "life", "full-scale"]

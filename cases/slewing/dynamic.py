@@ -40,6 +40,7 @@ from ..integrate import integrate
 from . import scene
 from .case import THESIS_CONTACT_DAMPING_N_S_PER_M, THESIS_CONTACT_STIFFNESS_N_PER_M1P5, SlewingCase
 from .quasistatic import analytic_ball_load_N
+from .dynamic_reference import compare_with_quasistatic, plot_comparison
 
 __all__ = ["DynamicScene", "build_scene", "state_from_quasistatic", "start_state", "run_dynamic", "ball_columns", "spacer_columns",
            "start_up_window", "spacer_force_figures"]
@@ -315,6 +316,17 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
     out.summary["error_estimates"] = {"time_step": step}
     out.summary["integrator"] = ({"kind": "generalized-alpha (implicit)", "rho_inf": a.rho_inf} if implicit
                                  else {"kind": "explicit (velocity Verlet)"})
+    cmp = compare_with_quasistatic(case, bodies, run, sc.top, sc.balls, sc.ball_pairs_top, settled,
+                                   a.reference_samples, progress)
+    if cmp is not None:
+        out.summary["quasistatic_comparison"] = {k: cmp[k] for k in ("time_s", "top_rotation_deg", "max_deviation",
+                                                                     "max_deviation_loaded", "loaded_share")}
+        out.write_csv("quasistatic_comparison.csv", ["t_s", "top_rotation_deg", "ball", "run_load_N",
+                                                     "quasistatic_load_N"],
+                      ([t, ang, j + 1, g, w] for t, ang, gs, ws in zip(cmp["time_s"], cmp["top_rotation_deg"],
+                                                                       cmp["run_load_N"], cmp["quasistatic_load_N"])
+                       for j, (g, w) in enumerate(zip(gs, ws))))
+        out.save_figure(plot_comparison(cmp, case), "quasistatic_comparison.png")
     out.write_timeseries(sc.model, run, case=case.name, study=case.study.kind)
     out.write_csv("ball_loads_time.csv", ["t_s"] + ball_columns(q.shape[1]),
                   (np.concatenate([[ti], qi]) for ti, qi in zip(t, q)))

@@ -49,6 +49,33 @@ _PRESET_TABLES = {
         name="slewing-full-scale", description="(g) the Ø6.69 m ring with a modal top structure (top race + "
         "TMR, E = 200 GPa) under the undulation, beside the 2 m ring with E = 1.5975 GPa",
         study={"kind": "full-scale", "top_E_Pa": (200e9, REDUCED_E_PA)}, top=_MODAL),
+    # the studies run dynamically with a modal top structure, each compared with the quasi-static
+    # solution at the run's positions (analysis.reference_samples)
+    "slewing-rotation-modal": dict(
+        name="slewing-rotation-modal", description="(b) dynamic with a modal top structure (top race + TMR): the "
+        "1 m ring turning at 6.55 r/min with friction and spacer balls, against the rigid top's uniform load",
+        study={"kind": "rotation"}, geometry={"variant": "1m"}, top=_MODAL,
+        analysis={"type": "dynamic_explicit", "duration_s": 4.6}),
+    "slewing-spacers-modal": dict(
+        name="slewing-spacers-modal", description="(c) dynamic with a modal top structure: the 2 m ring, bottom race "
+        "undulated ×1, turning for 1 s: ball loads against the quasi-static ones, spacer–load ball forces "
+        "(thesis ≤ 625 N)",
+        study={"kind": "rotation"}, geometry={"variant": "2m"}, undulation={"scale": 1.0},
+        top={"kind": "modal", "element_size_m": UNDULATION_TOP_ELEMENT_SIZE_M},
+        analysis={"type": "dynamic_explicit", "duration_s": 1.0}),
+    "slewing-thermal-modal": dict(
+        name="slewing-thermal-modal", description="(d) dynamic with a modal top structure: the 2 m ring with the "
+        "thermal offset Δ = 0.4 mm (top race 80–100°, turning with it; bottom race 260–280°), turning for 1 s",
+        study={"kind": "rotation"}, geometry={"variant": "2m"}, thermal={"offset_m": 0.4e-3},
+        top={"kind": "modal", "element_size_m": UNDULATION_TOP_ELEMENT_SIZE_M},
+        analysis={"type": "dynamic_explicit", "duration_s": 1.0}),
+    "slewing-combined-modal": dict(
+        name="slewing-combined-modal", description="(e) dynamic with a modal top structure at the reduced modulus "
+        "1.5975 GPa: the 2 m ring undulated ×1 with Δ = 0.4 mm, turning for 1 s",
+        study={"kind": "rotation"}, geometry={"variant": "2m"}, undulation={"scale": 1.0},
+        thermal={"offset_m": 0.4e-3},
+        top={"kind": "modal", "element_size_m": UNDULATION_TOP_ELEMENT_SIZE_M, "E_Pa": REDUCED_E_PA},
+        analysis={"type": "dynamic_explicit", "duration_s": 1.0}),
 }
 
 PRESETS = {name: from_mapping(SlewingCase, tables) for name, tables in _PRESET_TABLES.items()}
@@ -85,6 +112,12 @@ def quick(case: SlewingCase) -> SlewingCase:
     from .studies import runs_of
 
     tables = dict(_QUICK[case.study.kind])
+    modal = [k for k in ("top", "bottom") if getattr(case, k).kind == "modal"]
+    if case.study.kind == "rotation" and modal:
+        # coarser modal rings; on the larger rings (explicit step ~0.4 µs) a shorter run
+        tables.update({k: _QUICK_MODAL for k in modal})
+        if case.geometry.variant != "1m":
+            tables["analysis"] = {**tables["analysis"], "duration_s": 0.05}
     if case.study.kind == "single":
         tables["analysis"] = _QUICK_SINGLE_ANALYSIS[runs_of(case)[0]]
         tables.update({k: _QUICK_MODAL for k in ("top", "bottom") if getattr(case, k).kind == "modal"})
