@@ -320,7 +320,12 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
                                    a.reference_samples, progress)
     if cmp is not None:
         out.summary["quasistatic_comparison"] = {k: cmp[k] for k in ("time_s", "top_rotation_deg", "max_deviation",
-                                                                     "max_deviation_loaded", "loaded_share")}
+                                                                     "max_deviation_loaded", "loaded_share",
+                                                                     "max_ball_offset_deg")}
+        out.note(f"against the quasi-static equilibrium at {len(cmp['time_s'])} positions: largest deviation "
+                 f"{100 * cmp['max_deviation']:.2f} % of the largest load, {100 * cmp['max_deviation_loaded']:.2f} % "
+                 f"of its own load for balls above {100 * cmp['loaded_share']:.0f} % of the largest; balls up to "
+                 f"{cmp['max_ball_offset_deg']:.3f}° from even spacing")
         out.write_csv("quasistatic_comparison.csv", ["t_s", "top_rotation_deg", "ball", "run_load_N",
                                                      "quasistatic_load_N"],
                       ([t, ang, j + 1, g, w] for t, ang, gs, ws in zip(cmp["time_s"], cmp["top_rotation_deg"],

@@ -7,7 +7,10 @@ run) solved at the run's top rotation and ball phase at that sample. The balls o
 quasi-static row are the same balls in the same order; the phase is the circular mean of the balls'
 angles from their nominal positions, so a slow drift of the balls against the kinematic orbit does
 not count as an error. What the quasi-static model leaves out shows as the difference: inertia,
-damping, friction, the spacer balls and the balls' weight.
+damping, friction, the spacer balls and the balls' weight, and the balls' own spacing (the
+quasi-static row keeps them 2π/Z apart; in the run the spacers push them apart unevenly), which
+matters where the races change steeply along the circumference (the thermal sectors' 5° edges):
+``max_ball_offset_deg`` reports the largest angle of a ball from its place in the reference.
 """
 
 from __future__ import annotations
@@ -27,12 +30,14 @@ __all__ = ["LOADED_SHARE", "compare_with_quasistatic", "sample_position"]
 LOADED_SHARE = 0.25
 
 
-def sample_position(q: np.ndarray, top: int, balls) -> tuple[float, float]:
-    """(top rotation about z, ball phase) of one recorded pose array (n_b, 7), rad."""
+def sample_position(q: np.ndarray, top: int, balls) -> tuple[float, float, float]:
+    """(top rotation about z, ball phase, largest angle of a ball from phase + 2πj/Z) of one recorded
+    pose array (n_b, 7), rad."""
     top_rad = 2.0 * math.atan2(q[top, 6], q[top, 3])
     balls = list(balls)
     psi = np.arctan2(q[balls, 1], q[balls, 0]) - 2.0 * math.pi * np.arange(len(balls)) / len(balls)
-    return top_rad, math.atan2(float(np.sin(psi).mean()), float(np.cos(psi).mean()))
+    phase = math.atan2(float(np.sin(psi).mean()), float(np.cos(psi).mean()))
+    return top_rad, phase, float(np.abs(np.angle(np.exp(1j * (psi - phase)))).max())
 
 
 def compare_with_quasistatic(case: SlewingCase, bodies: Bodies, run: dict, top: int, balls, pairs,
@@ -50,9 +55,10 @@ def compare_with_quasistatic(case: SlewingCase, bodies: Bodies, run: dict, top: 
     index = np.flatnonzero(settled)
     picks = index[np.unique(np.linspace(0, index.size - 1, n_samples).round().astype(int))]
     pairs = list(pairs)
-    times, angles, got, want = [], [], [], []
+    times, angles, got, want, offset = [], [], [], [], 0.0
     for k in (progress(picks, "quasi-static references") if progress else picks):
-        top_rad, phase = sample_position(run["q"][k], top, balls)
+        top_rad, phase, off = sample_position(run["q"][k], top, balls)
+        offset = max(offset, off)
         want.append(equilibrium(case, bodies, top_rotation_rad=top_rad, ball_phase_rad=phase).rows[0].load_N)
         got.append(run["fn"][k, pairs])
         times.append(float(run["t"][k]))
@@ -63,7 +69,7 @@ def compare_with_quasistatic(case: SlewingCase, bodies: Bodies, run: dict, top: 
     return {"time_s": times, "top_rotation_deg": angles, "run_load_N": got, "quasistatic_load_N": want,
             "max_deviation": float(np.abs(got - want).max() / largest),
             "max_deviation_loaded": float((np.abs(got - want)[loaded] / want[loaded]).max()),
-            "loaded_share": LOADED_SHARE}
+            "loaded_share": LOADED_SHARE, "max_ball_offset_deg": math.degrees(offset)}
 
 
 def plot_comparison(cmp: dict, case: SlewingCase):
