@@ -85,7 +85,7 @@ def build_scene(case: SlewingCase, bodies: scene.Bodies) -> DynamicScene:
     g = case.geometry
     row = scene.ball_row(case)
     omega = case.analysis.speed_rpm * 2.0 * math.pi / 60.0
-    b = ModelBuilder(gravity_m_s2=(0.0, 0.0, -case.load.gravity_m_s2))
+    b = ModelBuilder(gravity_m_s2=(0.0, 0.0, -case.load.gravity_m_s2), implicit_friction=case.contact.implicit_friction)
     drive = Driven(omega, translation_free=True, tilt_free=True)
     R = 0.5 * g.pitch_diameter_m
     if bodies.top is None:
@@ -276,6 +276,28 @@ def _integrate_implicit(sc: DynamicScene, state, a) -> dict:
         raise CaseError(f"analysis.timestep_s = {h:.3g} s (implicit): {exc}") from None
 
 
+#: a dynamic run must record at least this many samples (its figures, the start-up window and the
+#: quasi-static comparison need them)
+MIN_SAMPLES = 20
+#: pieces of an explicit run (:func:`cases.integrate.integrate`); each records from its own start
+PIECES = 40
+
+
+def check_samples(sc: DynamicScene, state, a) -> None:
+    """Refuse a run that would record fewer than :data:`MIN_SAMPLES` samples (``analysis.record_every``
+    too large for the step and the duration), naming the key and the largest value that works."""
+    from mbd_core.multibody import stable_timestep
+
+    implicit = a.type == "dynamic_implicit"
+    h = a.timestep_s or (IMPLICIT_STEP_FACTOR if implicit else 1.0) * stable_timestep(sc.model, state).timestep_s
+    steps = a.duration_s / h
+    per_piece, pieces = (steps, 1) if implicit else (steps / PIECES, PIECES)
+    if 1 + pieces * int(per_piece // a.record_every) < MIN_SAMPLES:
+        best = max(1, int(per_piece // math.ceil((MIN_SAMPLES - 1) / pieces)))
+        raise CaseError(f"analysis.record_every = {a.record_every}: the run of {a.duration_s:g} s at the step "
+                        f"{h:.3g} s would record fewer than {MIN_SAMPLES} samples; use at most {best}")
+
+
 def run_dynamic(case: SlewingCase, out, progress=None) -> None:
     """Run the dynamic scene, write its series, figures and key figures."""
     from .plots import plot_dynamic
@@ -285,12 +307,14 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
     sc = build_scene(case, bodies)
     state = start_state(sc, case, bodies)
     a = case.analysis
+    check_samples(sc, state, a)
     implicit = a.type == "dynamic_implicit"
     if implicit:
         run = _integrate_implicit(sc, state, a)
     else:
         try:
-            run = integrate(sc.model, state, a.duration_s, a.record_every, progress, timestep_s=a.timestep_s)
+            run = integrate(sc.model, state, a.duration_s, a.record_every, progress, chunks=PIECES,
+                            timestep_s=a.timestep_s)
         except StepTooLargeError as exc:
             raise CaseError(f"analysis.timestep_s = {a.timestep_s:g} s: {exc}") from None
     t = run["t"]

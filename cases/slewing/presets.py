@@ -76,13 +76,19 @@ _PRESET_TABLES = {
         thermal={"offset_m": 0.4e-3},
         top={"kind": "modal", "element_size_m": UNDULATION_TOP_ELEMENT_SIZE_M, "E_Pa": REDUCED_E_PA},
         analysis={"type": "dynamic_explicit", "duration_s": 1.0}),
+    "slewing-full-scale-turning": dict(
+        name="slewing-full-scale-turning", description="(g) dynamic: the Ø6.69 m ring (116 load + 116 spacer balls) "
+        "with a modal top structure (top race + TMR, E = 200 GPa), bottom race undulated ×1, turning one revolution "
+        "of the top race at 6.55 r/min: ball loads and spacer forces over time against the quasi-static ones",
+        study={"kind": "rotation"}, geometry={"variant": "full"}, undulation={"scale": 1.0}, top=_MODAL,
+        analysis={"type": "dynamic_explicit", "duration_s": 60.0 / 6.55, "record_every": 100}),
 }
 
 PRESETS = {name: from_mapping(SlewingCase, tables) for name, tables in _PRESET_TABLES.items()}
 
 _QUICK = {
     "static": dict(geometry={"variant": "1m"}, top={"element_size_m": 0.1, "n_modes": 12, "groove_harmonics": 8}),
-    "rotation": dict(analysis={"duration_s": 0.4, "record_every": 100}),
+    "rotation": dict(analysis={"duration_s": 0.4, "record_every": 10}),
     "undulation": dict(top={"element_size_m": 0.12, "n_modes": 12, "groove_harmonics": 8},
                        study={"spacer_run_s": 0.05}),
     "thermal": dict(study={"offsets_m": (0.5e-3,)}, analysis={"travel_steps": 144}),
@@ -96,6 +102,8 @@ _QUICK = {
 #: ``single``: a coarser modal ring (a rigid one has nothing to coarsen, and its case.toml would
 #: carry keys no run reads)
 _QUICK_MODAL = {"element_size_m": 0.12, "n_modes": 12, "groove_harmonics": 8}
+#: the same on the full-scale ring (as the full-scale study's quick variant)
+_QUICK_MODAL_FULL = {**_QUICK_MODAL, "element_size_m": 0.3}
 #: ``single``: the shorter run of the kind the case makes (a quick equilibrium stays one, and a
 #: quasi-static case keeps no dynamic-only key its saved case.toml would have to refuse)
 _QUICK_SINGLE_ANALYSIS = {"dynamic": {"duration_s": 0.4}, "travels": {"travel_steps": 36}, "equilibria": {}}
@@ -115,7 +123,7 @@ def quick(case: SlewingCase) -> SlewingCase:
     modal = [k for k in ("top", "bottom") if getattr(case, k).kind == "modal"]
     if case.study.kind == "rotation" and modal:
         # coarser modal rings; on the larger rings (explicit step ~0.4 µs) a shorter run
-        tables.update({k: _QUICK_MODAL for k in modal})
+        tables.update({k: _QUICK_MODAL_FULL if case.geometry.variant == "full" else _QUICK_MODAL for k in modal})
         if case.geometry.variant != "1m":
             tables["analysis"] = {**tables["analysis"], "duration_s": 0.05}
     if case.study.kind == "single":

@@ -274,7 +274,8 @@ def study_full_scale(case: SlewingCase, out, progress=None) -> None:
 #: keys of each kind of run; a study that makes no run of a kind does not read its keys
 _DYNAMIC_KEYS = ("analysis.speed_rpm", "analysis.duration_s", "analysis.timestep_s", "analysis.record_every",
                  "analysis.spacers", "analysis.rho_inf", "analysis.reference_samples", "contact.damping_ratio", "contact.mu_static",
-                 "contact.mu_dynamic", "contact.v_static_m_s", "contact.v_dynamic_m_s", "contact.friction")
+                 "contact.mu_dynamic", "contact.v_static_m_s", "contact.v_dynamic_m_s", "contact.friction",
+                 "contact.implicit_friction")
 RUN_KEYS = {
     "dynamic": (dict.fromkeys(_DYNAMIC_KEYS), 'read by dynamic runs only (study.kind = "rotation", or "single" '
                 'with analysis.type = "dynamic_explicit")'),
