@@ -121,11 +121,8 @@ def quick(case: SlewingCase) -> SlewingCase:
 
     tables = dict(_QUICK[case.study.kind])
     modal = [k for k in ("top", "bottom") if getattr(case, k).kind == "modal"]
-    if case.study.kind == "rotation" and modal:
-        # coarser modal rings; on the larger rings (explicit step ~0.4 µs) a shorter run
+    if case.study.kind == "rotation" and modal:  # coarser modal rings
         tables.update({k: _QUICK_MODAL_FULL if case.geometry.variant == "full" else _QUICK_MODAL for k in modal})
-        if case.geometry.variant != "1m":
-            tables["analysis"] = {**tables["analysis"], "duration_s": 0.05}
     if case.study.kind == "single":
         tables["analysis"] = _QUICK_SINGLE_ANALYSIS[runs_of(case)[0]]
         tables.update({k: _QUICK_MODAL for k in ("top", "bottom") if getattr(case, k).kind == "modal"})
