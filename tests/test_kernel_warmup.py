@@ -65,7 +65,7 @@ def _child() -> None:
     compile_kernels()
     warm = sorted(calls)
     calls.clear()
-    slewing = resolve_case("slewing-rotation", True, ["analysis.duration_s=5e-4"])
+    slewing = resolve_case("slewing-rotation", True, ["analysis.duration_s=2e-3", "analysis.record_every=1"])
     run_dynamic(slewing, RunOutput(tempfile.mkdtemp()))
     # the wind scene (roller slices, ribs, slot pockets, implicit friction) for a few steps of its own
     # run's integrator (the case's run repeats these calls in 40 pieces)

@@ -51,3 +51,17 @@ def test_the_comparison_table_and_the_raw_series_agree(thermal_run):
         k = int(np.argmin(np.abs(t - table[0, 0])))
         assert f["normal_force"][k, c] == pytest.approx(table[0, 3], abs=1e-3)
         assert "modal_coordinate" in f and f["mode_body"].asstr()[0] == "top structure"
+
+
+def test_a_run_that_would_record_too_few_samples_is_refused_naming_the_key(tmp_path, capsys):
+    from cases.cli import main
+
+    out = tmp_path / "r"
+    # 0.01 s at the 1 m ring's 1.65e-5 s step: 606 steps in 40 pieces of 15, one sample each at most
+    argv = ["run", "slewing-rotation", "--quick", "--set", "analysis.duration_s=0.01",
+            "--set", "analysis.record_every=50", "--out", str(out)]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.split("\r")[-1]
+    assert err.startswith("flexbearing: error: analysis.record_every = 50: the run of 0.01 s at the step 1.65e-05 s "
+                          "would record fewer than 20 samples; use at most 15"), err
+    assert not out.exists()

@@ -164,11 +164,11 @@ def test_the_time_step_of_a_dynamic_run_is_the_one_asked_for(tmp_path):
 
 def test_a_time_step_above_the_stability_limit_is_refused_naming_the_key(tmp_path, capsys):
     out = tmp_path / "r"
-    argv = ["run", "slewing-rotation", "--quick", "--set", "analysis.duration_s=0.01",
-            "--set", "analysis.timestep_s=1e-5", "--out", str(out)]
+    argv = ["run", "slewing-rotation", "--quick", "--set", "analysis.duration_s=0.1",
+            "--set", "analysis.timestep_s=5e-5", "--out", str(out)]
     assert main(argv) == 2
     err = capsys.readouterr().err.split("\r")[-1]  # after the progress bar's last refresh
-    assert err.startswith("flexbearing: error: analysis.timestep_s = 1e-05 s: time step 1e-05 s exceeds the explicit "
+    assert err.startswith("flexbearing: error: analysis.timestep_s = 5e-05 s: time step 5e-05 s exceeds the explicit "
                           "stability limit"), err
     assert not out.exists()
 
