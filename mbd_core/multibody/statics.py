@@ -63,7 +63,7 @@ def _rotate_quats(q: np.ndarray, phi: np.ndarray) -> np.ndarray:
     v2 = (np.sin(angle / 2) / safe)[:, None] * phi
     w1, v1 = q[:, 0], q[:, 1:]
     out = np.concatenate([(w1 * w2 - np.sum(v1 * v2, axis=1))[:, None],
-                          w1[:, None] * v2 + w2[:, None] * v1 + np.cross(v1, v2)], axis=1)
+                          w1[:, None] * v2 + w2[:, None] * v1 + _cross(v1, v2)], axis=1)
     return out / np.linalg.norm(out, axis=1)[:, None]
 
 
@@ -235,15 +235,23 @@ def _frame_loads(model: Model, state: State, work):
         q = state.q[i:i + 1, 3:]
         S_w = _rotate_vecs(q, (a.modal_I2[j] + a.modal_I3[j, :, :o1 - o0] @ state.eta[o0:o1])[None])[0]
         f[i] += a.modal_mass[j] * a.gravity
-        t[i] += np.cross(S_w, a.gravity)
+        t[i] += _cross(S_w, a.gravity)
     return f, t
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a × b over the last axis (3), broadcast; np.cross's axis handling costs more than the
+    products on the small arrays of each residual evaluation (about 60 % of a static search)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
 
 
 def _rotate_vecs(q: np.ndarray, x: np.ndarray) -> np.ndarray:
     """R(q_k) x_k row by row; q (k, 4), x (k, 3)."""
     w, v = q[:, :1], q[:, 1:]
-    t = 2.0 * np.cross(v, x)
-    return x + w * t + np.cross(v, t)
+    t = 2.0 * _cross(v, x)
+    return x + w * t + _cross(v, t)
 
 
 def _modal_residual(model: Model, state: State, work) -> np.ndarray:
@@ -261,5 +269,5 @@ def _modal_residual(model: Model, state: State, work) -> np.ndarray:
 def _rotate_back_vecs(q: np.ndarray, x: np.ndarray) -> np.ndarray:
     """R(q_k)ᵀ x_k row by row; q (k, 4), x (k, 3)."""
     w, v = q[:, :1], -q[:, 1:]
-    t = 2.0 * np.cross(v, x)
-    return x + w * t + np.cross(v, t)
+    t = 2.0 * _cross(v, x)
+    return x + w * t + _cross(v, t)
