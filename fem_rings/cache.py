@@ -24,12 +24,11 @@ import logging
 import os
 import re
 import time
-import uuid
-from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
+from foundation.files import atomic_path  # (here too, where its callers have always found it)
 from foundation.npzfile import NPZ_ERRORS, read_npz
 
 __all__ = ["atomic_path", "cache_dir", "clean_stale_parts", "content_hash", "file_digest", "input_hash", "load_arrays",
@@ -189,20 +188,3 @@ def clean_stale_parts(folder: Path) -> None:
             pass
 
 
-@contextmanager
-def atomic_path(path: Path, suffix: str = ""):
-    """Yield a temporary file name next to ``path``; rename it to ``path`` on success.
-
-    The file appears under its final name only when complete (``os.replace`` within one folder
-    is atomic on POSIX and Windows); on error the temporary file is removed.
-    """
-    path.parent.mkdir(parents=True, exist_ok=True)
-    # a unique name that the writer creates itself, so the file gets the usual permissions
-    # (tempfile.mkstemp would leave it readable by the owner only)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}-{uuid.uuid4().hex[:12]}.part{suffix}")
-    try:
-        yield tmp
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()

@@ -17,11 +17,12 @@ from __future__ import annotations
 import hashlib
 import importlib
 import logging
-import os
 from pathlib import Path
 
 import numba
 from numba.core.registry import CPUDispatcher
+
+from foundation.files import atomic_path
 
 __all__ = ["has_cached_overloads", "invalidate_on_source_change", "sources_hash"]
 
@@ -79,10 +80,8 @@ def invalidate_on_source_change(package: str, folder) -> bool:
                 log.debug("could not empty the cache index of %s: %s", kernel.__name__, exc)
     for d in stale:
         try:
-            d.mkdir(parents=True, exist_ok=True)
-            tmp = d / f"{_STAMP}.{os.getpid()}.tmp"
-            tmp.write_text(digest, encoding="ascii")
-            os.replace(tmp, d / _STAMP)
+            with atomic_path(d / _STAMP) as tmp:
+                tmp.write_text(digest, encoding="ascii")
         except OSError as exc:
             log.debug("could not write %s: %s", d / _STAMP, exc)
     log.info("kernel sources changed since their compilation was cached: they compile afresh")

@@ -57,12 +57,13 @@ The file is written to a temporary name and renamed, so a file under its final n
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import h5netcdf
 import h5py
 import numpy as np
+
+from foundation.files import atomic_path
 
 from .model import Model
 
@@ -114,43 +115,38 @@ def write_timeseries(path, model: Model, run: dict, attrs: dict | None = None) -
     mode_body = []
     for j, i in enumerate(a.modal_body):
         mode_body += [model.body_names[int(i)]] * int(a.modal_off[j + 1] - a.modal_off[j])
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
-        with h5netcdf.File(tmp, "w") as f:
-            dims = {"time": n_t, "body": model.n_bodies, "contact": model.n_pairs, "xyz": 3, "quaternion": 4}
-            if model.n_modal:
-                dims["mode"] = model.n_modal
-            f.dimensions = dims
-            f.attrs["Conventions"] = "CF-1.8"
-            f.attrs["title"] = "flexbearing run: raw time series"
-            f.attrs["timestep_s"] = float(run["timestep_s"])
-            f.attrs["record_every"] = int(run.get("every", 1))
-            for key, value in (attrs or {}).items():
-                f.attrs[key] = value if isinstance(value, (int, float)) else str(value)
-            _variable(f, "time", ("time",), t, "s", "simulated time")
-            _labels(f, "body", "body", model.body_names, "body name")
-            _labels(f, "contact", "contact", model.pair_names, "contact pair name")
-            _labels(f, "contact_kind", "contact", model.pair_kinds, "contact pair kind")
-            _labels(f, "contact_element", "contact", [model.body_names[int(i)] for i in a.pair_a],
-                    "the pair's element body (the force variables act on it)")
-            _labels(f, "contact_surface", "contact", [model.body_names[int(i)] for i in a.pair_b],
-                    "the pair's other body")
-            q, v = np.asarray(run["q"]), np.asarray(run["v"])
-            _variable(f, "position", ("time", "body", "xyz"), q[:, :, :3], "m", "reference point, world frame")
-            _variable(f, "orientation", ("time", "body", "quaternion"), q[:, :, 3:], "1",
-                      "unit quaternion (w, x, y, z), body to world")
-            _variable(f, "velocity", ("time", "body", "xyz"), v[:, :, :3], "m/s", "velocity, world frame")
-            _variable(f, "angular_velocity", ("time", "body", "xyz"), v[:, :, 3:], "rad/s",
-                      "angular velocity in the body's axes")
-            if model.n_modal:
-                _labels(f, "mode_body", "mode", mode_body, "modal body of the coordinate")
-                _variable(f, "modal_coordinate", ("time", "mode"), run["eta"], "sqrt(kg)",
-                          "modal coordinate (mass-normalized modes)")
-                _variable(f, "modal_rate", ("time", "mode"), run["eta_dot"], "sqrt(kg)/s", "modal coordinate rate")
-            for field, (name, rest, units, long_name) in TIMESERIES_VARIABLES.items():
-                if field in run:
-                    _variable(f, name, ("time",) + rest, run[field], units, long_name)
-        os.replace(tmp, path)
-    finally:
-        tmp.unlink(missing_ok=True)
+    with atomic_path(path, ".nc") as tmp, h5netcdf.File(tmp, "w") as f:
+        dims = {"time": n_t, "body": model.n_bodies, "contact": model.n_pairs, "xyz": 3, "quaternion": 4}
+        if model.n_modal:
+            dims["mode"] = model.n_modal
+        f.dimensions = dims
+        f.attrs["Conventions"] = "CF-1.8"
+        f.attrs["title"] = "flexbearing run: raw time series"
+        f.attrs["timestep_s"] = float(run["timestep_s"])
+        f.attrs["record_every"] = int(run.get("every", 1))
+        for key, value in (attrs or {}).items():
+            f.attrs[key] = value if isinstance(value, (int, float)) else str(value)
+        _variable(f, "time", ("time",), t, "s", "simulated time")
+        _labels(f, "body", "body", model.body_names, "body name")
+        _labels(f, "contact", "contact", model.pair_names, "contact pair name")
+        _labels(f, "contact_kind", "contact", model.pair_kinds, "contact pair kind")
+        _labels(f, "contact_element", "contact", [model.body_names[int(i)] for i in a.pair_a],
+                "the pair's element body (the force variables act on it)")
+        _labels(f, "contact_surface", "contact", [model.body_names[int(i)] for i in a.pair_b],
+                "the pair's other body")
+        q, v = np.asarray(run["q"]), np.asarray(run["v"])
+        _variable(f, "position", ("time", "body", "xyz"), q[:, :, :3], "m", "reference point, world frame")
+        _variable(f, "orientation", ("time", "body", "quaternion"), q[:, :, 3:], "1",
+                  "unit quaternion (w, x, y, z), body to world")
+        _variable(f, "velocity", ("time", "body", "xyz"), v[:, :, :3], "m/s", "velocity, world frame")
+        _variable(f, "angular_velocity", ("time", "body", "xyz"), v[:, :, 3:], "rad/s",
+                  "angular velocity in the body's axes")
+        if model.n_modal:
+            _labels(f, "mode_body", "mode", mode_body, "modal body of the coordinate")
+            _variable(f, "modal_coordinate", ("time", "mode"), run["eta"], "sqrt(kg)",
+                      "modal coordinate (mass-normalized modes)")
+            _variable(f, "modal_rate", ("time", "mode"), run["eta_dot"], "sqrt(kg)/s", "modal coordinate rate")
+        for field, (name, rest, units, long_name) in TIMESERIES_VARIABLES.items():
+            if field in run:
+                _variable(f, name, ("time",) + rest, run[field], units, long_name)
     return path
