@@ -20,13 +20,14 @@ AXIS_ALONG_X = (math.cos(math.pi / 4), 0.0, math.sin(math.pi / 4), 0.0)  # body 
 
 
 def roller_on_plane(friction, implicit, damping=200.0, v0=(0.0, 0.0, 0.0), omega=(0.0, 0.0, 0.0),
-                    orientation=AXIS_ALONG_X, z0=R_M):
+                    orientation=AXIS_ALONG_X, z0=R_M, motion=None):
     """A solid cylinder (body z its axis) lying on a fixed plane z = 0 under gravity, 10 slices of a
-    linear 2e7 N/m law each."""
+    linear 2e7 N/m law each; free unless ``motion`` is given."""
     b = ModelBuilder(gravity_m_s2=(0.0, 0.0, -G), implicit_friction=implicit)
     ground = b.add_body("ground", 100.0, (1.0, 1.0, 1.0), motion=Fixed())
+    extra = {} if motion is None else {"motion": motion}
     roller = b.add_body("roller", MASS_KG, INERTIA, position_m=(0.0, 0.0, z0), orientation=orientation,
-                        velocity_m_s=v0, omega_rad_s=omega)
+                        velocity_m_s=v0, omega_rad_s=omega, **extra)
     plane = b.add_surface(ground, "plane_up", 0.0)
     b.add_roller_raceway(roller, ground, plane, R_M, L_M, ContactLaw(2e7, 1.0, damping, 1e-6, friction=friction),
                          n_slices=10)
@@ -34,22 +35,21 @@ def roller_on_plane(friction, implicit, damping=200.0, v0=(0.0, 0.0, 0.0), omega
     return model, state, roller
 
 
-def test_damping_matrix_is_the_jacobian_of_a_linear_friction_law():
-    # DREB linear traction F_t = −B F_n v_t is linear in the velocities at a fixed pose (no normal
-    # damping), so −∂(F, τ)/∂(v, ω_world) by central differences is exact up to rounding and must
-    # equal the assembled damping matrix C = Σ c Jᵀ(I − m mᵀ)J; a tilted, turned roller makes every
-    # slice's lever and normal differ.
+def _damping_and_jacobian(friction, v0, omega):
+    """The assembled damping matrix C of the roller and −∂(F, τ)/∂(v, ω_world) by central differences
+    at a fixed pose (no normal damping), with the roller tilted and turned so that every slice's
+    lever and normal differ."""
     from scipy.spatial.transform import Rotation
 
     x, y, z, w0 = Rotation.from_euler("zxy", [20.0, 0.6, 90.0], degrees=True).as_quat()  # axis 0.6° off level
-    model, state, i = roller_on_plane(DrebLinear(0.4), True, damping=0.0, orientation=(w0, x, y, z), z0=R_M - 1e-5,
-                                      v0=(0.3, -0.2, 0.0), omega=(1.0, 2.0, 30.0))
+    model, state, i = roller_on_plane(friction, True, damping=0.0, orientation=(w0, x, y, z), z0=R_M - 1e-5,
+                                      v0=v0, omega=omega)
     w = evaluate_forces(model, state)
     C = w.fric_c[i].copy()
     assert np.count_nonzero(w.contact_fn) == 1 and w.contact_fn[0] > 0
     R = _rotation(state.q[i, 3:])
     jac = np.zeros((6, 6))
-    eps = 1e-4
+    eps = 1e-4 * max(np.abs(v0).max(), 1e-3)
     for k in range(6):
         out = []
         for sign in (1.0, -1.0):
@@ -61,9 +61,29 @@ def test_damping_matrix_is_the_jacobian_of_a_linear_friction_law():
             wk = evaluate_forces(model, st)
             out.append(np.concatenate([wk.body_f[i], wk.body_t[i]]))
         jac[:, k] = -(out[0] - out[1]) / (2 * eps)
+    return C, jac, w.contact_slip[0]
+
+
+def test_damping_matrix_is_the_jacobian_of_a_linear_friction_law():
+    # DREB linear traction F_t = −B F_n v_t is linear in the velocities at a fixed pose, so the
+    # central differences are exact up to rounding and must equal C = Σ c Jᵀ(I − m mᵀ)J
+    C, jac, _ = _damping_and_jacobian(DrebLinear(0.4), (0.3, -0.2, 0.0), (1.0, 2.0, 30.0))
     np.testing.assert_allclose(C, jac, rtol=1e-7, atol=1e-9 * np.abs(C).max())
     np.testing.assert_allclose(C, C.T, rtol=0, atol=1e-12 * np.abs(C).max())
     assert np.linalg.eigvalsh(C).min() > -1e-9 * np.abs(C).max()  # a damper: positive semidefinite
+
+
+def test_damping_matrix_is_the_jacobian_at_the_start_of_a_regularised_step():
+    # Coulomb's cubic step below v_static is convex (μ = μ_s (3x² − 2x³), x = u/v_s, for x < 1/2 its
+    # slope μ' exceeds the secant μ/u): there C takes the slope along the slip and the secant across
+    # it, which is the exact Jacobian of F_t = −μ(|u|) F_n u/|u| at a fixed pose (central differences
+    # to 1e-6 with steps 1e-4 of the slip; the curvature of μ bounds their error)
+    law = Coulomb(0.1, 0.08, 1e-3, 2e-3)
+    C, jac, slip = _damping_and_jacobian(law, (1e-4, -0.5e-4, 0.0), (0.0, 0.0, 0.0))
+    assert 0.0 < slip < 0.5e-3  # on the convex part of the step (slope > secant)
+    np.testing.assert_allclose(C, jac, rtol=1e-5, atol=1e-6 * np.abs(C).max())
+    np.testing.assert_allclose(C, C.T, rtol=0, atol=1e-12 * np.abs(C).max())
+    assert np.linalg.eigvalsh(C).min() > -1e-9 * np.abs(C).max()
 
 
 def _rotation(qw):
@@ -148,9 +168,51 @@ def test_friction_kick_matches_its_numpy_twin():
     step = np.linalg.solve(M + hh * w.fric_c[i], hh * (np.concatenate([w.body_f[i], w.body_t[i]]) - w.fric_c[i] @ du))
     want = v[i] + np.concatenate([step[:3], R.T @ step[3:]])
     others = v.copy()
-    _friction_kick(q, v, w, a.body_mass, a.body_inertia, a.body_fric_implicit, hh)
+    _friction_kick(q, v, w, a.body_mass, a.body_inertia, a.body_free, a.body_fric_implicit, hh)
     np.testing.assert_allclose(v[i], want, rtol=1e-12, atol=1e-14 * np.abs(want).max())
     np.testing.assert_array_equal(np.delete(v, i, axis=0), np.delete(others, i, axis=0))  # the fixed ground
+
+
+def test_friction_kick_of_a_driven_body_matches_its_numpy_twin():
+    # a body driven about its own z axis, free to move and tilt: the kick in the stored coordinates
+    # u = (v world, ω body), M' = diag(m, I), C' = Tᵀ C T (T = diag(1, R)), solved for the five free
+    # components with the driven ω_z kept, and the gyroscopic torque −ω × Iω of its partly free
+    # rotation on the right-hand side, against a dense numpy solve
+    from scipy.spatial.transform import Rotation
+
+    from mbd_core.kernels.explicit import _friction_kick
+    from mbd_core.multibody import Driven
+    from mbd_core.multibody.model import make_work
+
+    model, state, i = roller_on_plane(Coulomb(0.1, 0.1, 1e-3, 2e-3), True,
+                                      motion=Driven(40.0, translation_free=True, tilt_free=True))
+    a = model.arrays
+    assert a.body_fric_implicit[i] == 1 and list(a.body_free[i]) == [1, 1, 1, 1, 1, 0]
+    rng = np.random.default_rng(11)
+    w = make_work(model)
+    A = rng.normal(size=(6, 6))
+    w.fric_c[i] = A @ A.T
+    w.fric_v[i] = rng.normal(size=6)
+    w.body_f[i], w.body_t[i] = rng.normal(size=3) * 10, rng.normal(size=3)
+    q = state.q.copy()
+    q[i, 3:] = Rotation.random(random_state=5).as_quat()[[3, 0, 1, 2]]
+    v = rng.normal(size=state.v.shape)
+    hh = 1e-3
+    R = _rotation(q[i, 3:])
+    T = np.eye(6)
+    T[3:, 3:] = R
+    Cp = T.T @ w.fric_c[i] @ T
+    inertia = a.body_inertia[i]
+    M = np.diag(np.concatenate([np.full(3, a.body_mass[i]), inertia]))
+    omega = v[i, 3:].copy()
+    F = np.concatenate([w.body_f[i], R.T @ w.body_t[i] - np.cross(omega, inertia * omega)])
+    rhs = hh * (F - Cp @ (v[i] - w.fric_v[i]))
+    free = np.flatnonzero(a.body_free[i])
+    want = v[i].copy()
+    want[free] += np.linalg.solve((M + hh * Cp)[np.ix_(free, free)], rhs[free])
+    _friction_kick(q, v, w, a.body_mass, a.body_inertia, a.body_free, a.body_fric_implicit, hh)
+    np.testing.assert_allclose(v[i], want, rtol=1e-12, atol=1e-14 * np.abs(want).max())
+    assert v[i, 5] == want[5] == omega[2]  # the driven spin is kept
 
 
 def test_an_interrupted_run_with_implicit_friction_resumes_bit_for_bit(tmp_path):

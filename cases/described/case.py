@@ -138,6 +138,10 @@ class Rotation:
         of lubricated contacts (some 0.02–0.06); the transition speeds bound the explicit step.
     friction : bool
         False: frictionless contacts (the elements then keep their start speeds).
+    implicit_friction : bool
+        True: the friction of the balls, spacers, cage and moving ring enters their kicks implicitly
+        (:mod:`mbd_core.kernels.explicit`), so the friction law's slope no longer limits the
+        automatic step (the contacts do); False (default): explicit friction.
     gravity_m_s2 : float
         Gravity along −z on the rolling elements, spacers and cages (9.81 for a bearing with a
         vertical axis: spacer balls then rest in the lower groove); the moving ring's own weight
@@ -155,6 +159,7 @@ class Rotation:
     v_static_m_s: float = 0.05
     v_dynamic_m_s: float = 0.1
     friction: bool = True
+    implicit_friction: bool = False
     gravity_m_s2: float = 0.0
 
     def __post_init__(self) -> None:

@@ -176,7 +176,7 @@ def build_scene(desc, rotation, reference, modal: dict | None = None) -> Rotatio
     modal = modal or {}
     omega = rotation.speed_rpm * 2.0 * math.pi / 60.0
     g = rotation.gravity_m_s2
-    b = ModelBuilder(gravity_m_s2=(0.0, 0.0, -g))
+    b = ModelBuilder(gravity_m_s2=(0.0, 0.0, -g), implicit_friction=rotation.implicit_friction)
     R = max(r.pitch_diameter_m for r in rows) / 2
     m_given = rotation.moving_ring_mass_kg
     moving, m = _ring(b, "moving ring", Driven(omega, translation_free=True, tilt_free=True), omega,

@@ -38,7 +38,7 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
             fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                          m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
                                          px, py, pz)
-            _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
+            _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
         else:
             # a groove on a modal ring (see _nearest_deformed_centre); the arrays are sliced here so
             # that no per-contact function takes the model tuple
@@ -74,7 +74,7 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
                                                        vaz - vbz - vz)
                 _add_force(q, bf, bt, a, fx, fy, fz, px, py, pz)
                 _add_force(q, bf, bt, b, -fx, -fy, -fz, px, py, pz)
-                _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
+                _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
                 gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
                 _add_section_force(disp, rot, i0, i1, w0, w1, gx, gy, gz, by * gz - bz * gy, bz * gx - bx * gz,
                                    bx * gy - by * gx, w.modal_f[o0:o1])
@@ -97,7 +97,7 @@ def _ball_ball_pairs(m, q, v, w):
         delta, mx, my, mz, px, py, pz = ball_ball(q[a], q[b], m.pair_radius[c], m.pair_radius_b[c])
         fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                      m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
-        _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
+        _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
         _store(w, c, fn, delta, u, ft, px, py, pz, mx, my, mz)
         w.contact_angle[c] = 0.0
         e_sum += e

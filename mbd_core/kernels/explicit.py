@@ -13,22 +13,30 @@ One step of size h (velocity Verlet in kick–drift–kick form):
 Modal bodies follow the same kick–drift–kick with their own kick and drift (:mod:`.modal_step`;
 first kick and drift after the rigid ones, which do not depend on them).
 
-Implicit friction (bodies with ``m.body_fric_implicit``, all six components free): the friction of
-each contact point is F_t = −c v_t with the secant coefficient c = μ(u) F_n / u ≥ 0 of the force
-evaluation (u = |v_t| there), and its velocity dependence is taken implicitly in both kicks, c frozen:
+Implicit friction (bodies with ``m.body_fric_implicit``: rigid bodies with at least one free
+component): the friction of each contact point is a damper F_t = −C_p v_t, frozen at the force
+evaluation: across the slip its coefficient is the secant c = μ(u) F_n / u ≥ 0 (u = |v_t| there),
+along the slip the larger of the secant and the slope F_n dμ/du (:mod:`.friction_damping`). Its
+velocity dependence is taken implicitly in both kicks, in the coordinates the velocities are stored
+in (u = (v world, ω body frame), mass matrix M = diag(m, m, m, I₁, I₂, I₃)):
 
-    (M + (h/2) C) Δu = (h/2) (F − C (u − u_e)),     u = (v, ω) world, M = diag(m, R I Rᵀ),
+    (M + (h/2) C)_ff Δu_f = (h/2) (F − C (u − u_e))_f,
 
-C = Σ c Jᵀ(I − m mᵀ)J over the body's contact points (:mod:`.forces`), u_e the velocity at the force
-evaluation; ω is stored in the body frame (Δω_B = Rᵀ Δω). For a lone damper m u̇ = −c u the two kicks
-give u ← u / (1 + hc/2m)²: no step is too large for the friction, and the slip never reverses within
-a step (the secant form, unlike the tangent dμ/du, also holds for a sliding contact, where μ is flat;
-a linearly implicit treatment in the style of the Rosenbrock methods, Hairer & Wanner, *Solving ODEs
-II*, §IV.7, with a frozen secant instead of the Jacobian). Steady rolling and sliding are unchanged:
-at a fixed point u = u_e. The other body of a pair enters with its velocity of the evaluation (a
-block-Jacobi split; for two bodies the relative slip then changes by a factor 1 − α_a − α_b,
-α = hc/(2m + hc) ∈ (0, 1), per kick). Bodies with prescribed components, modal bodies and models
-built without ``implicit_friction`` are kicked explicitly.
+f the body's free components (prescribed ones keep their values), C = Tᵀ (Σ Jᵀ C_p J) T with
+T = diag(1, R) over the body's contact points, u_e the velocity at the force evaluation; a body
+whose rotation is only partly free has its gyroscopic torque −ω × Iω in F (as below). For a lone
+damper m u̇ = −c u the two kicks give u ← u / (1 + hc/2m)²: no step is too large for the friction,
+and the slip never reverses within a step (the secant form, unlike the tangent dμ/du, also holds
+for a sliding contact, where μ is flat; a linearly implicit treatment in the style of the Rosenbrock
+methods, Hairer & Wanner, *Solving ODEs II*, §IV.7, with a frozen secant instead of the Jacobian).
+Where the law is steeper than its secant (the start of a regularised Coulomb step, μ ∝ u² there)
+the secant alone would let a settling slip overshoot by a factor −(1 − b c)/(1 + b c) per kick
+(b = h/(2 m_t)), which at steps far above the friction limit is close to −1 and rang at 2 kHz in a
+driven ball bearing at a 1 mm/s transition speed; with the slope along the slip the factor is
+1/(1 + b dF/du) ∈ (0, 1). Steady rolling and sliding are unchanged: at a fixed point u = u_e. The
+other body of a pair enters with its velocity of the evaluation (a block-Jacobi split; for two
+bodies the relative slip then changes by a factor 1 − α_a − α_b, α = hc/(2m + hc) ∈ (0, 1), per
+kick). Modal bodies and models built without ``implicit_friction`` are kicked explicitly.
 
 Bodies whose rotation is only partly free (a ring driven about its axis but free to tilt) get the
 gyroscopic term −ω × Iω explicitly in the kick of their free components, evaluated at the current
@@ -52,83 +60,107 @@ from .modal_step import cholesky_in_place, cholesky_solve, modal_drift, modal_en
 from .rigid import free_rotation_step, turn_quaternion
 
 
+@njit(cache=True, inline="always")
+def _kick_body(q, v, i, body_f, body_t, body_mass, body_inertia, body_free, hh):
+    """The explicit kick of body i's free components (module docstring)."""
+    free = body_free[i]
+    inv_m = hh / body_mass[i]
+    for j in range(3):
+        if free[j]:
+            v[i, j] += inv_m * body_f[i, j]
+    n_rot = free[3] + free[4] + free[5]
+    if n_rot == 0:
+        return
+    tx, ty, tz = rotate_back(q, i, body_t[i, 0], body_t[i, 1], body_t[i, 2])
+    inertia = body_inertia[i]
+    if n_rot < 3:
+        tx, ty, tz = _minus_gyroscopic(v, i, inertia, tx, ty, tz)
+    if free[3]:
+        v[i, 3] += hh * tx / inertia[0]
+    if free[4]:
+        v[i, 4] += hh * ty / inertia[1]
+    if free[5]:
+        v[i, 5] += hh * tz / inertia[2]
+
+
+@njit(cache=True, inline="always")
+def _minus_gyroscopic(v, i, inertia, tx, ty, tz):
+    """Body-frame torque τ − ω × Iω of a body whose rotation is only partly free (module docstring)."""
+    wx, wy, wz = v[i, 3], v[i, 4], v[i, 5]
+    lx, ly, lz = inertia[0] * wx, inertia[1] * wy, inertia[2] * wz
+    return tx - (wy * lz - wz * ly), ty - (wz * lx - wx * lz), tz - (wx * ly - wy * lx)
+
+
 @njit(cache=True)
 def _kick(q, v, body_f, body_t, body_mass, body_inertia, body_free, implicit, hh):
     for i in range(body_mass.shape[0]):
-        if implicit[i] != 0:  # _friction_kick
-            continue
-        free = body_free[i]
-        inv_m = hh / body_mass[i]
-        for j in range(3):
-            if free[j]:
-                v[i, j] += inv_m * body_f[i, j]
-        n_rot = free[3] + free[4] + free[5]
-        if n_rot == 0:
-            continue
-        tx, ty, tz = rotate_back(q, i, body_t[i, 0], body_t[i, 1], body_t[i, 2])
-        inertia = body_inertia[i]
-        if n_rot < 3:
-            wx, wy, wz = v[i, 3], v[i, 4], v[i, 5]
-            lx, ly, lz = inertia[0] * wx, inertia[1] * wy, inertia[2] * wz
-            tx -= wy * lz - wz * ly
-            ty -= wz * lx - wx * lz
-            tz -= wx * ly - wy * lx
-        if free[3]:
-            v[i, 3] += hh * tx / inertia[0]
-        if free[4]:
-            v[i, 4] += hh * ty / inertia[1]
-        if free[5]:
-            v[i, 5] += hh * tz / inertia[2]
+        if implicit[i] == 0:  # the others: _friction_kick
+            _kick_body(q, v, i, body_f, body_t, body_mass, body_inertia, body_free, hh)
 
 
 @njit(cache=True)
-def _friction_kick(q, v, w, body_mass, body_inertia, implicit, hh):
-    """Kick of the bodies with implicit friction (module docstring), all six components free."""
-    A, r = w.fric_a, w.fric_r
+def _friction_kick(q, v, w, body_mass, body_inertia, body_free, implicit, hh):
+    """Kick of the bodies with implicit friction (module docstring): the linear system in the
+    coordinates the velocities are stored in, u = (v world, ω body frame), where the mass matrix is
+    diag(m, m, m, I₁, I₂, I₃) and the damping C' = Tᵀ C T, T = diag(1, R); prescribed components
+    keep their values (the system is solved for the free ones only)."""
+    A, r, g = w.fric_a, w.fric_r, w.fric_g
+    rot = w.fric_rot
+    free_idx = w.fric_idx
     for i in range(body_mass.shape[0]):
         if implicit[i] == 0:
             continue
         C, ve = w.fric_c[i], w.fric_v[i]
         if C[0, 0] + C[1, 1] + C[2, 2] == 0.0:  # no friction on it (each point adds 2c to this trace)
-            for j in range(3):
-                v[i, j] += hh * w.body_f[i, j] / body_mass[i]
-            tx, ty, tz = rotate_back(q, i, w.body_t[i, 0], w.body_t[i, 1], w.body_t[i, 2])
-            v[i, 3] += hh * tx / body_inertia[i, 0]
-            v[i, 4] += hh * ty / body_inertia[i, 1]
-            v[i, 5] += hh * tz / body_inertia[i, 2]
+            _kick_body(q, v, i, w.body_f, w.body_t, body_mass, body_inertia, body_free, hh)
             continue
-        # velocity change since the evaluation, world (v, ω)
-        dwx, dwy, dwz = rotate(q, i, v[i, 3] - ve[3], v[i, 4] - ve[4], v[i, 5] - ve[5])
-        r[0], r[1], r[2] = v[i, 0] - ve[0], v[i, 1] - ve[1], v[i, 2] - ve[2]
-        r[3], r[4], r[5] = dwx, dwy, dwz
-        for j in range(6):  # A = (h/2) C, right-hand side (h/2)(F − C du) in w.fric_g
+        for k in range(3):  # R, column by column
+            rot[0, k], rot[1, k], rot[2, k] = rotate(q, i, 1.0 if k == 0 else 0.0, 1.0 if k == 1 else 0.0,
+                                                     1.0 if k == 2 else 0.0)
+        # C' = Tᵀ C T in A (upper left as it is; C_vω R; Rᵀ C_ωv; Rᵀ C_ωω R)
+        for j in range(3):
+            for k in range(3):
+                A[j, k] = C[j, k]
+                s_vw, s_wv, s_ww = 0.0, 0.0, 0.0
+                for l in range(3):
+                    s_vw += C[j, 3 + l] * rot[l, k]
+                    s_wv += rot[l, j] * C[3 + l, k]
+                    t = 0.0
+                    for n in range(3):
+                        t += C[3 + l, 3 + n] * rot[n, k]
+                    s_ww += rot[l, j] * t
+                A[j, 3 + k] = s_vw
+                A[3 + j, k] = s_wv
+                A[3 + j, 3 + k] = s_ww
+        for j in range(6):
+            r[j] = v[i, j] - ve[j]  # velocity change since the evaluation
+        tx, ty, tz = rotate_back(q, i, w.body_t[i, 0], w.body_t[i, 1], w.body_t[i, 2])
+        free = body_free[i]
+        inertia = body_inertia[i]
+        if free[3] + free[4] + free[5] < 3:
+            tx, ty, tz = _minus_gyroscopic(v, i, inertia, tx, ty, tz)
+        n = 0
+        for j in range(6):
+            if free[j]:
+                free_idx[n] = j
+                n += 1
+        # (M' + (h/2) C')_ff Δu_f = (h/2) (F' − C' (u − u_e))_f, compacted into the leading n × n block
+        for a in range(n):
+            j = free_idx[a]
             s = 0.0
             for k in range(6):
-                A[j, k] = hh * C[j, k]
-                s += C[j, k] * r[k]
-            w.fric_g[j] = -hh * s
-        for j in range(3):
-            w.fric_g[j] += hh * w.body_f[i, j]
-            w.fric_g[3 + j] += hh * w.body_t[i, j]
-            A[j, j] += body_mass[i]
-        # rotational mass R I Rᵀ, column by column: R I Rᵀ e_k
-        inertia = body_inertia[i]
-        for k in range(3):
-            bx, by, bz = rotate_back(q, i, 1.0 if k == 0 else 0.0, 1.0 if k == 1 else 0.0, 1.0 if k == 2 else 0.0)
-            cx, cy, cz = rotate(q, i, inertia[0] * bx, inertia[1] * by, inertia[2] * bz)
-            A[3, 3 + k] += cx
-            A[4, 3 + k] += cy
-            A[5, 3 + k] += cz
-        cholesky_in_place(A, 6)
-        cholesky_solve(A, 6, w.fric_g)
-        g = w.fric_g
-        v[i, 0] += g[0]
-        v[i, 1] += g[1]
-        v[i, 2] += g[2]
-        ox, oy, oz = rotate_back(q, i, g[3], g[4], g[5])
-        v[i, 3] += ox
-        v[i, 4] += oy
-        v[i, 5] += oz
+                s += A[j, k] * r[k]
+            f = w.body_f[i, j] if j < 3 else (tx if j == 3 else (ty if j == 4 else tz))
+            g[a] = hh * (f - s)
+        for a in range(n):
+            j = free_idx[a]
+            for b in range(n):
+                A[a, b] = hh * A[j, free_idx[b]]
+            A[a, a] += body_mass[i] if j < 3 else inertia[j - 3]
+        cholesky_in_place(A, n)
+        cholesky_solve(A, n, g)
+        for a in range(n):
+            v[i, free_idx[a]] += g[a]
 
 
 @njit(cache=True)
@@ -234,7 +266,7 @@ def run_explicit(m, q, v, eta, eta_dot, w, t_origin, step0, n_steps, h, every, r
         t = t_origin + step * h
         _kick(q, v, f, tau, mass, inertia, free, imp, 0.5 * h)
         if implicit:
-            _friction_kick(q, v, w, mass, inertia, imp, 0.5 * h)
+            _friction_kick(q, v, w, mass, inertia, free, imp, 0.5 * h)
         _drift(q, v, inertia, free, m.body_modal, w.pi, h)
         if modal:
             if not (modal_kick(m, q, v, eta, eta_dot, w, 0.5 * h, False)
@@ -245,7 +277,7 @@ def run_explicit(m, q, v, eta, eta_dot, w, t_origin, step0, n_steps, h, every, r
             return status, index, s, k
         _kick(q, v, f, tau, mass, inertia, free, imp, 0.5 * h)
         if implicit:
-            _friction_kick(q, v, w, mass, inertia, imp, 0.5 * h)
+            _friction_kick(q, v, w, mass, inertia, free, imp, 0.5 * h)
         if modal and not modal_kick(m, q, v, eta, eta_dot, w, 0.5 * h, True):
             return STATUS_MODAL, -1, s, k
         if step % 16 == 0:

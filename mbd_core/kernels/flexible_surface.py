@@ -274,7 +274,7 @@ def _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta, lx, ly,
         q, v, w.body_f, w.body_t, m.samp_disp, m.samp_rot, m.samp_point, eta[o0:o1], eta_dot[o0:o1], w.flex_row,
         w.flex_field, w.flex_corner, w.flex_weight, n, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
         m.pair_dmax[c], m.pair_fric[c], m.pair_fric_p[c], sd, sp, sn, 0)
-    _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
+    _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
     return n, fn, delta, u, ft, e, px, py, pz, mx, my, mz
 
 
@@ -312,7 +312,7 @@ def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns, imp, fpts
                 bpx, bpy, bpz, bmx, bmy, bmz = px, py, pz, mx, my, mz
         if delta <= 0.0:
             continue
-        _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
+        _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
         fn_sum += fn
         ft_sum += ft
         e_sum += e

@@ -92,6 +92,36 @@ def friction_coefficient(law, u, p0, p1, p2, p3):
 
 
 @njit(cache=True)
+def step_slope(x, x0, h0, x1, h1):
+    """d/dx of :func:`step`."""
+    if x <= x0 or x >= x1:
+        return 0.0
+    d = (x - x0) / (x1 - x0)
+    return (h1 - h0) * 6.0 * d * (1.0 - d) / (x1 - x0)
+
+
+@njit(cache=True)
+def friction_slope(law, u, p0, p1, p2, p3):
+    """dμ/du of :func:`friction_coefficient` at slip speed u > 0, s/m (0 where μ is clipped at 0)."""
+    if law == FRICTION_COULOMB:
+        if u < p2:
+            return step_slope(u, 0.0, 0.0, p2, p0)
+        if u < p3:
+            return step_slope(u, p2, p0, p3, p1)
+        return 0.0
+    if law == FRICTION_DREB_LINEAR:
+        return p0
+    if law == FRICTION_DREB_CONSTANT:
+        return step_slope(u, 0.0, 0.0, p1, p0)
+    if law == FRICTION_DREB_FALLING:
+        return -p1 if p0 - p1 * u > 0.0 else 0.0
+    mu = (p0 + p1 * u) * math.exp(-p2 * u) + p3
+    if mu <= 0.0:
+        return 0.0
+    return (p1 - p2 * (p0 + p1 * u)) * math.exp(-p2 * u)
+
+
+@njit(cache=True)
 def friction_force(law, params, fn, v_slip, out):
     """Friction force (3,) N on body 1 into ``out`` for normal force fn and slip velocity (3,)."""
     u = math.sqrt(v_slip[0] ** 2 + v_slip[1] ** 2 + v_slip[2] ** 2)

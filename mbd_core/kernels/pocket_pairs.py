@@ -62,7 +62,7 @@ def _element_pocket_pairs(m, q, v, eta, eta_dot, w):
                 fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                              m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
                                              px, py, pz)
-                _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
+                _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
             fn_sum += fn
             ft_sum += ft
             e_sum += e

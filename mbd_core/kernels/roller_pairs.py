@@ -62,7 +62,7 @@ def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
                 v[a, 0] + oay * raz - oaz * ray - v[b, 0] - (oby * rbz - obz * rby),
                 v[a, 1] + oaz * rax - oax * raz - v[b, 1] - (obz * rbx - obx * rbz),
                 v[a, 2] + oax * ray - oay * rax - v[b, 2] - (obx * rby - oby * rbx))
-            _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
+            _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
             fxs += fx
             fys += fy
             fzs += fz
@@ -133,7 +133,7 @@ def _roller_rib_pairs(m, q, v, eta, eta_dot, w):
         mx, my, mz = rotate(q, b, nx, ny, nz)
         fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                      m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz, px, py, pz)
-        _note_friction(imp, fpts, fcnt, a, b, u, ft, mx, my, mz, px, py, pz)
+        _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
         _store(w, c, fn, delta, u, ft, px, py, pz, mx, my, mz)
         w.contact_angle[c] = 0.0
         e_sum += e

@@ -158,11 +158,11 @@ def _vec(owner: str, name: str, value, n: int) -> np.ndarray:
 class ModelBuilder:
     """Edit freely, then :meth:`finalize` into a frozen :class:`Model` and its initial :class:`State`.
 
-    ``gravity_m_s2``: world gravity. ``implicit_friction``: the friction on free rigid bodies (all six
-    components free) enters their kick implicitly, as a damper with the secant coefficient
-    μ(u) F_n / u of the last force evaluation (:mod:`mbd_core.kernels.explicit`); the friction law's
-    slope then no longer limits the explicit step for those bodies. Off by default: the kick is then
-    the plain explicit one.
+    ``gravity_m_s2``: world gravity. ``implicit_friction``: the friction on rigid bodies with a free
+    component (free, or driven and free to move or tilt) enters their kick implicitly, as a damper
+    frozen at the last force evaluation (the secant μ(u) F_n / u, along the slip the law's slope where
+    that is larger; :mod:`mbd_core.kernels.explicit`); the friction law's slope then no longer limits
+    the explicit step for those bodies. Off by default: the kick is then the plain explicit one.
     """
 
     def __init__(self, gravity_m_s2=(0.0, 0.0, 0.0), implicit_friction: bool = False):
@@ -630,7 +630,7 @@ class ModelBuilder:
         arrays = ModelArrays(
             body_mass=mass, body_inertia=np.array([b.inertia for b in bodies]),
             body_free=np.array([b.free for b in bodies], dtype=np.int64), body_force=force,
-            body_fric_implicit=_i64([self.implicit_friction and b.modal is None and all(b.free) for b in bodies]),
+            body_fric_implicit=_i64([self.implicit_friction and b.modal is None and any(b.free) for b in bodies]),
             load_body=_i64([l[0] for l in self._loads]), load_off=_i64(load_off),
             knot_t=_f64(np.concatenate(knot_t) if knot_t else np.zeros(0)),
             knot_coef=_f64(np.concatenate(knot_coef) if knot_coef else np.zeros((0, 4, 6))),

@@ -10,8 +10,8 @@ Bodies
     body_free (n_b, 6) int64, 1 where the component of v is integrated (v_x, v_y, v_z world,
     ω_x, ω_y, ω_z body), 0 where it is held at its prescribed value;
     body_force (n_b, 6) N and N·m: constant world force and moment (gravity included);
-    body_fric_implicit (n_b,) int64, 1 for a body whose friction is integrated implicitly (a free rigid
-    body, all six components free, in a model built with ``implicit_friction``; :mod:`mbd_core.kernels.explicit`).
+    body_fric_implicit (n_b,) int64, 1 for a body whose friction is integrated implicitly (a rigid
+    body with a free component, in a model built with ``implicit_friction``; :mod:`mbd_core.kernels.explicit`).
 Load histories (cubic splines, :mod:`mbd_core.kernels.splines`)
     load_body (n_l,), load_off (n_l + 1,), knot_t (n_k,) s, knot_coef (n_k, 4, 6).
 Bushings (:func:`mbd_core.kernels.forces._bushings`)
@@ -97,17 +97,19 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: moment on the ring (ring frame); flex_corner (4, 2) int64 row and cache slot, flex_weight (4,) the
 #: interpolation weights of one contact point; groove_rows (4, 3) D_i0 η, D_i1 η, Ω_i0 η, Ω_i1 η of the two
 #: samples around a ball on a modal ring's groove. Implicit friction (:mod:`mbd_core.kernels.explicit`):
-#: fric_c (n_b, 6, 6) each body's friction damping matrix, world (v, ω), N·s/m; fric_v (n_b, 6) the
-#: velocity (v world, ω body) at which the forces were evaluated; fric_pts (n_f, 9) the contact points
-#: with friction on such a body (a, b, secant coefficient N·s/m, normal, world point m; n_f = 0 in a
-#: model without them), fric_n (1,) int64 how many; fric_a (6, 6), fric_r (6,), fric_g (6,) scratch.
+#: fric_c (n_b, 6, 6) each body's friction damping matrix, world (v, ω) (blocks N·s/m, N·s, N·m·s);
+#: fric_v (n_b, 6) the velocity (v world, ω body) at which the forces were evaluated; fric_pts (n_f, 12)
+#: the contact points with friction on such a body (a, b, secant coefficient N·s/m, normal, world
+#: point m, pair, F_n N, slip speed m/s; n_f = 0 in a model without them), fric_n (1,) int64 how
+#: many; fric_a (6, 6), fric_r (6,), fric_g (6,), fric_rot (3, 3), fric_idx (6,) int64 scratch.
 WorkArrays = namedtuple(
     "WorkArrays",
     "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta contact_point "
     "contact_normal energy "
     "load pi center axis point slice_delta slice_point slice_normal type_count "
     "modal_f modal_M modal_L modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta "
-    "flex_row flex_field flex_corner flex_weight groove_rows fric_c fric_v fric_pts fric_n fric_a fric_r fric_g",
+    "flex_row flex_field flex_corner flex_weight groove_rows fric_c fric_v fric_pts fric_n fric_a fric_r fric_g "
+    "fric_rot fric_idx",
 )
 FLEX_ROWS = 32
 
@@ -218,8 +220,9 @@ def make_work(model: Model) -> WorkArrays:
         flex_corner=np.zeros((4, 2), dtype=np.int64), flex_weight=np.zeros(4), groove_rows=np.zeros((4, 3)),
         fric_c=np.zeros((nb, 6, 6)), fric_v=np.zeros((nb, 6)),
         # at most: every slice, two points per other pair (roller ends, pocket walls)
-        fric_pts=np.zeros((a.slice_drop.size + 2 * nc if a.body_fric_implicit.any() else 0, 9)),
+        fric_pts=np.zeros((a.slice_drop.size + 2 * nc if a.body_fric_implicit.any() else 0, 12)),
         fric_n=np.zeros(1, dtype=np.int64), fric_a=np.zeros((6, 6)), fric_r=np.zeros(6), fric_g=np.zeros(6),
+        fric_rot=np.zeros((3, 3)), fric_idx=np.zeros(6, dtype=np.int64),
     )
 
 
