@@ -47,3 +47,19 @@ def test_the_implicit_run_agrees_with_the_explicit_one(tmp_path, capsys, implici
 def test_rho_inf_is_refused_where_no_implicit_run_reads_it():
     with pytest.raises(CaseError, match=r"analysis.rho_inf.*dynamic_implicit"):
         resolve_case("slewing-rotation", overrides=["analysis.rho_inf=0.5"])
+
+
+def test_implicit_friction_at_the_thesis_transition_speeds_does_not_ring(tmp_path, capsys):
+    # the thesis' 1/2 mm/s transition speeds with implicit friction at the automatic (contact) step:
+    # every ball load after the start-up within 0.1 % of the analytic W/Z (explicit friction at its
+    # 3.1e-8 s step, 6.2 min: 48 318–48 355 N, 0.05 %; measured here 48 319–48 355 N; before the
+    # friction damper took the law's slope along the slip the top rang on the balls at 50 Hz,
+    # 48 217–48 459 N, 0.26 %)
+    out = tmp_path / "thesis"
+    args = ["run", "slewing-rotation", "--quick", "--set", "contact.v_static_m_s=0.001", "--set",
+            "contact.v_dynamic_m_s=0.002", "--out", str(out)]
+    assert main(args) in (0, None)
+    capsys.readouterr()
+    s = json.loads((out / "summary.json").read_text())
+    w = s["analytic_ball_load_N"]
+    assert max(s["max_ball_load_N"] - w, w - s["min_ball_load_N"]) < 1e-3 * w
