@@ -13,6 +13,15 @@ The modal coordinates of modal bodies are unknowns too, with the residual of the
 Q + I3ᵀRᵀg − Kη = 0 (contact modal forces Q, weight, modal stiffness), and so are the free frame
 components of modal bodies, as for rigid bodies (their weight from the invariants). A driven
 frame's centrifugal load is not included: velocities are zero.
+
+Search: Levenberg–Marquardt (MINPACK, finite-difference Jacobian) with soft springs from each body
+to its start, relaxed in stages (:data:`SPRING_STAGES`). The stages on the way are solved loosely
+(:data:`STAGE_TOL`), the last one until the sum of squares stalls (:data:`STALL_TOL`), and further
+to ``tol`` only when the forces left exceed :data:`GOOD_RESIDUAL` of the load scale. On the
+full-scale slewing ring with the quick modal top (498 unknowns) every stage to ``tol`` took 174 191
+force evaluations (66 s), the last stage creeping at about 2e-4 of the cost per iteration without
+changing the result (the contacts on a sampled modal groove make the residual only piecewise
+smooth); so: 11 004 evaluations (4.5 s), the same forces left (13.9 N of 6.8 MN).
 """
 
 from __future__ import annotations
@@ -65,6 +74,18 @@ def _rotate_quats(q: np.ndarray, phi: np.ndarray) -> np.ndarray:
     out = np.concatenate([(w1 * w2 - np.sum(v1 * v2, axis=1))[:, None],
                           w1[:, None] * v2 + w2[:, None] * v1 + _cross(v1, v2)], axis=1)
     return out / np.linalg.norm(out, axis=1)[:, None]
+
+
+#: the relative stiffness of the start springs, relaxed stage by stage (static_equilibrium)
+SPRING_STAGES = (1.0, 1e-2, 1e-4, 0.0)
+#: the solver tolerance of the stages before the last
+STAGE_TOL = 1e-4
+#: the relative reduction of the sum of squares per iteration below which the last stage has stalled
+STALL_TOL = 1e-3
+#: forces and moments (per length scale) left below this share of the load scale, and modal
+#: equations left below this raceway displacement (m), need no further search
+GOOD_RESIDUAL = 1e-5
+GOOD_MODAL_RESIDUAL_M = 1e-10
 
 
 def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evaluations: int = 2000,
@@ -163,17 +184,34 @@ def static_equilibrium(model: Model, state: State, tol: float = 1e-10, max_evalu
     own[trans] = np.abs(np.sum(a.body_force[body_idx[trans], :3] * dirs, axis=1)) / force_scale
     spring_k = np.maximum(own, 1e-6) / np.where(comp_idx < 3, 1e-3, 1e-3 / length_scale)
     x0 = np.concatenate([np.zeros(n_r), base.eta])
-    for spring[0] in (1.0, 1e-2, 1e-4, 0.0):
-        sol = least_squares(residual, x0, method="lm", x_scale=x_scale, xtol=tol, ftol=tol, gtol=tol,
-                            max_nfev=max_evaluations)
-        x0 = sol.x
-    spring[0] = 0.0
-    place(sol.x)
-    r_all = residual(sol.x)
-    r, r_modal = r_all[:n_r], r_all[n_r:]
-    f_res = float(np.abs(r[comp_idx < 3]).max(initial=0.0)) * force_scale
-    m_res = float(np.abs(r[comp_idx >= 3]).max(initial=0.0)) * force_scale * length_scale
-    q_res = float(np.abs(r_modal).max(initial=0.0)) * 1e-4
+
+    def solve(x, t, ftol):
+        return least_squares(residual, x, method="lm", x_scale=x_scale, xtol=t, ftol=ftol, gtol=t,
+                             max_nfev=max_evaluations).x
+
+    def left_over(x):
+        """Largest force N, moment N·m and modal raceway displacement m left at x (no start springs)."""
+        spring[0] = 0.0
+        r_all = residual(x)
+        r, r_modal = r_all[:n_r], r_all[n_r:]
+        return (float(np.abs(r[comp_idx < 3]).max(initial=0.0)) * force_scale,
+                float(np.abs(r[comp_idx >= 3]).max(initial=0.0)) * force_scale * length_scale,
+                float(np.abs(r_modal).max(initial=0.0)) * 1e-4, r)
+
+    for spring[0] in SPRING_STAGES[:-1]:
+        x0 = solve(x0, max(tol, STAGE_TOL), max(tol, STAGE_TOL))  # stages on the way lead the search only
+    # the last stage (no springs) until the sum of squares stalls; where contacts sit on the kinks of
+    # a sampled modal groove the finite-difference Jacobian lets the search creep for hundreds of
+    # iterations at a few 1e-4 of the cost each, with nothing left to gain: it goes on to ``tol``
+    # only when the forces left are not yet below GOOD_RESIDUAL of the load scale
+    spring[0] = SPRING_STAGES[-1]
+    x = solve(x0, tol, max(tol, STALL_TOL))
+    f_res, m_res, q_res, r = left_over(x)
+    if max(f_res, m_res / length_scale) > GOOD_RESIDUAL * force_scale or q_res > GOOD_MODAL_RESIDUAL_M:
+        spring[0] = SPRING_STAGES[-1]
+        x = solve(x, tol, tol)
+        f_res, m_res, q_res, r = left_over(x)
+    place(x)
     if q_res > 1e-8:
         raise StaticEquilibriumError(f"static equilibrium not found: the modal equations are off by {q_res:.3g} m of raceway "
                            f"displacement after {count[0]} evaluations")
