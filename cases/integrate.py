@@ -28,7 +28,7 @@ from foundation.npzfile import NPZ_ERRORS, read_npz
 
 from .config import CaseError
 
-__all__ = ["integrate", "checkpoints", "ResumeError"]
+__all__ = ["integrate", "integrate_implicit", "checkpoints", "ResumeError", "IMPLICIT_STEP_FACTOR"]
 
 log = logging.getLogger(__name__)
 
@@ -176,3 +176,24 @@ def integrate(model, state, duration_s: float, record_every: int, progress=None,
            for k in parts[0]}
     run["timestep_s"] = h_min
     return run
+
+
+#: the implicit run's default step over the automatic explicit one: on the 1 m slewing ring
+#: (rotation quick, 0.4 s) every ball load then lies within 2.8e-7 of the mean load of the explicit run
+IMPLICIT_STEP_FACTOR = 20.0
+
+
+def integrate_implicit(model, state, duration_s: float, record_every: int, rho_inf: float,
+                       timestep_s: float | None = None, key: str = "analysis.timestep_s") -> dict:
+    """The run with the implicit generalized-α integrator (:func:`mbd_core.multibody.implicit.simulate_implicit`),
+    in one piece (no checkpoints: a resumed run starts again), at ``timestep_s`` or
+    :data:`IMPLICIT_STEP_FACTOR` × the automatic explicit step. A run that diverges stops with a
+    :class:`CaseError` naming ``key`` (the case key that sets the step)."""
+    from mbd_core.multibody import DivergenceError, stable_timestep
+    from mbd_core.multibody.implicit import simulate_implicit
+
+    h = timestep_s or IMPLICIT_STEP_FACTOR * stable_timestep(model, state).timestep_s
+    try:
+        return simulate_implicit(model, state, state.t + duration_s, h, rho_inf=rho_inf, record_every=record_every)
+    except DivergenceError as exc:
+        raise CaseError(f"{key}: the implicit run at the step {h:.3g} s failed: {exc}") from None

@@ -279,7 +279,7 @@ class Analysis:
     automatic stable step; a step above the explicit stability limit is refused, naming the limit).
     ``dynamic_implicit``: the same run with the implicit generalized-α integrator
     (:func:`mbd_core.multibody.implicit.simulate_implicit`, spectral radius at infinity ``rho_inf``)
-    at ``timestep_s`` (None: :data:`.dynamic.IMPLICIT_STEP_FACTOR` × the automatic explicit step); the rotation
+    at ``timestep_s`` (None: :data:`cases.integrate.IMPLICIT_STEP_FACTOR` × the automatic explicit step); the rotation
     study takes it when asked, else runs explicitly. A dynamic run compares its ball loads at
     ``reference_samples`` samples after the start-up with the quasi-static equilibrium at the run's
     top rotation and ball phase there (:mod:`.dynamic_reference`; 0: no comparison)."""

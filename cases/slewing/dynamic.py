@@ -36,7 +36,7 @@ from mbd_core.multibody.builder import ContactLaw, Driven, Fixed
 from mbd_core.multibody.statics import static_equilibrium
 
 from ..config import CaseError
-from ..integrate import integrate
+from ..integrate import IMPLICIT_STEP_FACTOR, integrate, integrate_implicit
 from . import scene
 from .case import THESIS_CONTACT_DAMPING_N_S_PER_M, THESIS_CONTACT_STIFFNESS_N_PER_M1P5, SlewingCase
 from .quasistatic import analytic_ball_load_N
@@ -257,23 +257,9 @@ def spacer_columns(n_balls: int) -> list[str]:
     return [f"ball_{(j + k) % n_balls + 1}_spacer_{j + 1}_N" for j in range(n_balls) for k in (0, 1)]
 
 
-#: the implicit run's default step over the automatic explicit one (analysis.timestep_s None): on the 1 m
-#: ring (rotation quick, 0.4 s) every ball load then lies within 2.8e-7 of the mean load of the explicit run
-IMPLICIT_STEP_FACTOR = 20.0
-
-
 def _integrate_implicit(sc: DynamicScene, state, a) -> dict:
-    """The run with the implicit generalized-α integrator, in one piece (no checkpoints: a resumed
-    run starts again), at ``a.timestep_s`` or ``IMPLICIT_STEP_FACTOR`` × the explicit step."""
-    from mbd_core.multibody import DivergenceError, stable_timestep
-    from mbd_core.multibody.implicit import simulate_implicit
-
-    h = a.timestep_s or IMPLICIT_STEP_FACTOR * stable_timestep(sc.model, state).timestep_s
-    try:
-        return simulate_implicit(sc.model, state, state.t + a.duration_s, h, rho_inf=a.rho_inf,
-                                 record_every=a.record_every)
-    except DivergenceError as exc:
-        raise CaseError(f"analysis.timestep_s = {h:.3g} s (implicit): {exc}") from None
+    """The run with the implicit generalized-α integrator (:func:`cases.integrate.integrate_implicit`)."""
+    return integrate_implicit(sc.model, state, a.duration_s, a.record_every, a.rho_inf, a.timestep_s)
 
 
 #: a dynamic run must record at least this many samples (its figures, the start-up window and the
