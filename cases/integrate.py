@@ -184,15 +184,16 @@ IMPLICIT_STEP_FACTOR = 20.0
 
 
 def integrate_implicit(model, state, duration_s: float, record_every: int, rho_inf: float,
-                       timestep_s: float | None = None, key: str = "analysis.timestep_s") -> dict:
+                       timestep_s: float | None = None, key: str = "analysis.timestep_s",
+                       step_factor: float = IMPLICIT_STEP_FACTOR) -> dict:
     """The run with the implicit generalized-α integrator (:func:`mbd_core.multibody.implicit.simulate_implicit`),
-    in one piece (no checkpoints: a resumed run starts again), at ``timestep_s`` or
-    :data:`IMPLICIT_STEP_FACTOR` × the automatic explicit step. A run that diverges stops with a
-    :class:`CaseError` naming ``key`` (the case key that sets the step)."""
+    in one piece (no checkpoints: a resumed run starts again), at ``timestep_s`` or ``step_factor``
+    × the automatic explicit step. A run that diverges, or whose Newton iteration fails, stops with
+    a :class:`CaseError` naming ``key`` (the case key that sets the step)."""
     from mbd_core.multibody import DivergenceError, stable_timestep
     from mbd_core.multibody.implicit import simulate_implicit
 
-    h = timestep_s or IMPLICIT_STEP_FACTOR * stable_timestep(model, state).timestep_s
+    h = timestep_s or step_factor * stable_timestep(model, state).timestep_s
     try:
         return simulate_implicit(model, state, state.t + duration_s, h, rho_inf=rho_inf, record_every=record_every)
     except DivergenceError as exc:

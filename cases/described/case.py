@@ -113,7 +113,7 @@ class Study:
 
 @dataclass(frozen=True)
 class Rotation:
-    """``[rotation]``: the dynamic study (rigid rings, explicit integration).
+    """``[rotation]``: the dynamic study (rigid or modal rings, explicit or implicit integration).
 
     Attributes
     ----------
@@ -142,6 +142,14 @@ class Rotation:
         True: the friction of the balls, spacers, cage and moving ring enters their kicks implicitly
         (:mod:`mbd_core.kernels.explicit`), so the friction law's slope no longer limits the
         automatic step (the contacts do); False (default): explicit friction.
+    integrator : {"explicit", "implicit"}
+        ``explicit`` (default): velocity Verlet in pieces (checkpoints, resume); ``implicit``: the
+        generalized-α integrator (:func:`cases.integrate.integrate_implicit`, spectral radius at
+        infinity ``rho_inf``) in one piece at ``timestep_s`` (None:
+        :data:`cases.described.rotation.IMPLICIT_STEP_FACTOR`, 3 × the automatic explicit step), a
+        reference for the explicit run; its step has no Richardson estimate.
+    rho_inf : float
+        Spectral radius at infinity of the implicit integrator, [0, 1] (1: no numerical damping).
     gravity_m_s2 : float
         Gravity along −z on the rolling elements, spacers and cages (9.81 for a bearing with a
         vertical axis: spacer balls then rest in the lower groove); the moving ring's own weight
@@ -160,6 +168,8 @@ class Rotation:
     v_dynamic_m_s: float = 0.1
     friction: bool = True
     implicit_friction: bool = False
+    integrator: Literal["explicit", "implicit"] = "explicit"
+    rho_inf: float = 0.9
     gravity_m_s2: float = 0.0
 
     def __post_init__(self) -> None:
@@ -178,6 +188,10 @@ class Rotation:
             raise ValueError(f"damping_ratio: must lie in [0, 2], got {self.damping_ratio!r}")
         if not 0.0 <= self.gravity_m_s2 <= 100.0:
             raise ValueError(f"gravity_m_s2: must lie in [0, 100], got {self.gravity_m_s2!r}")
+        if self.integrator not in ("explicit", "implicit"):
+            raise ValueError(f"integrator: explicit or implicit, got {self.integrator!r}")
+        if not (math.isfinite(self.rho_inf) and 0.0 <= self.rho_inf <= 1.0):
+            raise ValueError(f"rho_inf: must lie in [0, 1], got {self.rho_inf!r}")
         self.friction_law()
 
     def friction_law(self):

@@ -85,6 +85,8 @@ def case_unused_keys(case: DescribedCase) -> dict[str, str]:
     out = unused_keys(case.study.kind, STUDIES, {}, ())
     if case.life.rotating_ring == "none":
         out["life.speed_rpm"] = _LIFE
+    if case.study.kind == "rotation" and case.rotation.integrator != "implicit":
+        out["rotation.rho_inf"] = 'read by implicit runs only (rotation.integrator = "implicit")'
     if case.bearing.rings == "rigid":
         out.update({f"rings.{f.name}": 'bearing.rings = "rigid" (no modal rings)'
                     for f in dataclasses.fields(RingFidelity)})
