@@ -140,27 +140,34 @@ def test_implicit_friction_matches_the_explicit_run_at_its_own_step():
     np.testing.assert_allclose(out["v"][:, i, 1], v_ref, atol=1e-3)
 
 
-def test_friction_kick_matches_its_numpy_twin():
-    # the kick of mbd_core.kernels.explicit against a dense numpy solve of the same linear system,
-    # (M + h/2 C) Δu = h/2 (F − C (u − u_e)) in world (v, ω), M = diag(m, R I Rᵀ); ω stored in the body frame
+def _random_kick_inputs(model, state, i, seed, turn_seed):
+    """Work arrays with a random symmetric positive definite damping matrix, evaluation velocity,
+    force and moment on body i, a random orientation of it and random velocities: (w, q, v, R)."""
     from scipy.spatial.transform import Rotation
 
-    from mbd_core.kernels.explicit import _friction_kick
     from mbd_core.multibody.model import make_work
 
-    model, state, i = roller_on_plane(Coulomb(0.1, 0.1, 1e-3, 2e-3), True)
-    a = model.arrays
-    rng = np.random.default_rng(7)
+    rng = np.random.default_rng(seed)
     w = make_work(model)
     A = rng.normal(size=(6, 6))
     w.fric_c[i] = A @ A.T
     w.fric_v[i] = rng.normal(size=6)
     w.body_f[i], w.body_t[i] = rng.normal(size=3) * 10, rng.normal(size=3)
     q = state.q.copy()
-    q[i, 3:] = Rotation.random(random_state=3).as_quat()[[3, 0, 1, 2]]
+    q[i, 3:] = Rotation.random(random_state=turn_seed).as_quat()[[3, 0, 1, 2]]
     v = rng.normal(size=state.v.shape)
+    return w, q, v, _rotation(q[i, 3:])
+
+
+def test_friction_kick_matches_its_numpy_twin():
+    # the kick of mbd_core.kernels.explicit against a dense numpy solve of the same linear system,
+    # (M + h/2 C) Δu = h/2 (F − C (u − u_e)) in world (v, ω), M = diag(m, R I Rᵀ); ω stored in the body frame
+    from mbd_core.kernels.explicit import _friction_kick
+
+    model, state, i = roller_on_plane(Coulomb(0.1, 0.1, 1e-3, 2e-3), True)
+    a = model.arrays
+    w, q, v, R = _random_kick_inputs(model, state, i, 7, 3)
     hh = 1e-3
-    R = _rotation(q[i, 3:])
     M = np.zeros((6, 6))
     M[:3, :3] = a.body_mass[i] * np.eye(3)
     M[3:, 3:] = R @ np.diag(a.body_inertia[i]) @ R.T
@@ -178,27 +185,15 @@ def test_friction_kick_of_a_driven_body_matches_its_numpy_twin():
     # u = (v world, ω body), M' = diag(m, I), C' = Tᵀ C T (T = diag(1, R)), solved for the five free
     # components with the driven ω_z kept, and the gyroscopic torque −ω × Iω of its partly free
     # rotation on the right-hand side, against a dense numpy solve
-    from scipy.spatial.transform import Rotation
-
     from mbd_core.kernels.explicit import _friction_kick
     from mbd_core.multibody import Driven
-    from mbd_core.multibody.model import make_work
 
     model, state, i = roller_on_plane(Coulomb(0.1, 0.1, 1e-3, 2e-3), True,
                                       motion=Driven(40.0, translation_free=True, tilt_free=True))
     a = model.arrays
     assert a.body_fric_implicit[i] == 1 and list(a.body_free[i]) == [1, 1, 1, 1, 1, 0]
-    rng = np.random.default_rng(11)
-    w = make_work(model)
-    A = rng.normal(size=(6, 6))
-    w.fric_c[i] = A @ A.T
-    w.fric_v[i] = rng.normal(size=6)
-    w.body_f[i], w.body_t[i] = rng.normal(size=3) * 10, rng.normal(size=3)
-    q = state.q.copy()
-    q[i, 3:] = Rotation.random(random_state=5).as_quat()[[3, 0, 1, 2]]
-    v = rng.normal(size=state.v.shape)
+    w, q, v, R = _random_kick_inputs(model, state, i, 11, 5)
     hh = 1e-3
-    R = _rotation(q[i, 3:])
     T = np.eye(6)
     T[3:, 3:] = R
     Cp = T.T @ w.fric_c[i] @ T

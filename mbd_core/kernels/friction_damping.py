@@ -18,18 +18,26 @@ from .laws import friction_slope
 
 
 @njit(cache=True, inline="always")
+def _lever_outer(q, g, i, coef, dx, dy, dz, px, py, pz, fc):
+    """Add coef · (Jᵀd)(Jᵀd)ᵀ to body i's friction damping fc[i] (world (v, ω), 6 × 6), with
+    Jᵀd = (d, r × d) for the direction d at world point p (r = p − centre, J = [I, −[r]×] the
+    velocity of the body's material point at p per (v, ω)); g is scratch (6,)."""
+    rx, ry, rz = px - q[i, 0], py - q[i, 1], pz - q[i, 2]
+    g[0], g[1], g[2] = dx, dy, dz
+    g[3], g[4], g[5] = ry * dz - rz * dy, rz * dx - rx * dz, rx * dy - ry * dx
+    for j in range(6):
+        cg = coef * g[j]
+        for k in range(6):
+            fc[i, j, k] += cg * g[k]
+
+
+@njit(cache=True, inline="always")
 def _friction_damping(q, fc, g, i, c, mx, my, mz, px, py, pz):
     """Add c Jᵀ(I − m mᵀ)J to body i's friction damping fc[i] (world (v, ω), 6 × 6): the friction
-    c v_t of a contact at world point p with unit normal m, J = [I, −[r]×] the velocity of the body's
-    material point at p (r = p − centre) per (v, ω), so that JᵀPJ = JᵀJ − (Jᵀm)(Jᵀm)ᵀ with
-    Jᵀm = (m, r × m); g is scratch (6,)."""
+    c v_t of a contact at world point p with unit normal m (J as in :func:`_lever_outer`), as
+    JᵀJ − (Jᵀm)(Jᵀm)ᵀ; g is scratch (6,)."""
+    _lever_outer(q, g, i, -c, mx, my, mz, px, py, pz, fc)
     rx, ry, rz = px - q[i, 0], py - q[i, 1], pz - q[i, 2]
-    g[0], g[1], g[2] = mx, my, mz
-    g[3], g[4], g[5] = ry * mz - rz * my, rz * mx - rx * mz, rx * my - ry * mx
-    for j in range(6):
-        cg = c * g[j]
-        for k in range(6):
-            fc[i, j, k] -= cg * g[k]
     r2 = rx * rx + ry * ry + rz * rz
     for j in range(3):
         fc[i, j, j] += c
@@ -74,19 +82,6 @@ def _note_friction(imp, pts, cnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz):
     cnt[0] = k + 1
 
 
-@njit(cache=True, inline="always")
-def _along_slip(q, g, i, extra, sx, sy, sz, px, py, pz, fc):
-    """Add extra · (Jᵀs)(Jᵀs)ᵀ to body i's friction damping fc[i]: a damper of coefficient
-    ``extra`` along the slip direction s at world point p (J as in :func:`_friction_damping`)."""
-    rx, ry, rz = px - q[i, 0], py - q[i, 1], pz - q[i, 2]
-    g[0], g[1], g[2] = sx, sy, sz
-    g[3], g[4], g[5] = ry * sz - rz * sy, rz * sx - rx * sz, rx * sy - ry * sx
-    for j in range(6):
-        eg = extra * g[j]
-        for k in range(6):
-            fc[i, j, k] += eg * g[k]
-
-
 @njit(cache=True)
 def _friction_damping_matrices(m, q, v, w):
     """w.fric_c of every body with implicit friction from the noted points, w.fric_v = v. (A stage of
@@ -124,7 +119,7 @@ def _friction_damping_matrices(m, q, v, w):
             continue
         tx, ty, tz = tx / ut, ty / ut, tz / ut
         if imp[a] != 0:
-            _along_slip(q, g, a, extra, tx, ty, tz, px, py, pz, fc)
+            _lever_outer(q, g, a, extra, tx, ty, tz, px, py, pz, fc)
         if imp[b] != 0:
-            _along_slip(q, g, b, extra, tx, ty, tz, px, py, pz, fc)
+            _lever_outer(q, g, b, extra, tx, ty, tz, px, py, pz, fc)
     w.fric_n[0] = 0
