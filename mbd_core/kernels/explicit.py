@@ -111,7 +111,7 @@ def _friction_kick(q, v, w, body_mass, body_inertia, body_free, implicit, hh):
         if implicit[i] == 0:
             continue
         C, ve = w.fric_c[i], w.fric_v[i]
-        if C[0, 0] + C[1, 1] + C[2, 2] == 0.0:  # no friction on it (each point adds 2c to this trace)
+        if C[0, 0] + C[1, 1] + C[2, 2] == 0.0:  # no friction on it (each point adds 2c or more to this trace)
             _kick_body(q, v, i, w.body_f, w.body_t, body_mass, body_inertia, body_free, hh)
             continue
         for k in range(3):  # R, column by column
