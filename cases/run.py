@@ -86,7 +86,7 @@ def resolve_case(name_or_path: str, quick_run: bool = False, overrides=()):
         case = PRESETS[name_or_path]
     elif name_or_path.endswith(".toml"):
         path = Path(name_or_path)
-        if not path.is_file():
+        if not _is_file(path, "case file"):
             raise CaseError(f"case file {name_or_path!r} does not exist")
         data = read_toml(path)
         try:
@@ -107,9 +107,18 @@ def resolve_case(name_or_path: str, quick_run: bool = False, overrides=()):
         case = dataclasses.replace(case, description=said)  # the case says what ran
     _check_unused(case, overrides, file_case, name_or_path)
     for key, file in getattr(case, "input_files", dict)().items():
-        if not Path(file).is_file():
+        if not _is_file(Path(file), key):
             raise CaseError(f"{key}: no such file: {file!r}")
     return case
+
+
+def _is_file(path: Path, what: str) -> bool:
+    """Whether ``path`` is a file; a name the system refuses (too long, …) is a :class:`CaseError`
+    naming ``what`` (the key or the case file), not a traceback."""
+    try:
+        return path.is_file()
+    except OSError as exc:
+        raise CaseError(f"{what}: not a usable file name ({exc.strerror}): {str(path)!r:.80}") from None
 
 
 def _check_unused(case, overrides, file_case, source: str) -> None:

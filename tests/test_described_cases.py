@@ -53,3 +53,13 @@ def test_missing_bearing_file_names_the_key(tmp_path):
     p.write_text('family = "bearing"\n[bearing]\nfile = "nowhere/my-bearing.toml"\n')
     with pytest.raises(CaseError, match=r"bearing.file: no such file"):
         resolve_case(str(p))
+
+
+def test_a_file_name_the_system_refuses_names_the_key(tmp_path):
+    # a name longer than the file system allows (ENAMETOOLONG) is a message, not a traceback
+    p = tmp_path / "case.toml"
+    p.write_text(f'family = "bearing"\n[bearing]\nfile = "{"a" * 5000}.toml"\n')
+    with pytest.raises(CaseError, match=r"^bearing.file: not a usable file name \(File name too long\)"):
+        resolve_case(str(p))
+    with pytest.raises(CaseError, match=r"^case file: not a usable file name"):
+        resolve_case("b" * 5000 + ".toml")
