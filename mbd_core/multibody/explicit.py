@@ -35,7 +35,7 @@ import scipy.linalg
 from ..kernels.explicit import record_now, run_explicit, total_kinetic_energy
 from ..kernels.forces import (STATUS_ENERGY, STATUS_MODAL, STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION,
                               compute_forces)
-from ..kernels.laws import friction_coefficient
+from ..kernels.laws import friction_coefficient, friction_slope
 from ..kernels.modal import modal_mass_matrix
 from .model import RECORDED_CONTACT_FIELDS, Model, State, make_record_buffers, make_work
 from .recorder import RunRecord, _modal_ranges, read_run, recorded_timestep_s
@@ -92,7 +92,8 @@ def _friction_slope(code: int, p: np.ndarray) -> float:
     mu = np.array([friction_coefficient(code, x, p[0], p[1], p[2], p[3]) for x in u])
     if mu[0] > 1e-3 * max(mu.max(), 1e-300):
         return math.inf
-    return float(max(np.max(mu / u), np.max(np.abs(np.diff(mu) / np.diff(u)))))
+    slope = np.array([friction_slope(code, x, p[0], p[1], p[2], p[3]) for x in u])
+    return float(max(np.max(mu / u), np.max(np.abs(slope))))
 
 
 def stable_timestep(model: Model, state: State, load_factor: float = 3.0, safety: float = 0.8) -> StepLimit:
