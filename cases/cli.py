@@ -34,6 +34,7 @@ from mbd_core.quasistatic import LoadDistributionError
 
 from . import signals
 from .cache_command import add_cache_parser, cache_help_line
+from .sweep.command import add_sweep_parser, cmd_sweep
 from .bearing_solver import bearing_solver
 from .loaddist_command import (LOAD_NAMES, add_loaddist_parser, bearing_description, check_loaddist_options,
                                chosen_loads, loaddist_outputs)
@@ -429,6 +430,7 @@ def build_parser() -> argparse.ArgumentParser:
     md.add_argument("--out", default=None, help="write summary.json, modes.vtu and PNGs here")
     md.add_argument("--json", action="store_true", help="print SI results as JSON")
     md.set_defaults(func=cmd_modes)
+    add_sweep_parser(sub, cmd_sweep)
     add_cache_parser(sub)
     return parser
 

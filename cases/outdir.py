@@ -39,8 +39,8 @@ from fem_rings.cache import process_alive
 from .config import CaseError
 from .signals import held
 
-__all__ = ["MARKER", "OutputTargetError", "atomic_folder", "check_output_target", "is_results_folder", "marker_source",
-           "recover"]
+__all__ = ["MARKER", "OutputTargetError", "atomic_folder", "check_output_target", "is_results_folder", "marker_entry",
+           "marker_source", "open_collection", "recover"]
 
 log = logging.getLogger(__name__)
 
@@ -168,9 +168,31 @@ def _make_folder(path: Path) -> Path:
     return path
 
 
-def _write_marker(folder: Path, name: str, source: str | None = None) -> None:
-    data = {"format": MARKER_FORMAT, "name": name, **({"source": source} if source is not None else {})}
+def _write_marker(folder: Path, name: str, source: str | None = None, **extra) -> None:
+    data = {"format": MARKER_FORMAT, "name": name, **({"source": source} if source is not None else {}), **extra}
     (folder / MARKER).write_text(json.dumps(data) + "\n", encoding="utf-8")
+
+
+def marker_entry(path: Path, key: str):
+    """Entry ``key`` of the marker of results folder ``path`` (None when absent)."""
+    return (_marker(path) or {}).get(key)
+
+
+def open_collection(out_dir, name: str, source: str, kind: str) -> Path:
+    """Create (or reopen) a folder that collects results folders, e.g. the points of a sweep.
+
+    Unlike a run's folder it is not swapped in whole: its sub-folders are. It carries the marker
+    with ``kind``; an existing folder is reopened only when its marker has the same ``kind``
+    (an ordinary run's results are not mixed with it). Returns the resolved path.
+    """
+    out = check_output_target(out_dir)
+    if is_results_folder(out) and marker_entry(out, "kind") != kind:
+        raise OutputTargetError(f"output folder {str(out_dir)!r} holds the results of a run, not of a {kind}; "
+                                "choose another folder with --out")
+    out.mkdir(parents=True, exist_ok=True)
+    recover(out)
+    _write_marker(out, name, source, kind=kind)
+    return out
 
 
 def _exchange(a: Path, b: Path) -> bool:

@@ -366,6 +366,22 @@ def case_unused_keys(case: SlewingCase) -> dict[str, str]:
     return out
 
 
+#: the case tables its reduced bodies depend on (:func:`prepare`)
+PREPARE_TABLES = ("geometry", "top", "bottom")
+
+
+def prepare(case: SlewingCase) -> bool:
+    """Mesh and reduce the modal top structure and bottom race of ``case`` into the model cache
+    (a sweep does this once before its points start); False when both are rigid or left to
+    ``auto``, which decides inside the run."""
+    top = modal_top(case) and case.top.kind != "auto"  # (a study may make the top modal itself)
+    if not (top or case.bottom.kind == "modal"):
+        return False
+    _bodies(case.with_(top={"kind": "modal" if top else "rigid", "E_Pa": scene.REFERENCE_E_PA},
+                       bottom={"E_Pa": scene.REFERENCE_E_PA}))
+    return True
+
+
 def uses_dynamics(case: SlewingCase) -> bool:
     """True when the case runs the explicit dynamics (the numba kernels) at some point."""
     return "dynamic" in runs_of(case)

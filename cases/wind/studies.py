@@ -227,6 +227,24 @@ def case_unused_keys(case: WindCase) -> dict[str, str]:
     return {**_fidelity_unused(case), **unused_keys(case.study.kind, STUDIES, {}, STUDIES[case.study.kind].runs)}
 
 
+#: the case table its modal bodies depend on (:func:`prepare`)
+PREPARE_TABLES = ("bodies",)
+
+
+def prepare(case: WindCase) -> bool:
+    """Mesh and reduce the modal rings and cages of a dynamic ``case`` into the model cache (a
+    sweep does this once before its points start); False when there are none to build (rigid,
+    ``auto``, or the quasi-static study)."""
+    if not uses_dynamics(case):
+        return False
+    if case.study.kind == "rigid-flexible":
+        case = case.with_(bodies={"rings": "modal", "cages": "modal"})
+    if "modal" not in (case.bodies.rings, case.bodies.cages):
+        return False
+    modal_bodies(case)
+    return True
+
+
 def uses_dynamics(case: WindCase) -> bool:
     """True when the case runs the explicit dynamics (the numba kernels) at some point."""
     return "dynamic" in STUDIES[case.study.kind].runs
