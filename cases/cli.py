@@ -23,10 +23,6 @@ from importlib.metadata import PackageNotFoundError, version
 
 import numpy as np
 
-from mbd_core.contact import ball_on_groove, line_contact, sphere_on_sphere, subsurface_shear
-from mbd_core.contact.limits import line_contact_warnings, point_contact_warnings
-from mbd_core.contact.line import iso16281_stiffness, palmgren_stiffness
-from foundation.materials import ElasticMaterial, effective_modulus_Pa
 from foundation.progress import phase, track
 from mbd_core.multibody import SimulationError
 from mbd_core.multibody.statics import StaticEquilibriumError
@@ -34,6 +30,8 @@ from mbd_core.quasistatic import LoadDistributionError
 
 from . import signals
 from .cache_command import add_cache_parser, cache_help_line
+from .cli_input import UserError, require_finite, require_positive
+from .hertz_command import add_hertz_parser
 from .sweep.command import add_sweep_parser, cmd_sweep
 from .bearing_solver import bearing_solver
 from .loaddist_command import (LOAD_NAMES, add_loaddist_parser, bearing_description, check_loaddist_options,
@@ -48,183 +46,8 @@ from .results import output_units
 __all__ = ["main"]
 
 
-class UserError(Exception):
-    """Bad input from the command line."""
-
-
 #: failures that the input causes: their message names the cause (exit status 2)
 _USER_FAILURES = (UserError, ValueError, LoadDistributionError, SimulationError, StaticEquilibriumError)
-
-
-def _material(args, which: str = "") -> ElasticMaterial:
-    E = getattr(args, f"E{which}_GPa")
-    nu = getattr(args, f"nu{which}")
-    _require_positive(**{f"E{which}_GPa": E})
-    try:
-        return ElasticMaterial(f"material{which}", E * 1e9, nu)
-    except ValueError as e:
-        raise UserError(str(e).replace("E_Pa", f"--E{which}-GPa").replace("nu ", f"--nu{which} ")) from None
-
-
-def _option(dest: str) -> str:
-    """The command-line spelling of an argparse destination (``E_GPa`` → ``--E-GPa``)."""
-    return "--" + dest.replace("_", "-")
-
-
-#: (unit suffix, low, high): where the contact formulas stay finite in double precision, far
-#: beyond any bearing — lengths 1 nm … 1000 km, loads 1e-30 … 1e30 N, moduli 1 kPa … 1e6 GPa
-_RANGES = (("_mm", 1e-6, 1e9), ("_N", 1e-30, 1e30), ("_GPa", 1e-6, 1e6))
-
-
-def _require_positive(**values: float) -> None:
-    for name, v in values.items():
-        if not (math.isfinite(v) and v > 0.0):
-            raise UserError(f"{_option(name)} must be a positive number, got {v}")
-        for suffix, low, high in _RANGES:
-            if name.endswith(suffix) and not low <= v <= high:
-                raise UserError(f"{_option(name)} must lie in [{low:g}, {high:g}], got {v:g}")
-
-
-#: options where an infinite value means something (a flat raceway)
-_INFINITE_ALLOWED = {"raceway_diameter_mm"}
-
-
-def _require_finite(args: argparse.Namespace) -> None:
-    """Every number given on the command line is finite (nan and inf are valid floats to argparse)."""
-    for dest, v in vars(args).items():
-        if isinstance(v, float) and not math.isfinite(v) and not (dest in _INFINITE_ALLOWED and v == math.inf):
-            raise UserError(f"{_option(dest)} must be a finite number, got {v}")
-
-
-def _point_report(contact, Q_N: float, nu: float) -> dict:
-    a, b = (float(x) for x in contact.semi_axes_m(Q_N))
-    p0 = float(contact.max_pressure_Pa(Q_N))
-    sub = subsurface_shear(p0, a, b, nu)
-    return {
-        "load_N": Q_N,
-        "method": contact.method,
-        "curvature_sum_per_m": contact.curvature_sum_per_m,
-        "curvature_difference": contact.curvature_difference,
-        "ellipticity_a_over_b": contact.ellipticity,
-        "semi_major_axis_a_m": a,
-        "semi_minor_axis_b_m": b,
-        "max_pressure_p0_Pa": p0,
-        "approach_m": float(contact.approach_m(Q_N)),
-        "stiffness_N_per_m1p5": contact.stiffness_N_per_m1p5,
-        "tau_max_Pa": sub.tau_max_Pa,
-        "depth_tau_max_m": sub.depth_tau_max_m,
-        "tau_orthogonal_Pa": sub.tau_orthogonal_Pa,
-        "depth_tau_orthogonal_m": sub.depth_tau_orthogonal_m,
-    }
-
-
-_POINT_ROWS = (
-    ("ellipticity a/b", "ellipticity_a_over_b", 1.0, "-", "{:.4f}"),
-    ("semi-major axis a", "semi_major_axis_a_m", 1e3, "mm", "{:.4f}"),
-    ("semi-minor axis b", "semi_minor_axis_b_m", 1e3, "mm", "{:.4f}"),
-    ("max pressure p0", "max_pressure_p0_Pa", 1e-6, "MPa", "{:.1f}"),
-    ("approach delta", "approach_m", 1e3, "mm", "{:.5f}"),
-    ("stiffness K (Q=K d^1.5)", "stiffness_N_per_m1p5", 1.0, "N/m^1.5", "{:.5g}"),
-    ("max shear tau_max", "tau_max_Pa", 1e-6, "MPa", "{:.1f}"),
-    ("depth of tau_max", "depth_tau_max_m", 1e3, "mm", "{:.4f}"),
-    ("orthogonal shear tau_0", "tau_orthogonal_Pa", 1e-6, "MPa", "{:.1f}"),
-    ("depth of tau_0", "depth_tau_orthogonal_m", 1e3, "mm", "{:.4f}"),
-)
-
-
-def _print_quantities(title: str, d: dict, spec) -> None:
-    print(title)
-    rows = [(label, fmt.format(d[key] * scale), unit) for label, key, scale, unit, fmt in spec if key in d]
-    print(format_table(rows, ("quantity", "value", "unit")))
-
-
-def _print_warnings(d: dict) -> None:
-    for w in d.get("warnings", ()):
-        print(f"WARNING: {w}")
-
-
-def cmd_hertz_ball(args) -> dict:
-    _require_positive(ball_diameter_mm=args.ball_diameter_mm, pitch_diameter_mm=args.pitch_diameter_mm,
-                      load_N=args.load_N)
-    mat = _material(args)
-    try:
-        c = ball_on_groove(args.ball_diameter_mm * 1e-3, args.conformity, args.pitch_diameter_mm * 1e-3,
-                           math.radians(args.contact_angle_deg), args.raceway, mat, mat, args.method)
-    except ValueError as e:
-        msg = str(e)
-        for field in ("conformity", "ball_diameter", "pitch_diameter", "contact_angle"):
-            msg = msg.replace(field, "--" + field.replace("_", "-") + ("" if field == "conformity" else
-                                                                         "-deg" if "angle" in field else "-mm"), 1)
-        raise UserError(msg) from None
-    d = _point_report(c, args.load_N, mat.nu)
-    alpha = math.radians(args.contact_angle_deg)
-    groove = (args.conformity * args.ball_diameter_mm * 1e-3, alpha, -math.pi / 2 if alpha == 0.0 else 0.0, math.pi / 2)
-    d["warnings"] = point_contact_warnings(c, args.load_N, args.ball_diameter_mm * 0.5e-3, groove=groove)
-    if not args.json:
-        _print_quantities(
-            f"ball Ø{args.ball_diameter_mm:g} mm on the {args.raceway} groove (f = {args.conformity:g}, "
-            f"pitch Ø{args.pitch_diameter_mm:g} mm, α = {args.contact_angle_deg:g}°), Q = {args.load_N:g} N",
-            d, _POINT_ROWS)
-        _print_warnings(d)
-    return d
-
-
-def cmd_hertz_spheres(args) -> dict:
-    _require_positive(diameter_1_mm=args.diameter_1_mm, diameter_2_mm=args.diameter_2_mm, load_N=args.load_N)
-    mat = _material(args)
-    c = sphere_on_sphere(args.diameter_1_mm * 1e-3, args.diameter_2_mm * 1e-3, mat, mat)
-    d = _point_report(c, args.load_N, mat.nu)
-    d["warnings"] = point_contact_warnings(c, args.load_N, min(args.diameter_1_mm, args.diameter_2_mm) * 0.5e-3)
-    if not args.json:
-        _print_quantities(f"spheres Ø{args.diameter_1_mm:g} and Ø{args.diameter_2_mm:g} mm, Q = {args.load_N:g} N",
-                          d, _POINT_ROWS)
-        _print_warnings(d)
-    return d
-
-
-def cmd_hertz_line(args) -> dict:
-    _require_positive(roller_diameter_mm=args.roller_diameter_mm, length_mm=args.length_mm, load_N=args.load_N)
-    if not args.raceway_diameter_mm > 0:
-        raise UserError(f"--raceway-diameter-mm must be > 0 (inf for a flat raceway), got {args.raceway_diameter_mm}")
-    if args.raceway_diameter_mm != math.inf:
-        _require_positive(raceway_diameter_mm=args.raceway_diameter_mm)
-    mat = _material(args)
-    try:
-        c = line_contact(args.roller_diameter_mm * 1e-3, args.raceway_diameter_mm * 1e-3, args.length_mm * 1e-3,
-                         mat, mat, concave=args.concave)
-    except ValueError as e:
-        raise UserError(str(e)) from None
-    Q = args.load_N
-    b = float(c.half_width_m(Q))
-    p0 = float(c.max_pressure_Pa(Q))
-    L = args.length_mm * 1e-3
-    e_eff = effective_modulus_Pa(mat, mat)
-    # plane strain: τ_max = 0.300·p0 at z = 0.786·b (Johnson §4.3), from the elliptical solution at b/a → 0
-    sub = subsurface_shear(p0, b * 1e4, b, mat.nu)
-    d = {
-        "load_N": Q,
-        "half_width_b_m": b,
-        "max_pressure_p0_Pa": p0,
-        "tau_max_Pa": sub.tau_max_Pa,
-        "depth_tau_max_m": sub.depth_tau_max_m,
-        "palmgren_approach_one_contact_m": (Q / palmgren_stiffness(L, e_eff)) ** 0.9,
-        "iso16281_approach_roller_m": (Q / iso16281_stiffness(L, e_eff)) ** 0.9,
-        "warnings": line_contact_warnings(c, Q, args.roller_diameter_mm * 0.5e-3),
-    }
-    if not args.json:
-        spec = (
-            ("half-width b", "half_width_b_m", 1e3, "mm", "{:.4f}"),
-            ("max pressure p0", "max_pressure_p0_Pa", 1e-6, "MPa", "{:.1f}"),
-            ("max shear tau_max", "tau_max_Pa", 1e-6, "MPa", "{:.1f}"),
-            ("depth of tau_max", "depth_tau_max_m", 1e3, "mm", "{:.4f}"),
-            ("approach, one contact (Palmgren)", "palmgren_approach_one_contact_m", 1e3, "mm", "{:.5f}"),
-            ("approach, roller (ISO/TS 16281)", "iso16281_approach_roller_m", 1e3, "mm", "{:.5f}"),
-        )
-        _print_quantities(f"roller Ø{args.roller_diameter_mm:g} × {args.length_mm:g} mm on raceway "
-                          f"Ø{args.raceway_diameter_mm:g} mm{' (concave)' if args.concave else ''}, Q = {Q:g} N",
-                          d, spec)
-        _print_warnings(d)
-    return d
 
 
 def _check_out(args) -> None:
@@ -270,7 +93,7 @@ def cmd_modes(args) -> dict:
     _check_out(args)
     part = _modes_part(args)
     if args.size_mm is not None:
-        _require_positive(size_mm=args.size_mm)
+        require_positive(size_mm=args.size_mm)
     if args.modes < 7:
         raise UserError(f"--modes must be at least 7 (six rigid-body modes + one elastic), got {args.modes}")
     model, modes, summary = part_modes(part, args.modes, None if args.size_mm is None else args.size_mm * 1e-3,
@@ -285,6 +108,27 @@ def cmd_modes(args) -> dict:
     return output_units(summary)
 
 
+def _variant_execution(args, case):
+    """The context that sends the study's variants to Dask (``--workers``/``--scheduler``), or
+    a null context; refuses the options for a study that makes one run."""
+    import contextlib
+
+    from .run import runs_variants
+    from .sweep.variants import executing
+
+    if args.workers is None and args.scheduler is None:
+        return contextlib.nullcontext()
+    option = "--workers" if args.workers is not None else "--scheduler"
+    if not runs_variants(case):
+        raise UserError(f"{option}: the {case.study.kind} study of {case.name} makes one run, nothing to share "
+                        "out; flexbearing sweep runs a case over varied keys in parallel")
+    if args.workers is not None and args.workers < 1:
+        raise UserError(f"--workers must be at least 1, got {args.workers}")
+    if args.workers is not None and args.scheduler not in (None, "local"):
+        raise UserError("--workers sizes the local cluster; an existing cluster (--scheduler ADDRESS) has its own")
+    return executing(args.scheduler or "local", args.workers)
+
+
 def cmd_run(args) -> dict:
     from .run import CASES, case_source, default_out_dir, resolve_case, run_case
 
@@ -294,6 +138,7 @@ def cmd_run(args) -> dict:
     tolerance = parse_tolerance(args.tolerance) if args.tolerance is not None else None
     _check_out(args)
     case = resolve_case(args.case, args.quick, args.set)
+    execution = _variant_execution(args, case)
     source = case_source(args.case)
     out_dir = args.out if args.out is not None else default_out_dir(case, source)
     choice = None
@@ -306,7 +151,8 @@ def cmd_run(args) -> dict:
               f"error of the {choice['primary_quantity']} {100 * choice['expected_error']:.3g} %: {choice['why']}")
     print(f"{case.name}: {case.description}" if case.description else case.name)
     extra = {"summary_extra": {"fidelity_choice": choice}} if choice else {}
-    out = run_case(case, out_dir, progress=track, resume=args.resume, source=source, **extra)
+    with execution:
+        out = run_case(case, out_dir, progress=track, resume=args.resume, source=source, **extra)
     for line in out.report:
         print(f"  {line}")
     entries = sorted({f"*{p.suffix}" for p in out.folder.iterdir() if p.is_file() and not p.name.startswith(".")})
@@ -346,11 +192,6 @@ def cmd_tradeoff(args) -> dict:
     return summary
 
 
-def _add_material(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--E-GPa", dest="E_GPa", type=float, default=207.0, help="Young's modulus of both bodies (GPa)")
-    p.add_argument("--nu", type=float, default=0.29, help="Poisson's ratio of both bodies")
-
-
 def build_parser() -> argparse.ArgumentParser:
     try:
         ver = version("flexbearing")
@@ -362,35 +203,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
     parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
     sub = parser.add_subparsers(dest="command", required=True)
-
-    h = sub.add_parser("hertz", help="Hertz contact: dimensions, pressure, approach, subsurface shear")
-    hs = h.add_subparsers(dest="geometry", required=True)
-    b = hs.add_parser("ball", help="ball in a raceway groove")
-    b.add_argument("--ball-diameter-mm", type=float, required=True)
-    b.add_argument("--conformity", type=float, required=True, help="groove radius / ball diameter (> 0.5)")
-    b.add_argument("--pitch-diameter-mm", type=float, required=True)
-    b.add_argument("--contact-angle-deg", type=float, default=0.0)
-    b.add_argument("--raceway", choices=("inner", "outer"), default="inner")
-    b.add_argument("--method", choices=("exact", "hamrock-brewe"), default="exact")
-    b.add_argument("--load-N", type=float, required=True)
-    _add_material(b)
-    b.set_defaults(func=cmd_hertz_ball)
-    s = hs.add_parser("spheres", help="two convex spheres (e.g. load ball on spacer ball)")
-    s.add_argument("--diameter-1-mm", type=float, required=True)
-    s.add_argument("--diameter-2-mm", type=float, required=True)
-    s.add_argument("--load-N", type=float, required=True)
-    _add_material(s)
-    s.set_defaults(func=cmd_hertz_spheres)
-    ln = hs.add_parser("line", help="roller on a cylindrical or flat raceway")
-    ln.add_argument("--roller-diameter-mm", type=float, required=True)
-    ln.add_argument("--raceway-diameter-mm", type=float, default=math.inf, help="inf for a flat raceway")
-    ln.add_argument("--concave", action="store_true", help="the raceway wraps around the roller (outer ring)")
-    ln.add_argument("--length-mm", type=float, required=True)
-    ln.add_argument("--load-N", type=float, required=True)
-    _add_material(ln)
-    ln.set_defaults(func=cmd_hertz_line)
-    for p in (b, s, ln):
-        p.add_argument("--json", action="store_true", help="print SI results as JSON")
+    add_hertz_parser(sub)
 
     add_loaddist_parser(sub, cmd_loaddist)
 
@@ -408,6 +221,11 @@ def build_parser() -> argparse.ArgumentParser:
                     "at the cheapest rung of its fidelity ladder that meets it (flexbearing tradeoff)")
     rn.add_argument("--resume", action="store_true",
                     help="continue an interrupted run of the same case into the same folder from its last checkpoint")
+    rn.add_argument("--workers", type=int, default=None,
+                    help="studies that compare several runs (wind-friction, wind-driving-speed): run them on a local "
+                    "Dask cluster of this many worker processes")
+    rn.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                    help="as --workers, on a running Dask cluster (tcp://host:8786)")
     rn.set_defaults(func=cmd_run)
 
     to = sub.add_parser("tradeoff", help="speed against accuracy: run a case's fidelity ladder against its reference")
@@ -507,7 +325,7 @@ def _stdout_gone() -> None:
 def _run(args: argparse.Namespace) -> int:
     """Run the chosen command; the exit status by what ended it (module docstring)."""
     try:
-        _require_finite(args)
+        require_finite(args)
         result = args.func(args)
         if args.json:
             _print_json(result)

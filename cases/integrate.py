@@ -28,7 +28,7 @@ from foundation.npzfile import NPZ_ERRORS, read_npz
 
 from .config import CaseError
 
-__all__ = ["integrate", "integrate_implicit", "checkpoints", "ResumeError", "IMPLICIT_STEP_FACTOR"]
+__all__ = ["integrate", "integrate_implicit", "checkpoints", "checkpoint_folder", "ResumeError", "IMPLICIT_STEP_FACTOR"]
 
 log = logging.getLogger(__name__)
 
@@ -53,6 +53,12 @@ class _Store:
 
 
 _STORE: ContextVar[_Store | None] = ContextVar("cases_integrate_store", default=None)
+
+
+def checkpoint_folder() -> Path | None:
+    """The checkpoint folder of the case run going on (None outside :func:`checkpoints`)."""
+    store = _STORE.get()
+    return None if store is None else store.folder
 
 
 @contextmanager

@@ -39,6 +39,10 @@ class StudyEntry:
         Dotted key (or a whole table) → what does its job, e.g. ``"set study.undulation_scales"``.
     reads : tuple of str
         Keys of ``RUN_KEYS`` it reads although it does not make that kind of run.
+    variants : bool
+        Its runs are variants of the case, each an ordinary run in its own folder
+        (:func:`cases.sweep.variants.run_variants`): they run in parallel with ``flexbearing run
+        --workers N`` or ``--scheduler ADDRESS``.
     """
 
     run: Callable
@@ -46,6 +50,7 @@ class StudyEntry:
     runs: tuple[str, ...] = ()
     unused: Mapping[str, str] = field(default_factory=dict)
     reads: tuple[str, ...] = ()
+    variants: bool = False
 
 
 def unused_keys(kind: str, studies: Mapping[str, StudyEntry], run_keys: Mapping[str, tuple[Mapping[str, None], str]],

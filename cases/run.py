@@ -44,7 +44,7 @@ from .wind import presets as wind_presets
 from .wind import studies as wind_studies
 from .wind.case import WindCase
 
-__all__ = ["CASES", "case_source", "default_out_dir", "resolve_case", "resume_folder", "run_case"]
+__all__ = ["CASES", "case_source", "default_out_dir", "resolve_case", "resume_folder", "run_case", "runs_variants"]
 
 log = logging.getLogger(__name__)
 
@@ -110,6 +110,12 @@ def resolve_case(name_or_path: str, quick_run: bool = False, overrides=()):
         if not _is_file(Path(file), key):
             raise CaseError(f"{key}: no such file: {file!r}")
     return case
+
+
+def runs_variants(case) -> bool:
+    """True when the case's study runs variants of it that can go to Dask workers
+    (:func:`cases.sweep.variants.run_variants`)."""
+    return _FAMILIES[type(case)][1].STUDIES[case.study.kind].variants
 
 
 def _is_file(path: Path, what: str) -> bool:
@@ -242,7 +248,7 @@ def run_case(case, out_dir, progress=None, resume: bool = False, source: str | N
             out.write_summary()
     except BaseException:
         warmup.stop()
-        if any(keep.glob("run_*/piece_*.npz")):
+        if any(keep.glob("run_*/piece_*.npz")) or any(keep.glob("points/*/summary.json")):
             log.warning("the explicit runs done so far are kept in %s: continue with --resume", keep)
         else:  # nothing worth resuming
             shutil.rmtree(keep, ignore_errors=True)

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 from ..config import CaseError, to_mapping
 
-__all__ = ["PointTask", "run_point", "open_client", "prepare_inputs", "default_workers", "SchedulerError"]
+__all__ = ["PointTask", "run_point", "open_client", "compute", "prepare_inputs", "default_workers", "SchedulerError"]
 
 log = logging.getLogger(__name__)
 
@@ -54,6 +54,7 @@ class PointTask:
     case_hash: str
     values: tuple[tuple[str, str], ...]
     resume: bool = False
+    one_thread: bool = True
 
 
 @contextlib.contextmanager
@@ -101,7 +102,7 @@ def run_point(task: PointTask) -> dict:
     record = {"name": task.name, "worker": _where()}
     extra = {"sweep_point": {"name": task.name, "values": {k: v for k, v in task.values}, "case_hash": task.case_hash}}
     try:
-        with one_thread():
+        with one_thread() if task.one_thread else contextlib.nullcontext():
             run_case(task.case, task.folder, resume=task.resume, source=task.source, summary_extra=extra)
         record["status"] = "computed"
     except _user_error_types() as exc:
@@ -189,3 +190,30 @@ def prepare_inputs(cases, progress=None) -> dict:
     if compiling:
         warmup.wait()
     return {"kernels_compiled": bool(compiling), "model_sets_prepared": built}
+
+
+def compute(tasks, scheduler: str, workers: int | None, info: dict, progress=None, echo=None):
+    """Run ``tasks`` (:class:`PointTask`) on the cluster; yield each record as its point completes.
+
+    ``info`` receives where they run (scheduler, workers, dashboard). A task whose worker died
+    (memory, a signal) or was lost yields a ``failed`` record naming that.
+    """
+    from distributed import as_completed
+
+    tasks = list(tasks)
+    with open_client(scheduler, workers, len(tasks)) as (client, where):
+        info.update(where)
+        if where.get("dashboard") and echo is not None:
+            echo(f"Dask dashboard: {where['dashboard']}")
+        futures = {client.submit(run_point, t, key=f"point-{t.name}-{t.case_hash[:12]}", pure=False): t.name
+                   for t in tasks}
+        with progress("sweep points", len(tasks)) if progress else contextlib.nullcontext() as bar:
+            for fut in as_completed(futures):
+                try:
+                    rec = fut.result()
+                except Exception as exc:  # noqa: BLE001 — the worker died or the task was lost
+                    rec = {"name": futures[fut], "status": "failed", "error": "the worker running it failed: "
+                           f"{type(exc).__name__}: {' '.join(str(exc).split())[:300]}"}
+                if bar is not None:
+                    bar.advance()
+                yield rec

@@ -18,7 +18,7 @@ from pathlib import Path
 from ..config import CaseError
 from ..outdir import open_collection
 from .collect import collect_rows, plot_figures, read_point, write_sweep_json, write_table
-from .engine import PointTask, open_client, prepare_inputs, run_point
+from .engine import PointTask, compute, prepare_inputs
 from .spec import SweepSpec, case_hash
 
 __all__ = ["run_sweep", "SweepFailed", "SWEEP_FORMAT"]
@@ -122,35 +122,9 @@ def run_sweep(spec: SweepSpec, out_dir, scheduler: str = "local", workers: int |
 
 def _compute(todo, cases, hashes, out: Path, source, resume, scheduler, workers, records, where, save, progress, echo):
     """Submit the points to the cluster and record each as it completes."""
-    from distributed import as_completed
-
     tasks = [PointTask(p.name, cases[p.name], str(out / p.name), source, hashes[p.name], p.values, resume) for p in todo]
-    with open_client(scheduler, workers, len(tasks)) as (client, info):
-        where["cluster"] = info
-        if info.get("dashboard"):
-            echo(f"Dask dashboard: {info['dashboard']}")
-        futures = {client.submit(run_point, t, key=f"point-{t.name}-{t.case_hash[:12]}", pure=False): t.name
-                   for t in tasks}
-        bar = progress("sweep points", len(tasks)) if progress else None
-        ctx = bar if bar is not None else _NoBar()
-        with ctx as b:
-            for fut in as_completed(futures):
-                name = futures[fut]
-                try:
-                    rec = fut.result()
-                except Exception as exc:  # noqa: BLE001 — the worker died (memory, signal) or the task was lost
-                    rec = {"name": name, "status": "failed",
-                           "error": f"the worker running it failed: {type(exc).__name__}: {' '.join(str(exc).split())[:300]}"}
-                records[name] = rec
-                echo(_point_line(rec))
-                save()
-                if b is not None:
-                    b.advance()
-
-
-class _NoBar:
-    def __enter__(self):
-        return None
-
-    def __exit__(self, *exc):
-        return False
+    where["cluster"] = {}
+    for rec in compute(tasks, scheduler, workers, where["cluster"], progress, echo):
+        records[rec["name"]] = rec
+        echo(_point_line(rec))
+        save()

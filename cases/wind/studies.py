@@ -7,6 +7,7 @@ Table 4 (roller speeds), §4.3.1 (driving speed) and §4.3.2 (friction).
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 import numpy as np
 
@@ -15,7 +16,7 @@ from mbd_core.quasistatic import Bearing, solve_load_distribution
 from ..overrides import StudyEntry, unused_keys
 from . import dynamic, plots
 from .bodies import modal_bodies, stress_maps
-from .case import WindCase
+from .case import Study, WindCase
 from .scene import inner_ring_load, load_history, rows
 from .spectrum import load_cases, write_csv
 
@@ -139,22 +140,29 @@ def study_rigid_flexible(case: WindCase, out, progress=None) -> None:
                  + " (paper 1.67–3.76)")
 
 
-def _sweep(case: WindCase, out, variants, label: str, unit: str, progress=None) -> dict:
+def _sweep(case: WindCase, out, variants, label: str, progress=None) -> dict:
+    """Each ``(key, folder name, case)`` of ``variants`` run as the ``speeds`` study into its own
+    folder (:func:`cases.sweep.variants.run_variants`: in this process, or on Dask with
+    ``flexbearing run --workers/--scheduler``); returns key → the variant's figures."""
+    from ..sweep.variants import run_variants
+
+    runs = [(folder, replace(c, study=Study(), name=f"{case.name}-{folder}",
+                             description=f"{label} {key} of {case.name}")) for key, folder, c in variants]
+    summaries = run_variants(runs, out, progress)
     results = {}
-    for key, c in variants:
-        fig, _, _ = _one_run(c, progress, out, f"{key}{unit}".replace("/", "_"))
-        results[key] = fig
+    for key, folder, _ in variants:
+        fig = results[key] = summaries[folder]
         cf = fig["cage_forces"]
         out.note(f"{label} {key}: mean roller–cage force radial {cf['radial']['mean_N']:.1f} N, front "
                  f"{cf['front thrust']['mean_N']:.1f} N, rear {cf['rear thrust']['mean_N']:.1f} N; peak "
-                 f"{max(v['peak_N'] for v in cf.values()):.0f} N")
+                 f"{max(v['peak_N'] for v in cf.values()):.0f} N (run in {folder}/)")
     return results
 
 
 def study_driving_speed(case: WindCase, out, progress=None) -> None:
     """Cage and raceway forces at each driving speed; front/rear thrust cage force ratio (paper 1.19–1.59)."""
-    variants = [(s, case.with_(analysis={"speed_rpm": s})) for s in case.study.speeds_rpm]
-    res = _sweep(case, out, variants, "speed (r/min)", "rpm", progress)
+    variants = [(s, f"speed={s:g}rpm", case.with_(analysis={"speed_rpm": s})) for s in case.study.speeds_rpm]
+    res = _sweep(case, out, variants, "speed (r/min)", progress)
     ratio = {s: r["cage_forces"]["front thrust"]["mean_N"] / r["cage_forces"]["rear thrust"]["mean_N"] for s, r in res.items()}
     out.summary.update(by_speed_rpm={str(s): r["cage_forces"] for s, r in res.items()},
                        front_rear_cage_force_ratio={str(s): v for s, v in ratio.items()})
@@ -164,9 +172,9 @@ def study_driving_speed(case: WindCase, out, progress=None) -> None:
 
 def study_friction(case: WindCase, out, progress=None) -> None:
     """Cage forces for each (μ_dynamic, μ_static); drop from the highest to the lowest friction (paper 50–76 %)."""
-    variants = [(f"{md:g}/{ms:g}", case.with_(contact={"mu_dynamic": md, "mu_static": ms}))
+    variants = [(f"{md:g}/{ms:g}", f"friction={md:g}_{ms:g}", case.with_(contact={"mu_dynamic": md, "mu_static": ms}))
                 for md, ms in case.study.friction_sets]
-    res = _sweep(case, out, variants, "friction μd/μs", "", progress)
+    res = _sweep(case, out, variants, "friction μd/μs", progress)
     keys = list(res)
     hi = max(keys, key=lambda k: float(k.split("/")[0]))
     lo = min(keys, key=lambda k: float(k.split("/")[0]))
@@ -192,9 +200,9 @@ STUDIES = {
     "speeds": StudyEntry(study_speeds, runs=("dynamic",)),
     "rigid-flexible": StudyEntry(study_rigid_flexible, runs=("dynamic",), unused={
         "bodies.rings": "the study runs rigid and modal rings", "bodies.cages": "the study runs rigid and modal cages"}),
-    "driving-speed": StudyEntry(study_driving_speed, sweeps=("speeds_rpm",), runs=("dynamic",), unused={
+    "driving-speed": StudyEntry(study_driving_speed, sweeps=("speeds_rpm",), runs=("dynamic",), variants=True, unused={
         "analysis.speed_rpm": "set study.speeds_rpm (the speeds it sweeps)"}),
-    "friction": StudyEntry(study_friction, sweeps=("friction_sets",), runs=("dynamic",), unused={
+    "friction": StudyEntry(study_friction, sweeps=("friction_sets",), runs=("dynamic",), variants=True, unused={
         "contact.mu_dynamic": "set study.friction_sets (the (μ_dynamic, μ_static) pairs it sweeps)",
         "contact.mu_static": "set study.friction_sets (the (μ_dynamic, μ_static) pairs it sweeps)"}),
 }

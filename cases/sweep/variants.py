@@ -1,0 +1,88 @@
+"""The variants of a multi-run study (``wind-friction``, ``wind-driving-speed``) as sweep points.
+
+A study that compares several runs of one case (each friction set, each driving speed) hands
+them to :func:`run_variants`: every variant is an ordinary run of a single-run study into its own
+folder ``<results>/<variant>/``, and the study builds its comparison from the variants'
+``summary.json``. The variants run
+
+- one after the other in this process (the default);
+- as Dask tasks when the run is given ``--workers N`` (a LocalCluster) or ``--scheduler
+  ADDRESS`` (:func:`executing`), exactly as the points of ``flexbearing sweep``.
+
+While the case runs, the finished variants wait in the run's checkpoint folder
+(:func:`cases.integrate.checkpoint_folder`): after an interruption ``flexbearing run --resume``
+reuses each one whose folder holds the identical case (content hash) and runs only the others.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import shutil
+from contextvars import ContextVar
+from pathlib import Path
+
+from ..config import CaseError
+from .engine import PointTask, compute, prepare_inputs
+from .spec import case_hash
+
+__all__ = ["executing", "run_variants", "VariantFailed"]
+
+#: (scheduler, workers) of the case run going on; (None, None): variants in this process
+_EXECUTION: ContextVar[tuple[str | None, int | None]] = ContextVar("cases_variant_execution", default=(None, None))
+
+
+class VariantFailed(CaseError):
+    """A variant of a study failed on a worker (the message names it and the cause)."""
+
+
+@contextlib.contextmanager
+def executing(scheduler: str | None, workers: int | None):
+    """Run the variants of the studies in the block on Dask: ``scheduler`` "local" (``workers``
+    processes) or an address; ``(None, None)`` keeps them in this process."""
+    token = _EXECUTION.set((scheduler, workers))
+    try:
+        yield
+    finally:
+        _EXECUTION.reset(token)
+
+
+def _stored(folder: Path, digest: str) -> dict | None:
+    from .collect import read_point
+
+    return read_point(folder, digest)
+
+
+def run_variants(variants, out, progress=None) -> dict[str, dict]:
+    """Run every ``(name, case)`` of ``variants`` into ``out.folder/<name>/``; returns name → its
+    ``summary.json`` (output units). Raises what a variant raised (in this process), or
+    :class:`VariantFailed` naming the variant that failed on a worker."""
+    from ..integrate import checkpoint_folder
+    from ..run import run_case
+
+    variants = list(variants)
+    keep = checkpoint_folder()
+    where = (keep / "points") if keep is not None else Path(out.folder)
+    scheduler, workers = _EXECUTION.get()
+    hashes = {name: case_hash(c) for name, c in variants}
+    todo = [(name, c) for name, c in variants if _stored(where / name, hashes[name]) is None]
+    for name in sorted(set(hashes) - {name for name, _ in todo}):
+        out.note(f"{name}: reused from the interrupted run")
+    if scheduler is None:
+        for name, c in todo:
+            extra = {"sweep_point": {"name": name, "case_hash": hashes[name]}}
+            run_case(c, where / name, progress=progress, summary_extra=extra)
+    elif todo:
+        prepare_inputs([c for _, c in todo])
+        tasks = [PointTask(name, c, str(where / name), "variant", hashes[name], (), False) for name, c in todo]
+        info: dict = {}
+        for rec in compute(tasks, scheduler, workers, info, progress):
+            if rec["status"] != "computed":
+                raise VariantFailed(f"variant {rec['name']}: {rec['error']}")
+        out.summary["cluster"] = info
+    summaries = {}
+    for name, _ in variants:
+        if where != Path(out.folder):
+            shutil.copytree(where / name, Path(out.folder) / name)
+        summaries[name] = json.loads((Path(out.folder) / name / "summary.json").read_text(encoding="utf-8"))
+    return summaries
