@@ -53,8 +53,6 @@ def _spec(args):
 
 
 def cmd_sweep(args) -> dict:
-    from foundation.progress import phase
-
     from ..outdir import check_output_target
     from ..run import resolve_case
     from .runner import run_sweep
@@ -71,7 +69,7 @@ def cmd_sweep(args) -> dict:
     n = len(spec.points())
     print(f"sweep of {spec.case}{' --quick' if spec.quick else ''}: {n} points ({spec.mode} over "
           f"{', '.join(a.key for a in spec.axes)}) into {out_dir}/")
-    result = run_sweep(spec, out_dir, args.scheduler, args.workers, args.resume, args.recompute, args.plot, phase)
+    result = run_sweep(spec, out_dir, args.scheduler, args.workers, args.resume, args.recompute, args.plot)
     counts = {s: sum(1 for r in result["points"] if r.get("status") == s) for s in ("computed", "reused")}
     print(f"{counts['computed']} computed, {counts['reused']} reused; results in {out_dir}/ (sweep.csv, "
           "sweep.parquet, sweep.json, sweep_*.png, one folder per point)")

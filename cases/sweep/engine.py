@@ -168,7 +168,7 @@ def _prepare_key(case) -> str | None:
     return repr((type(case).__name__, [data.get(t) for t in tables]))
 
 
-def prepare_inputs(cases, progress=None) -> dict:
+def prepare_inputs(cases) -> dict:
     """Build what the points share before they start: the numba kernels (once, into their disk
     cache) when a point runs dynamics, and each distinct set of reduced bodies (into the model
     cache, where the workers find it). Returns counts for ``sweep.json``."""
@@ -192,13 +192,16 @@ def prepare_inputs(cases, progress=None) -> dict:
     return {"kernels_compiled": bool(compiling), "model_sets_prepared": built}
 
 
-def compute(tasks, scheduler: str, workers: int | None, info: dict, progress=None, echo=None):
-    """Run ``tasks`` (:class:`PointTask`) on the cluster; yield each record as its point completes.
+def compute(tasks, scheduler: str, workers: int | None, info: dict, echo=None):
+    """Run ``tasks`` (:class:`PointTask`) on the cluster; yield each record as its point completes
+    (with a progress bar over the points, :func:`foundation.progress.phase`).
 
     ``info`` receives where they run (scheduler, workers, dashboard). A task whose worker died
     (memory, a signal) or was lost yields a ``failed`` record naming that.
     """
     from distributed import as_completed
+
+    from foundation.progress import phase
 
     tasks = list(tasks)
     with open_client(scheduler, workers, len(tasks)) as (client, where):
@@ -207,13 +210,12 @@ def compute(tasks, scheduler: str, workers: int | None, info: dict, progress=Non
             echo(f"Dask dashboard: {where['dashboard']}")
         futures = {client.submit(run_point, t, key=f"point-{t.name}-{t.case_hash[:12]}", pure=False): t.name
                    for t in tasks}
-        with progress("sweep points", len(tasks)) if progress else contextlib.nullcontext() as bar:
+        with phase("points", len(tasks)) as bar:
             for fut in as_completed(futures):
                 try:
                     rec = fut.result()
                 except Exception as exc:  # noqa: BLE001 — the worker died or the task was lost
                     rec = {"name": futures[fut], "status": "failed", "error": "the worker running it failed: "
                            f"{type(exc).__name__}: {' '.join(str(exc).split())[:300]}"}
-                if bar is not None:
-                    bar.advance()
+                bar.advance()
                 yield rec

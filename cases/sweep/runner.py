@@ -58,11 +58,11 @@ def _point_line(rec: dict) -> str:
 
 
 def run_sweep(spec: SweepSpec, out_dir, scheduler: str = "local", workers: int | None = None, resume: bool = False,
-              recompute: bool = False, figures=None, progress=None, echo=print) -> dict:
+              recompute: bool = False, figures=None, echo=print) -> dict:
     """Run the sweep into ``out_dir``; returns what ``sweep.json`` holds.
 
-    ``progress``: a phase factory (:func:`foundation.progress.phase`) for the bar over points;
-    ``echo``: where a line per point goes. Raises :class:`SweepFailed` at the end when a point
+    ``echo``: where a line per point goes (a progress bar over the points goes to the
+    reporter of :mod:`foundation.progress`). Raises :class:`SweepFailed` at the end when a point
     failed or was refused (after everything else is written), :class:`CaseError` before any work
     when the case, a ``--set`` or every point is refused.
     """
@@ -101,7 +101,7 @@ def run_sweep(spec: SweepSpec, out_dir, scheduler: str = "local", workers: int |
     try:
         if todo:
             where["prepared"] = prepare_inputs([cases[p.name] for p in todo])
-            _compute(todo, cases, hashes, out, source, resume, scheduler, workers, records, where, save, progress, echo)
+            _compute(todo, cases, hashes, out, source, resume, scheduler, workers, records, where, save, echo)
     except BaseException:
         for p in todo:
             records.setdefault(p.name, {"name": p.name, "status": "interrupted"})
@@ -120,11 +120,11 @@ def run_sweep(spec: SweepSpec, out_dir, scheduler: str = "local", workers: int |
     return result
 
 
-def _compute(todo, cases, hashes, out: Path, source, resume, scheduler, workers, records, where, save, progress, echo):
+def _compute(todo, cases, hashes, out: Path, source, resume, scheduler, workers, records, where, save, echo):
     """Submit the points to the cluster and record each as it completes."""
     tasks = [PointTask(p.name, cases[p.name], str(out / p.name), source, hashes[p.name], p.values, resume) for p in todo]
     where["cluster"] = {}
-    for rec in compute(tasks, scheduler, workers, where["cluster"], progress, echo):
+    for rec in compute(tasks, scheduler, workers, where["cluster"], echo):
         records[rec["name"]] = rec
         echo(_point_line(rec))
         save()

@@ -19,6 +19,7 @@ from __future__ import annotations
 import contextlib
 import json
 import shutil
+import time
 from contextvars import ContextVar
 from pathlib import Path
 
@@ -68,18 +69,25 @@ def run_variants(variants, out, progress=None) -> dict[str, dict]:
     todo = [(name, c) for name, c in variants if _stored(where / name, hashes[name]) is None]
     for name in sorted(set(hashes) - {name for name, _ in todo}):
         out.note(f"{name}: reused from the interrupted run")
+    t0, done = time.perf_counter(), {}
     if scheduler is None:
         for name, c in todo:
-            extra = {"sweep_point": {"name": name, "case_hash": hashes[name]}}
-            run_case(c, where / name, progress=progress, summary_extra=extra)
+            extra = {"sweep_point": {"name": name, "values": {}, "case_hash": hashes[name]}}
+            run = run_case(c, where / name, progress=progress, summary_extra=extra)
+            done[name] = {"worker": "this process", "wall_time_s": run.summary["wall_time_s"],
+                          "peak_rss_mb": run.summary["peak_rss_mb"], "finished_after_s": time.perf_counter() - t0}
     elif todo:
         prepare_inputs([c for _, c in todo])
         tasks = [PointTask(name, c, str(where / name), "variant", hashes[name], (), False) for name, c in todo]
         info: dict = {}
-        for rec in compute(tasks, scheduler, workers, info, progress):
+        for rec in compute(tasks, scheduler, workers, info):
             if rec["status"] != "computed":
                 raise VariantFailed(f"variant {rec['name']}: {rec['error']}")
+            done[rec["name"]] = {**{k: rec[k] for k in ("worker", "wall_time_s", "peak_rss_mb")},
+                                 "finished_after_s": time.perf_counter() - t0}
         out.summary["cluster"] = info
+    # when each variant finished (from the start of the variants), its wall time and its process's peak memory
+    out.summary["variants"] = {name: done.get(name, {"worker": "reused"}) for name, _ in variants}
     summaries = {}
     for name, _ in variants:
         if where != Path(out.folder):
