@@ -184,3 +184,22 @@ def test_interrupted_sweep_resumes_with_only_the_missing_points(tmp_path):
     rows = list(csv.DictReader(open(out / "sweep.csv")))
     assert [r["status"] for r in rows] == ["ok"] * 4
     assert not [p for p in out.iterdir() if p.name.startswith(".") and "fb-tmp" in p.name]
+
+
+def test_readme_sweep_file_runs(tmp_path):
+    """The sweep file of the README runs as written: three thermal offsets of the 2 m slewing
+    ring, whose worst ball load grows with the offset (the offset squeezes the balls in its
+    sector: thesis study (d))."""
+    text = (Path(__file__).parents[1] / "README.md").read_text(encoding="utf-8")
+    block = "# my-sweep.toml" + text.split("```toml\n# my-sweep.toml")[1].split("```")[0]
+    f = tmp_path / "my-sweep.toml"
+    f.write_text(block)
+    out = tmp_path / "sweep"
+    assert main(["sweep", str(f), "--workers", "1", "--out", str(out)]) == 0
+    rows = list(csv.DictReader(open(out / "sweep.csv")))
+    assert [r["point"] for r in rows] == ["offsets_m=0.0003", "offsets_m=0.0004", "offsets_m=0.0005"]
+    worst = [float(r["cases[0].max_ball_load_N"]) for r in rows]
+    assert worst[0] < worst[1] < worst[2]
+    serial = tmp_path / "serial"
+    run_case(resolve_case("slewing-thermal", True, ["analysis.travel_steps=720", "study.offsets_m=[0.4e-3]"]), serial)
+    assert _figures(out / "offsets_m=0.0004") == _figures(serial)

@@ -131,7 +131,7 @@ def _labels(keys: list[str]) -> list[str]:
 def _safe(text: str) -> str:
     """A value as it can stand in a folder name: enclosing brackets and quotes dropped, letters,
     digits and ``.+-`` kept, every other run of characters ``-``."""
-    return re.sub(r"[^A-Za-z0-9.+\-]+", "-", text.strip("[]{}\"' ")) or "-"
+    return re.sub(r"[^A-Za-z0-9.+\-]+", "-", text.strip("[]{}\"' \n\t")) or "-"
 
 
 def _value(text: str):
@@ -145,7 +145,11 @@ def _value(text: str):
 
 
 def _toml_text(value, where: str) -> str:
-    """TOML text of a value from a sweep file."""
+    """TOML text of a value from a sweep file (a list inline, as ``--set`` takes it)."""
+    if isinstance(value, list):
+        return "[" + ", ".join(_toml_text(v, f"{where}[{i}]") for i, v in enumerate(value)) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{json.dumps(str(k))} = {_toml_text(v, f'{where}.{k}')}" for k, v in value.items()) + "}"
     try:
         return tomli_w.dumps({"v": value})[4:].strip()
     except TypeError:
@@ -218,13 +222,11 @@ def _file_axis(key, values, source: str) -> Axis:
 
 
 def is_sweep_file(path: str) -> bool:
-    """True for a TOML file with a ``vary`` table (a sweep file rather than a case file)."""
+    """True for a TOML file with a ``vary`` table (a sweep file rather than a case file); a
+    TOML file that cannot be read raises :class:`CaseError` naming the file and the line."""
     if not path.endswith(".toml") or not Path(path).is_file():
         return False
-    try:
-        return "vary" in read_toml(path)
-    except CaseError:
-        return False
+    return "vary" in read_toml(path)
 
 
 def read_sweep_file(path: str) -> SweepSpec:
