@@ -70,14 +70,18 @@ def test_local_cluster_matches_serial_runs(tmp_path, capsys):
     serial runs of the same cases in this process; a fifth point with an invalid value fails
     alone, named on the terminal and in sweep.json; the table reads back from Parquet."""
     out = tmp_path / "sweep"
-    code = main(["sweep", "wind-static", "--quick", "--vary", f"loads.scale={','.join(SCALES)},-1",
+    # -1: refused by the case's validation before any work; 10000: valid, but no equilibrium exists
+    # (the rollers would need approaches beyond their diameter), so it fails on its worker
+    code = main(["sweep", "wind-static", "--quick", "--vary", f"loads.scale={','.join(SCALES)},-1,10000",
                  "--workers", "2", "--out", str(out)])
     err = capsys.readouterr()
-    assert code == 2  # a point failed: the input's fault
-    assert "1 of 5 points failed (scale=-1: loads.scale must be ≥ 0" in err.err
+    assert code == 2  # points failed: the input's fault
+    assert "2 of 6 points failed (scale=-1: loads.scale must be ≥ 0" in err.err
+    assert "scale=-1: INVALID" in err.out and "scale=10000: FAILED: no converged equilibrium" in err.out
     meta = json.loads((out / "sweep.json").read_text())
     status = {p["name"]: p["status"] for p in meta["points"]}
-    assert status == {**{f"scale={s}": "computed" for s in SCALES}, "scale=-1": "invalid"}
+    assert status == {**{f"scale={s}": "computed" for s in SCALES}, "scale=-1": "invalid", "scale=10000": "failed"}
+    assert "no converged equilibrium" in meta["points"][-1]["error"] and not (out / "scale=10000").exists()
     assert meta["cluster"]["workers"] == 2 and meta["computed"] == 4
     for s in SCALES:
         serial = tmp_path / f"serial-{s}"
@@ -87,13 +91,13 @@ def test_local_cluster_matches_serial_runs(tmp_path, capsys):
             assert (out / f"scale={s}" / name).read_bytes() == (serial / name).read_bytes()
     rows = list(csv.DictReader(open(out / "sweep.csv")))
     table = pq.read_table(out / "sweep.parquet").to_pydict()
-    assert table["point"] == [r["point"] for r in rows] == [f"scale={s}" for s in (*SCALES, "-1")]
-    assert table["status"] == ["ok"] * 4 + ["invalid"]
+    assert table["point"] == [r["point"] for r in rows] == [f"scale={s}" for s in (*SCALES, "-1", "10000")]
+    assert table["status"] == ["ok"] * 4 + ["invalid", "failed"]
     radial = [json.loads((out / f"scale={s}" / "summary.json").read_text())["max_roller_load_N"]["radial"]
               for s in SCALES]
     assert table["max_roller_load_N.radial"][:4] == radial
     assert [float(r["max_roller_load_N.radial"]) for r in rows[:4]] == radial
-    assert table["loads.scale"] == [0.8, 1.0, 1.2, 1.4, -1.0]
+    assert table["loads.scale"] == [0.8, 1.0, 1.2, 1.4, -1.0, 10000.0]
     assert (out / "sweep_max_roller_load_N.radial.png").stat().st_size > 1000
     # the largest roller load grows with the load, more slowly than in proportion (Hertz: Q ∝ δ^1.5
     # stiffens, and more rollers share it)
