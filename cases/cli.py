@@ -32,7 +32,7 @@ from . import signals
 from .cache_command import add_cache_parser, cache_help_line
 from .cli_input import UserError, require_finite, require_positive
 from .hertz_command import add_hertz_parser
-from .sweep.command import add_sweep_parser, cmd_sweep
+from .sweep.command import add_cluster_options, add_sweep_parser, cluster_options, cmd_sweep
 from .bearing_solver import bearing_solver
 from .loaddist_command import (LOAD_NAMES, add_loaddist_parser, bearing_description, check_loaddist_options,
                                chosen_loads, loaddist_outputs)
@@ -116,17 +116,14 @@ def _variant_execution(args, case):
     from .run import runs_variants
     from .sweep.variants import executing
 
-    if args.workers is None and args.scheduler is None:
+    scheduler, workers = cluster_options(args, None)
+    if scheduler is None:
         return contextlib.nullcontext()
-    option = "--workers" if args.workers is not None else "--scheduler"
     if not runs_variants(case):
+        option = "--workers" if args.workers is not None else "--scheduler"
         raise UserError(f"{option}: the {case.study.kind} study of {case.name} makes one run, nothing to share "
                         "out; flexbearing sweep runs a case over varied keys in parallel")
-    if args.workers is not None and args.workers < 1:
-        raise UserError(f"--workers must be at least 1, got {args.workers}")
-    if args.workers is not None and args.scheduler not in (None, "local"):
-        raise UserError("--workers sizes the local cluster; an existing cluster (--scheduler ADDRESS) has its own")
-    return executing(args.scheduler or "local", args.workers)
+    return executing(scheduler, workers)
 
 
 def cmd_run(args) -> dict:
@@ -174,7 +171,9 @@ def cmd_tradeoff(args) -> dict:
     family_ladder(case)  # a family without a ladder stops here, before any work
     out_dir = args.out if args.out is not None else str(Path("results") / f"tradeoff-{case.name}")
     check_output_target(out_dir)
-    summary, result = write_tradeoff(case, out_dir, args.quick, progress=track, source=case_source(args.case))
+    scheduler, workers = cluster_options(args, None)
+    summary, result = write_tradeoff(case, out_dir, args.quick, progress=track, source=case_source(args.case),
+                                     scheduler=scheduler, workers=workers)
     print(f"{case.name}: {summary['scene']}; errors of the {summary['primary_quantity']} against the reference "
           f"({summary['reference']['model']})" + (" — ladder from the cache" if result.cached else ""))
     estimates = list(result.ladder.estimates)
@@ -221,11 +220,9 @@ def build_parser() -> argparse.ArgumentParser:
                     "at the cheapest rung of its fidelity ladder that meets it (flexbearing tradeoff)")
     rn.add_argument("--resume", action="store_true",
                     help="continue an interrupted run of the same case into the same folder from its last checkpoint")
-    rn.add_argument("--workers", type=int, default=None,
-                    help="studies that compare several runs (wind-friction, wind-driving-speed): run them on a local "
-                    "Dask cluster of this many worker processes")
-    rn.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                    help="as --workers, on a running Dask cluster (tcp://host:8786)")
+    add_cluster_options(rn, "studies that compare several runs (wind-friction, wind-driving-speed): run them on a "
+                        "local Dask cluster of this many worker processes",
+                        "as --workers, on a running Dask cluster (tcp://host:8786)")
     rn.set_defaults(func=cmd_run)
 
     to = sub.add_parser("tradeoff", help="speed against accuracy: run a case's fidelity ladder against its reference")
@@ -234,6 +231,9 @@ def build_parser() -> argparse.ArgumentParser:
     to.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="change one case entry first")
     to.add_argument("--out", default=None, help="results folder (default results/tradeoff-<case name>)")
     to.add_argument("--json", action="store_true", help="print summary.json to stdout at the end")
+    add_cluster_options(to, "measure the rungs on a local Dask cluster of this many workers (side by side: their "
+                        "times are then those of a loaded machine)",
+                        "measure the rungs on a running Dask cluster (tcp://host:8786), each in a fresh process")
     to.set_defaults(func=cmd_tradeoff)
 
     md = sub.add_parser("modes", help="free–free natural modes of a ring or cage (solid finite elements)")

@@ -44,7 +44,7 @@ from .wind import presets as wind_presets
 from .wind import studies as wind_studies
 from .wind.case import WindCase
 
-__all__ = ["CASES", "case_source", "default_out_dir", "resolve_case", "resume_folder", "run_case", "runs_variants"]
+__all__ = ["CASES", "case_source", "default_out_dir", "resolve_case", "resume_folder", "run_case", "runs_variants", "studies_of"]
 
 log = logging.getLogger(__name__)
 
@@ -112,10 +112,15 @@ def resolve_case(name_or_path: str, quick_run: bool = False, overrides=()):
     return case
 
 
+def studies_of(case):
+    """The studies module of the case's family (``run_study``, ``uses_dynamics``, ``STUDIES``, …)."""
+    return _FAMILIES[type(case)][1]
+
+
 def runs_variants(case) -> bool:
     """True when the case's study runs variants of it that can go to Dask workers
     (:func:`cases.sweep.variants.run_variants`)."""
-    return _FAMILIES[type(case)][1].STUDIES[case.study.kind].variants
+    return studies_of(case).STUDIES[case.study.kind].variants
 
 
 def _is_file(path: Path, what: str) -> bool:

@@ -8,7 +8,13 @@ the ladder's reference rung (:func:`cases.fidelity.rung_errors`).
 
 A finished ladder is kept in the cache (``tradeoff/`` under ``$FLEXBEARING_CACHE``), keyed by the
 case's scene with its knobs at the ladder's base values, the ladder and this module's version, so
-``flexbearing run … --tolerance`` and a second ``tradeoff`` reuse it.
+``flexbearing run … --tolerance`` and a second ``tradeoff`` reuse it. While a ladder runs, each
+measured rung is kept there too, so an interrupted ladder measures only the rungs missing.
+
+``flexbearing tradeoff --workers N`` (a local Dask cluster) or ``--scheduler ADDRESS`` sends the
+rungs to Dask workers, each measuring its rung in a fresh process of its own; rungs measured side
+by side on one machine share it, so their times are those of a loaded machine (one worker per
+machine keeps them clean).
 """
 
 from __future__ import annotations
@@ -19,6 +25,7 @@ import logging
 import multiprocessing
 import os
 import resource
+import shutil
 import tempfile
 import time
 from concurrent.futures import ProcessPoolExecutor
@@ -95,6 +102,42 @@ def measure_cold(module_name: str, case, settings: dict) -> dict:
         return pool.submit(_measure_rung, module_name, case, settings).result()
 
 
+def _measure_files(task_file: str, result_file: str) -> None:
+    """The body of :func:`measure_in_subprocess`'s fresh interpreter: the pickled arguments in,
+    the pickled measurement (or the exception) out."""
+    import pickle
+
+    with open(task_file, "rb") as f:
+        args = pickle.load(f)
+    try:
+        result = ("ok", _measure_rung(*args))
+    except Exception as exc:  # noqa: BLE001 — handed back to the caller, which raises it
+        result = ("error", exc)
+    with open(result_file, "wb") as f:
+        pickle.dump(result, f)
+
+
+def measure_in_subprocess(module_name: str, case, settings: dict) -> dict:
+    """:func:`measure_cold` in a fresh interpreter started with :mod:`subprocess` (a Dask worker is
+    a daemonic process, which :mod:`multiprocessing` may not give children)."""
+    import pickle
+    import subprocess
+    import sys
+
+    with tempfile.TemporaryDirectory(prefix="fb-rung-task-") as tmp:
+        task, result = Path(tmp) / "task.pkl", Path(tmp) / "result.pkl"
+        task.write_bytes(pickle.dumps((module_name, case, settings)))
+        code = f"from cases.tradeoff import _measure_files; _measure_files({str(task)!r}, {str(result)!r})"
+        done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+        if not result.is_file():
+            tail = " ".join(done.stderr.split()[-40:])
+            raise RuntimeError(f"the rung's process ended with status {done.returncode} without a result: {tail}")
+        status, value = pickle.loads(result.read_bytes())
+    if status == "error":
+        raise value
+    return value
+
+
 @dataclass
 class LadderResult:
     """The rungs of a ladder, their measurements (``rows``, one dict per rung) and outcomes."""
@@ -140,8 +183,62 @@ def _load_cached(path: Path, ladder: Ladder, all_rungs: list[Rung]) -> LadderRes
     return LadderResult(ladder, all_rungs, rows, outcomes, cached=True)
 
 
-def run_ladder(case, quick: bool = False, progress=None, use_cache: bool = True) -> LadderResult:
-    """Every rung of ``case``'s ladder, measured (or read from the ladder cache)."""
+def _save_rung(path: Path, m: dict) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with atomic_path(path) as tmp:
+        Path(tmp).write_text(json.dumps({**{k: v for k, v in m.items() if k != "outcome"},
+                                         "outcome": m["outcome"].to_json()}))
+
+
+def _load_rung(path: Path) -> dict | None:
+    try:
+        data = json.loads(path.read_text())
+        return {**data, "outcome": Outcome.from_json(data["outcome"])}
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
+def _measure_rungs(module, case, all_rungs, folder: Path | None, progress, scheduler, workers) -> dict:
+    """rung name → measurement (:func:`measure_cold`) of every rung. With ``folder`` (the ladder's
+    cache entry), each measured rung is kept there as it finishes and an interrupted ladder
+    measures only the rungs missing. ``scheduler``: None measures them one after the other here;
+    "local" (``workers`` processes) or a Dask scheduler's address sends each rung to a worker,
+    which measures it in a fresh process of its own (rungs measured side by side share their
+    machine: their times are those of a loaded machine unless each worker has one to itself)."""
+    measured = {r.name: m for r in all_rungs if folder is not None and (m := _load_rung(folder / f"{r.name}.json"))}
+    todo = [r for r in all_rungs if r.name not in measured]
+    if measured:
+        log.info("rungs reused from an interrupted ladder: %s", ", ".join(measured))
+
+    def keep(name: str, m: dict) -> None:
+        measured[name] = m
+        if folder is not None:
+            _save_rung(folder / f"{name}.json", m)
+
+    if scheduler is None:
+        for r in (progress(todo, "rungs") if progress else todo):
+            log.info("rung %s: %s", r.name, module.describe(dict(r.settings)))
+            keep(r.name, measure_cold(module.__name__, case, dict(r.settings)))
+    elif todo:
+        from distributed import as_completed
+
+        from foundation.progress import phase
+
+        from .sweep.engine import open_client
+
+        with open_client(scheduler, workers, len(todo)) as (client, _), phase("rungs", len(todo)) as bar:
+            futures = {client.submit(measure_in_subprocess, module.__name__, case, dict(r.settings), pure=False): r.name
+                       for r in todo}
+            for fut in as_completed(futures):
+                keep(futures[fut], fut.result())
+                bar.advance()
+    return measured
+
+
+def run_ladder(case, quick: bool = False, progress=None, use_cache: bool = True, scheduler: str | None = None,
+               workers: int | None = None) -> LadderResult:
+    """Every rung of ``case``'s ladder, measured (or read from the ladder cache); ``scheduler``
+    and ``workers``: where the rungs run (:func:`_measure_rungs`)."""
     module = family_ladder(case)
     try:
         ladder = module.ladder(case, quick)
@@ -155,11 +252,8 @@ def run_ladder(case, quick: bool = False, progress=None, use_cache: bool = True)
         cached = _load_cached(path, ladder, all_rungs)
         if cached is not None:
             return cached
-    measured = {}
-    items = list(all_rungs)
-    for r in (progress(items, "rungs") if progress else items):
-        log.info("rung %s: %s", r.name, module.describe(dict(r.settings)))
-        measured[r.name] = measure_cold(module.__name__, case, dict(r.settings))
+    measured = _measure_rungs(module, case, all_rungs, path.with_suffix("") if use_cache else None, progress,
+                              scheduler, workers)
     ref = measured["reference"]["outcome"]
     rows = []
     for r in all_rungs:
@@ -175,6 +269,7 @@ def run_ladder(case, quick: bool = False, progress=None, use_cache: bool = True)
         path.parent.mkdir(parents=True, exist_ok=True)
         with atomic_path(path) as tmp:
             Path(tmp).write_text(json.dumps(_to_json(result)))
+    shutil.rmtree(path.with_suffix(""), ignore_errors=True)  # the rungs kept while it ran
     return result
 
 
@@ -247,12 +342,13 @@ def estimate_tracking(result: LadderResult) -> dict:
     return out
 
 
-def write_tradeoff(case, out_dir, quick: bool = False, progress=None, source: str | None = None):
+def write_tradeoff(case, out_dir, quick: bool = False, progress=None, source: str | None = None,
+                   scheduler: str | None = None, workers: int | None = None):
     """Run (or reuse) the ladder and write tradeoff.csv, the element loads of every rung (the family's
     ``LOADS_FILE``), summary.json and the plots;
     returns (summary, ladder result)."""
     t0 = time.perf_counter()
-    result = run_ladder(case, quick, progress)
+    result = run_ladder(case, quick, progress, scheduler=scheduler, workers=workers)
     ladder = result.ladder
     front = pareto_front(result.rows, ladder.primary)
     conv = convergence(result)

@@ -86,9 +86,37 @@ def folder(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def ladder_folder(folder):
+    """The quick ladder measured on a local Dask cluster of two workers (each rung in a fresh
+    process of its own, :func:`cases.tradeoff.measure_in_subprocess`); the other families' ladder
+    tests measure theirs one rung after the other in this process's children."""
     out = folder / "ladder"
-    assert main(["tradeoff", str(folder / "case.toml"), "--quick", "--out", str(out)]) == 0
+    assert main(["tradeoff", str(folder / "case.toml"), "--quick", "--workers", "2", "--out", str(out)]) == 0
     return out
+
+
+def test_an_interrupted_ladder_measures_only_the_missing_rungs(folder, tmp_path, monkeypatch):
+    """Rungs kept as they finish (in the ladder's cache entry) are not measured again, and the
+    measurement in a fresh interpreter (the Dask path) equals the one in a spawned process."""
+    from cases import tradeoff
+    from cases.fidelity import rungs
+    from cases.run import resolve_case
+
+    monkeypatch.setenv("FLEXBEARING_CACHE", str(tmp_path / "cache"))
+    case = resolve_case(str(folder / "case.toml"))
+    module = tradeoff.family_ladder(case)
+    ladder_rungs = rungs(module.ladder(case, True))[:3]
+    calls = []
+    real = tradeoff.measure_cold
+    monkeypatch.setattr(tradeoff, "measure_cold", lambda *a: calls.append(a[2]) or real(*a))
+    keep = tmp_path / "rungs"
+    first = tradeoff._measure_rungs(module, case, ladder_rungs[:2], keep, None, None, None)
+    assert len(calls) == 2 and sorted(p.stem for p in keep.iterdir()) == sorted(r.name for r in ladder_rungs[:2])
+    second = tradeoff._measure_rungs(module, case, ladder_rungs, keep, None, None, None)
+    assert len(calls) == 3 and calls[-1] == dict(ladder_rungs[2].settings)
+    for r in ladder_rungs[:2]:
+        np.testing.assert_array_equal(second[r.name]["outcome"].load_N, first[r.name]["outcome"].load_N)
+    fresh = tradeoff.measure_in_subprocess(module.__name__, case, dict(ladder_rungs[2].settings))
+    np.testing.assert_array_equal(fresh["outcome"].load_N, second[ladder_rungs[2].name]["outcome"].load_N)
 
 
 def _rows(path):

@@ -11,7 +11,25 @@ from pathlib import Path
 
 from ..config import CaseError
 
-__all__ = ["add_sweep_parser", "cmd_sweep"]
+__all__ = ["add_sweep_parser", "cmd_sweep", "add_cluster_options", "cluster_options"]
+
+
+def add_cluster_options(parser, workers_help: str, scheduler_help: str) -> None:
+    """``--workers N`` (a local Dask cluster) and ``--scheduler ADDRESS`` (a running one)."""
+    parser.add_argument("--workers", type=int, default=None, help=workers_help)
+    parser.add_argument("--scheduler", default=None, metavar="ADDRESS", help=scheduler_help)
+
+
+def cluster_options(args, default: str | None) -> tuple[str | None, int | None]:
+    """(scheduler, workers) from ``--scheduler``/``--workers``: "local" when only ``--workers``
+    is given, ``default`` when neither; CaseError naming the option for a bad combination."""
+    if args.workers is not None and args.workers < 1:
+        raise CaseError(f"--workers must be at least 1, got {args.workers}")
+    if args.workers is not None and args.scheduler not in (None, "local"):
+        raise CaseError("--workers sizes the local cluster; an existing cluster (--scheduler ADDRESS) has its own")
+    if args.scheduler is not None and not args.scheduler.strip():
+        raise CaseError("--scheduler must be 'local' or a scheduler's address, got an empty string")
+    return args.scheduler or ("local" if args.workers is not None else default), args.workers
 
 
 def add_sweep_parser(sub, func) -> None:
@@ -26,11 +44,9 @@ def add_sweep_parser(sub, func) -> None:
                       help="the i-th values of every key together (equal lengths)")
     sw.add_argument("--quick", action="store_true", help="the case's reduced variant at every point")
     sw.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="change one case entry at every point")
-    sw.add_argument("--scheduler", default="local",
-                    help="'local' (a LocalCluster on this machine, default) or the address of a running Dask "
-                    "scheduler, e.g. tcp://host:8786")
-    sw.add_argument("--workers", type=int, default=None,
-                    help="worker processes of the local cluster (default: one per core, at most one per point)")
+    add_cluster_options(sw, "worker processes of the local cluster (default: one per core, at most one per point)",
+                        "'local' (a LocalCluster on this machine, default) or the address of a running Dask "
+                        "scheduler, e.g. tcp://host:8786")
     sw.add_argument("--resume", action="store_true",
                     help="also continue points whose explicit run was interrupted, from their checkpoints "
                     "(completed points are always reused)")
@@ -57,8 +73,7 @@ def cmd_sweep(args) -> dict:
     from ..run import resolve_case
     from .runner import run_sweep
 
-    if args.workers is not None and args.workers < 1:
-        raise CaseError(f"--workers must be at least 1, got {args.workers}")
+    scheduler, workers = cluster_options(args, "local")
     if args.out is not None and not args.out.strip():
         raise CaseError("--out must name a folder, got an empty string")
     spec = _spec(args)
@@ -69,7 +84,7 @@ def cmd_sweep(args) -> dict:
     n = len(spec.points())
     print(f"sweep of {spec.case}{' --quick' if spec.quick else ''}: {n} points ({spec.mode} over "
           f"{', '.join(a.key for a in spec.axes)}) into {out_dir}/")
-    result = run_sweep(spec, out_dir, args.scheduler, args.workers, args.resume, args.recompute, args.plot)
+    result = run_sweep(spec, out_dir, scheduler, workers, args.resume, args.recompute, args.plot)
     counts = {s: sum(1 for r in result["points"] if r.get("status") == s) for s in ("computed", "reused")}
     print(f"{counts['computed']} computed, {counts['reused']} reused; results in {out_dir}/ (sweep.csv, "
           "sweep.parquet, sweep.json, sweep_*.png, one folder per point)")

@@ -145,7 +145,7 @@ def open_client(scheduler: str, workers: int | None, n_points: int):
     if workers is not None:
         raise CaseError("--workers sizes the local cluster; an existing cluster (--scheduler ADDRESS) has its own")
     try:
-        client = Client(scheduler, timeout="20s")
+        client = Client(scheduler, timeout="10s")
     except (OSError, TimeoutError, ValueError) as exc:
         raise SchedulerError(f"--scheduler {scheduler}: cannot reach the Dask scheduler ({' '.join(str(exc).split())[:200]})") from None
     with client:
@@ -158,9 +158,9 @@ def open_client(scheduler: str, workers: int | None, n_points: int):
 
 def _prepare_key(case) -> str | None:
     """What a case's heavy inputs depend on: the family's ``PREPARE_TABLES`` of the case."""
-    from ..run import _FAMILIES
+    from ..run import studies_of
 
-    studies = _FAMILIES[type(case)][1]
+    studies = studies_of(case)
     tables = getattr(studies, "PREPARE_TABLES", None)
     if tables is None:
         return None
@@ -174,14 +174,14 @@ def prepare_inputs(cases) -> dict:
     cache, where the workers find it). Returns counts for ``sweep.json``."""
     from mbd_core.multibody import warmup
 
-    from ..run import _FAMILIES
+    from ..run import studies_of
 
     cases = list(cases)
-    dynamic = any(_FAMILIES[type(c)][1].uses_dynamics(c) for c in cases)
+    dynamic = any(studies_of(c).uses_dynamics(c) for c in cases)
     compiling = dynamic and warmup.start()  # compiles in a second process meanwhile
     seen, built = set(), 0
     for case in cases:
-        studies = _FAMILIES[type(case)][1]
+        studies = studies_of(case)
         key = _prepare_key(case)
         if key is None or key in seen or not hasattr(studies, "prepare"):
             continue
@@ -192,12 +192,13 @@ def prepare_inputs(cases) -> dict:
     return {"kernels_compiled": bool(compiling), "model_sets_prepared": built}
 
 
-def compute(tasks, scheduler: str, workers: int | None, info: dict, echo=None):
+def compute(tasks, scheduler: str, workers: int | None, info: dict, echo=None, prepare: bool = True):
     """Run ``tasks`` (:class:`PointTask`) on the cluster; yield each record as its point completes
     (with a progress bar over the points, :func:`foundation.progress.phase`).
 
-    ``info`` receives where they run (scheduler, workers, dashboard). A task whose worker died
-    (memory, a signal) or was lost yields a ``failed`` record naming that.
+    ``info`` receives where they run (scheduler, workers, dashboard) and, with ``prepare``, what
+    :func:`prepare_inputs` built once the cluster is reached. A task whose worker died (memory, a
+    signal) or was lost yields a ``failed`` record naming that.
     """
     from distributed import as_completed
 
@@ -206,6 +207,8 @@ def compute(tasks, scheduler: str, workers: int | None, info: dict, echo=None):
     tasks = list(tasks)
     with open_client(scheduler, workers, len(tasks)) as (client, where):
         info.update(where)
+        if prepare:
+            info["prepared"] = prepare_inputs([t.case for t in tasks])
         if where.get("dashboard") and echo is not None:
             echo(f"Dask dashboard: {where['dashboard']}")
         futures = {client.submit(run_point, t, key=f"point-{t.name}-{t.case_hash[:12]}", pure=False): t.name

@@ -18,7 +18,7 @@ from pathlib import Path
 from ..config import CaseError
 from ..outdir import open_collection
 from .collect import collect_rows, plot_figures, read_point, write_sweep_json, write_table
-from .engine import PointTask, compute, prepare_inputs
+from .engine import PointTask, compute
 from .spec import SweepSpec, case_hash
 
 __all__ = ["run_sweep", "SweepFailed", "SWEEP_FORMAT"]
@@ -100,7 +100,6 @@ def run_sweep(spec: SweepSpec, out_dir, scheduler: str = "local", workers: int |
     save()
     try:
         if todo:
-            where["prepared"] = prepare_inputs([cases[p.name] for p in todo])
             _compute(todo, cases, hashes, out, source, resume, scheduler, workers, records, where, save, echo)
     except BaseException:
         for p in todo:

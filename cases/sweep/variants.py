@@ -24,7 +24,7 @@ from contextvars import ContextVar
 from pathlib import Path
 
 from ..config import CaseError
-from .engine import PointTask, compute, prepare_inputs
+from .engine import PointTask, compute
 from .spec import case_hash
 
 __all__ = ["executing", "run_variants", "VariantFailed"]
@@ -77,7 +77,6 @@ def run_variants(variants, out, progress=None) -> dict[str, dict]:
             done[name] = {"worker": "this process", "wall_time_s": run.summary["wall_time_s"],
                           "peak_rss_mb": run.summary["peak_rss_mb"], "finished_after_s": time.perf_counter() - t0}
     elif todo:
-        prepare_inputs([c for _, c in todo])
         tasks = [PointTask(name, c, str(where / name), "variant", hashes[name], (), False) for name, c in todo]
         info: dict = {}
         for rec in compute(tasks, scheduler, workers, info):
