@@ -55,10 +55,11 @@ class _Store:
 _STORE: ContextVar[_Store | None] = ContextVar("cases_integrate_store", default=None)
 
 
-def checkpoint_folder() -> Path | None:
-    """The checkpoint folder of the case run going on (None outside :func:`checkpoints`)."""
+def checkpoint_folder() -> tuple[Path, bool] | None:
+    """(folder, resume) of the case run going on: its checkpoint folder and whether it resumes an
+    interrupted run; None outside :func:`checkpoints`."""
     store = _STORE.get()
-    return None if store is None else store.folder
+    return None if store is None else (store.folder, store.resume)
 
 
 @contextmanager

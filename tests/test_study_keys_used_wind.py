@@ -14,6 +14,8 @@ import pytest
 
 import cases.wind.dynamic as wind_dynamic
 import cases.wind.studies as W
+from cases.results import RunOutput
+from mbd_core.multibody import warmup
 from cases.overrides import _covering
 from cases.wind.presets import PRESETS, quick
 from tests.test_study_keys_used import _Out, discarded_keys
@@ -79,6 +81,10 @@ def _install_recorders(monkeypatch, log: list) -> None:
     monkeypatch.setattr(W, "modal_bodies", lambda c: log.append(("modal bodies", c.bodies)))
     for name in ("roller_speed_figure", "sweep_figure", "max_loads_figure", "spectrum_figure"):
         monkeypatch.setattr(W.plots, name, lambda *a, **k: _blank_figure())
+    # the variants of the driving-speed and friction studies are ordinary runs (cases.sweep.variants)
+    # into real results folders: their record is the recorders' stand-in, and no kernels compile
+    monkeypatch.setattr(RunOutput, "write_timeseries", lambda self, *a, **k: None)
+    monkeypatch.setattr(warmup, "start", lambda: False)
 
 
 def _records(case, monkeypatch, tmp_path):

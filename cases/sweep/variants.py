@@ -11,7 +11,8 @@ folder ``<results>/<variant>/``, and the study builds its comparison from the va
 
 While the case runs, the finished variants wait in the run's checkpoint folder
 (:func:`cases.integrate.checkpoint_folder`): after an interruption ``flexbearing run --resume``
-reuses each one whose folder holds the identical case (content hash) and runs only the others.
+reuses each one whose folder holds the identical case (content hash) and runs only the others;
+without ``--resume`` every variant runs.
 """
 
 from __future__ import annotations
@@ -62,11 +63,11 @@ def run_variants(variants, out, progress=None) -> dict[str, dict]:
     from ..run import run_case
 
     variants = list(variants)
-    keep = checkpoint_folder()
+    keep, resume = checkpoint_folder() or (None, False)
     where = (keep / "points") if keep is not None else Path(out.folder)
     scheduler, workers = _EXECUTION.get()
     hashes = {name: case_hash(c) for name, c in variants}
-    todo = [(name, c) for name, c in variants if _stored(where / name, hashes[name]) is None]
+    todo = [(name, c) for name, c in variants if not resume or _stored(where / name, hashes[name]) is None]
     for name in sorted(set(hashes) - {name for name, _ in todo}):
         out.note(f"{name}: reused from the interrupted run")
     t0, done = time.perf_counter(), {}
