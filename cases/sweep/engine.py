@@ -54,7 +54,7 @@ class PointTask:
     case_hash: str
     values: tuple[tuple[str, str], ...]
     resume: bool = False
-    one_thread: bool = True
+    pin_threads: bool = True
 
 
 @contextlib.contextmanager
@@ -102,7 +102,7 @@ def run_point(task: PointTask) -> dict:
     record = {"name": task.name, "worker": _where()}
     extra = {"sweep_point": {"name": task.name, "values": {k: v for k, v in task.values}, "case_hash": task.case_hash}}
     try:
-        with one_thread() if task.one_thread else contextlib.nullcontext():
+        with one_thread() if task.pin_threads else contextlib.nullcontext():
             run_case(task.case, task.folder, resume=task.resume, source=task.source, summary_extra=extra)
         record["status"] = "computed"
     except _user_error_types() as exc:
