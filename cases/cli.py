@@ -25,12 +25,10 @@ import numpy as np
 
 from foundation.progress import phase, track
 from mbd_core.multibody import SimulationError
-from mbd_core.multibody.statics import StaticEquilibriumError
-from mbd_core.quasistatic import LoadDistributionError
 
 from . import signals
 from .cache_command import add_cache_parser, cache_help_line
-from .cli_input import UserError, require_finite, require_positive
+from .cli_input import USER_FAILURES, UserError, require_finite, require_positive
 from .hertz_command import add_hertz_parser
 from .sweep.command import add_cluster_options, add_sweep_parser, cluster_options, cmd_sweep
 from .bearing_solver import bearing_solver
@@ -45,9 +43,6 @@ from .results import output_units
 
 __all__ = ["main"]
 
-
-#: failures that the input causes: their message names the cause (exit status 2)
-_USER_FAILURES = (UserError, ValueError, LoadDistributionError, SimulationError, StaticEquilibriumError)
 
 
 def _check_out(args) -> None:
@@ -339,7 +334,7 @@ def _run(args: argparse.Namespace) -> int:
     except BrokenPipeError:
         _stdout_gone()
         return 1
-    except _USER_FAILURES as e:
+    except USER_FAILURES as e:
         if args.debug:
             traceback.print_exc()
         stopped = "the simulation stopped: " if isinstance(e, SimulationError) else ""

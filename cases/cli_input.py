@@ -5,11 +5,20 @@ from __future__ import annotations
 import argparse
 import math
 
-__all__ = ["UserError", "option_name", "require_positive", "require_finite"]
+from mbd_core.multibody import SimulationError
+from mbd_core.multibody.statics import StaticEquilibriumError
+from mbd_core.quasistatic import LoadDistributionError
+
+__all__ = ["UserError", "USER_FAILURES", "option_name", "require_positive", "require_finite"]
 
 
 class UserError(Exception):
     """Bad input from the command line."""
+
+
+#: failures that the input causes: their message names the cause (exit status 2; a sweep point
+#: failing with one of them records the message, :mod:`cases.sweep.engine`)
+USER_FAILURES = (UserError, ValueError, LoadDistributionError, SimulationError, StaticEquilibriumError)
 
 
 def option_name(dest: str) -> str:

@@ -1,6 +1,6 @@
 """``flexbearing tradeoff``: run a case's fidelity ladder and measure what each rung's accuracy costs.
 
-Each rung runs in a fresh worker process (spawned, one rung per process) with an empty temporary
+Each rung runs in a fresh interpreter (one rung per process) with an empty temporary
 model cache, so its wall time, CPU time and peak memory are those of a first run of that model on
 this machine (meshing and reduction included); the same worker then repeats the solve with its
 bodies cached (``warm_wall_s``: what a second run of that model costs). Errors are measured against
@@ -22,13 +22,11 @@ from __future__ import annotations
 import dataclasses
 import json
 import logging
-import multiprocessing
 import os
 import resource
 import shutil
 import tempfile
 import time
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -94,16 +92,8 @@ def _measure_rung(module_name: str, case, settings: dict) -> dict:
     return {"outcome": outcome, "wall_s": wall, "cpu_s": cpu, "warm_wall_s": warm, "peak_rss_mb": _peak_rss_mb()}
 
 
-def measure_cold(module_name: str, case, settings: dict) -> dict:
-    """``case`` at ``settings`` measured by ``module_name`` in a fresh spawned process, cold then
-    warm (:func:`_measure_rung`): outcome, wall and CPU time, warm wall time, peak memory."""
-    ctx = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=1, mp_context=ctx) as pool:
-        return pool.submit(_measure_rung, module_name, case, settings).result()
-
-
 def _measure_files(task_file: str, result_file: str) -> None:
-    """The body of :func:`measure_in_subprocess`'s fresh interpreter: the pickled arguments in,
+    """The body of :func:`measure_cold`'s fresh interpreter: the pickled arguments in,
     the pickled measurement (or the exception) out."""
     import pickle
 
@@ -117,9 +107,11 @@ def _measure_files(task_file: str, result_file: str) -> None:
         pickle.dump(result, f)
 
 
-def measure_in_subprocess(module_name: str, case, settings: dict) -> dict:
-    """:func:`measure_cold` in a fresh interpreter started with :mod:`subprocess` (a Dask worker is
-    a daemonic process, which :mod:`multiprocessing` may not give children)."""
+def measure_cold(module_name: str, case, settings: dict) -> dict:
+    """``case`` at ``settings`` measured by ``module_name`` in a fresh interpreter, cold then warm
+    (:func:`_measure_rung`): outcome, wall and CPU time, warm wall time, peak memory. The
+    interpreter is started with :mod:`subprocess`, which also works inside a Dask worker (a
+    daemonic process, which :mod:`multiprocessing` may not give children)."""
     import pickle
     import subprocess
     import sys
@@ -227,7 +219,7 @@ def _measure_rungs(module, case, all_rungs, folder: Path | None, progress, sched
         from .sweep.engine import open_client
 
         with open_client(scheduler, workers, len(todo)) as (client, _), phase("rungs", len(todo)) as bar:
-            futures = {client.submit(measure_in_subprocess, module.__name__, case, dict(r.settings), pure=False): r.name
+            futures = {client.submit(measure_cold, module.__name__, case, dict(r.settings), pure=False): r.name
                        for r in todo}
             for fut in as_completed(futures):
                 keep(futures[fut], fut.result())

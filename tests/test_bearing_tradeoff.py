@@ -87,7 +87,7 @@ def folder(tmp_path_factory):
 @pytest.fixture(scope="module")
 def ladder_folder(folder):
     """The quick ladder measured on a local Dask cluster of two workers (each rung in a fresh
-    process of its own, :func:`cases.tradeoff.measure_in_subprocess`); the other families' ladder
+    process of its own, :func:`cases.tradeoff.measure_cold`); the other families' ladder
     tests measure theirs one rung after the other in this process's children."""
     out = folder / "ladder"
     assert main(["tradeoff", str(folder / "case.toml"), "--quick", "--workers", "2", "--out", str(out)]) == 0
@@ -96,7 +96,7 @@ def ladder_folder(folder):
 
 def test_an_interrupted_ladder_measures_only_the_missing_rungs(folder, tmp_path, monkeypatch):
     """Rungs kept as they finish (in the ladder's cache entry) are not measured again, and the
-    measurement in a fresh interpreter (the Dask path) equals the one in a spawned process."""
+    measurement in another fresh interpreter gives the same loads bit for bit."""
     from cases import tradeoff
     from cases.fidelity import rungs
     from cases.run import resolve_case
@@ -115,7 +115,7 @@ def test_an_interrupted_ladder_measures_only_the_missing_rungs(folder, tmp_path,
     assert len(calls) == 3 and calls[-1] == dict(ladder_rungs[2].settings)
     for r in ladder_rungs[:2]:
         np.testing.assert_array_equal(second[r.name]["outcome"].load_N, first[r.name]["outcome"].load_N)
-    fresh = tradeoff.measure_in_subprocess(module.__name__, case, dict(ladder_rungs[2].settings))
+    fresh = real(module.__name__, case, dict(ladder_rungs[2].settings))
     np.testing.assert_array_equal(fresh["outcome"].load_N, second[ladder_rungs[2].name]["outcome"].load_N)
 
 

@@ -17,10 +17,11 @@ from __future__ import annotations
 import csv
 import json
 import math
-import os
 from pathlib import Path
 
-from .spec import Point, SweepSpec, _value
+from foundation.files import atomic_path
+
+from .spec import Point, SweepSpec, value_of
 
 __all__ = ["point_figures", "collect_rows", "write_table", "write_sweep_json", "plot_figures", "MAX_LIST"]
 
@@ -70,7 +71,7 @@ def collect_rows(spec: SweepSpec, points: list[Point], folder: Path, hashes: dic
     """The table's rows, rebuilt from the point folders (``records``: this run's status and errors)."""
     rows = []
     for p in points:
-        row = {"point": p.name, **{k: _value(v) for k, v in p.values}}
+        row = {"point": p.name, **{k: value_of(v) for k, v in p.values}}
         summary = read_point(folder / p.name, hashes[p.name]) if p.name in hashes else None
         rec = records.get(p.name, {})
         if summary is not None:
@@ -91,15 +92,6 @@ def _columns(rows: list[dict]) -> list[str]:
         cols.remove("error")
         cols.insert(cols.index("status") + 1, "error")
     return cols
-
-
-def _atomic_write(path: Path, write) -> None:
-    tmp = path.with_name(f".{path.name}.part-{os.getpid()}")
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    finally:
-        tmp.unlink(missing_ok=True)
 
 
 def _arrow_column(values: list):
@@ -127,18 +119,17 @@ def write_table(rows: list[dict], folder: Path) -> list[str]:
                 w.writerow(["" if r.get(c) is None else r.get(c) for c in cols])
 
     table = pa.table({c: _arrow_column([r.get(c) for r in rows]) for c in cols})
-    _atomic_write(folder / "sweep.csv", write_csv)
-    _atomic_write(folder / "sweep.parquet", lambda path: pq.write_table(table, path))
+    with atomic_path(folder / "sweep.csv") as tmp:
+        write_csv(tmp)
+    with atomic_path(folder / "sweep.parquet") as tmp:
+        pq.write_table(table, tmp)
     return cols
 
 
 def write_sweep_json(folder: Path, data: dict) -> Path:
     path = folder / "sweep.json"
-
-    def write(p: Path) -> None:
-        p.write_text(json.dumps(data, indent=1, allow_nan=False, default=str) + "\n", encoding="utf-8")
-
-    _atomic_write(path, write)
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(data, indent=1, allow_nan=False, default=str) + "\n", encoding="utf-8")
     return path
 
 

@@ -80,15 +80,6 @@ def one_thread():
             numba.set_num_threads(previous)
 
 
-def _user_error_types() -> tuple:
-    """The failures that the input causes (their message names the cause)."""
-    from mbd_core.multibody import SimulationError
-    from mbd_core.multibody.statics import StaticEquilibriumError
-    from mbd_core.quasistatic import LoadDistributionError
-
-    return (ValueError, LoadDistributionError, SimulationError, StaticEquilibriumError)
-
-
 def _where() -> str:
     return f"{socket.gethostname()}:{os.getpid()}"
 
@@ -96,6 +87,7 @@ def _where() -> str:
 def run_point(task: PointTask) -> dict:
     """Run one point (a Dask task); returns its record: ``status`` "computed" or "failed",
     ``error`` (one line), ``wall_time_s``, ``worker`` (host:pid) and ``peak_rss_mb`` of the worker."""
+    from ..cli_input import USER_FAILURES
     from ..run import _peak_rss_mb, run_case
 
     t0 = time.perf_counter()
@@ -105,7 +97,7 @@ def run_point(task: PointTask) -> dict:
         with one_thread() if task.pin_threads else contextlib.nullcontext():
             run_case(task.case, task.folder, resume=task.resume, source=task.source, summary_extra=extra)
         record["status"] = "computed"
-    except _user_error_types() as exc:
+    except USER_FAILURES as exc:
         record.update(status="failed", error=" ".join(str(exc).split()) or type(exc).__name__)
     except Exception as exc:  # noqa: BLE001 — an internal error: recorded with its traceback's last line
         record.update(status="failed", error=f"internal error: {type(exc).__name__}: {' '.join(str(exc).split())}",

@@ -23,6 +23,7 @@ the sweep's own ``set`` entries, so it is validated exactly as ``flexbearing run
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import itertools
 import json
@@ -34,9 +35,11 @@ from pathlib import Path
 import numpy as np
 import tomli_w
 
-from ..config import CaseError, read_toml
+from fem_rings.cache import input_hash
 
-__all__ = ["Axis", "Point", "SweepSpec", "case_hash", "parse_vary", "read_sweep_file", "is_sweep_file", "MAX_POINTS"]
+from ..config import CaseError, _parse_value, read_toml
+
+__all__ = ["Axis", "Point", "SweepSpec", "case_hash", "value_of", "parse_vary", "read_sweep_file", "is_sweep_file", "MAX_POINTS"]
 
 #: more points than this is almost surely a typo in a range (and a very long sweep)
 MAX_POINTS = 10_000
@@ -119,7 +122,7 @@ class SweepSpec:
     def describe(self) -> dict:
         """The sweep as plain data (``sweep.json``)."""
         return {"case": self.case, "quick": self.quick, "mode": self.mode, "set": list(self.sets),
-                "vary": {a.key: [_value(v) for v in a.values] for a in self.axes}}
+                "vary": {a.key: [value_of(v) for v in a.values] for a in self.axes}}
 
 
 def _labels(keys: list[str]) -> list[str]:
@@ -134,13 +137,12 @@ def _safe(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9.+\-]+", "-", text.strip("[]{}\"' \n\t")) or "-"
 
 
-def _value(text: str):
-    """The value a TOML text stands for (the text itself when it is not TOML: a bare word)."""
+def value_of(text: str):
+    """The value a point's TOML text stands for, as ``--set`` reads it (the text itself where it
+    is not one value: the point is then refused by the case, and listed with its text)."""
     try:
-        import tomllib
-
-        return tomllib.loads("v = " + text)["v"]
-    except Exception:  # noqa: BLE001 — a bare word such as dynamic_explicit
+        return _parse_value(text, "value")
+    except CaseError:
         return text
 
 
@@ -264,11 +266,6 @@ def _flatten_keys(table: dict, prefix: str = ""):
 
 
 def case_hash(case) -> str:
-    """Content hash of a resolved case: every entry but its name and description (which say where
-    it came from, not what it computes)."""
-    from ..config import to_mapping
-
-    data = {k: v for k, v in to_mapping(case).items() if k not in ("name", "description")}
-    data["family"] = getattr(type(case), "FAMILY", type(case).__name__)
-    text = json.dumps(data, sort_keys=True, default=repr)
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+    """Content hash of a resolved case (:func:`fem_rings.cache.input_hash`): every entry but its
+    name and description, which say where it came from, not what it computes."""
+    return input_hash("case", dataclasses.replace(case, name="case", description=""))

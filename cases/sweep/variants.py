@@ -25,6 +25,7 @@ from contextvars import ContextVar
 from pathlib import Path
 
 from ..config import CaseError
+from .collect import read_point
 from .engine import PointTask, compute
 from .spec import case_hash
 
@@ -49,12 +50,6 @@ def executing(scheduler: str | None, workers: int | None):
         _EXECUTION.reset(token)
 
 
-def _stored(folder: Path, digest: str) -> dict | None:
-    from .collect import read_point
-
-    return read_point(folder, digest)
-
-
 def run_variants(variants, out, progress=None) -> dict[str, dict]:
     """Run every ``(name, case)`` of ``variants`` into ``out.folder/<name>/``; returns name → its
     ``summary.json`` (output units). Raises what a variant raised (in this process), or
@@ -67,7 +62,7 @@ def run_variants(variants, out, progress=None) -> dict[str, dict]:
     where = (keep / "points") if keep is not None else Path(out.folder)
     scheduler, workers = _EXECUTION.get()
     hashes = {name: case_hash(c) for name, c in variants}
-    todo = [(name, c) for name, c in variants if not resume or _stored(where / name, hashes[name]) is None]
+    todo = [(name, c) for name, c in variants if not resume or read_point(where / name, hashes[name]) is None]
     for name in sorted(set(hashes) - {name for name, _ in todo}):
         out.note(f"{name}: reused from the interrupted run")
     t0, done = time.perf_counter(), {}
