@@ -240,7 +240,9 @@ def run_case(case, out_dir, progress=None, resume: bool = False, source: str | N
     keep.parent.mkdir(parents=True, exist_ok=True)
     _open_resume_folder(keep, text, resume)
     studies = _FAMILIES[type(case)][1]
-    if studies.uses_dynamics(case):
+    # a run inside another one (a variant of its study) leaves the warm-up to the outer run
+    owner = not warmup.started()
+    if owner and studies.uses_dynamics(case):
         warmup.start()  # compiles the kernels on another core while the rings are meshed and reduced
     try:
         with atomic_folder(out_dir, case.name, source) as tmp, checkpoints(keep, resume):
@@ -252,13 +254,15 @@ def run_case(case, out_dir, progress=None, resume: bool = False, source: str | N
                                         "peak_rss_mb": _peak_rss_mb()})
             out.write_summary()
     except BaseException:
-        warmup.stop()
+        if owner:
+            warmup.stop()
         if any(keep.glob("run_*/piece_*.npz")) or any(keep.glob("points/*/summary.json")):
             log.warning("the explicit runs done so far are kept in %s: continue with --resume", keep)
         else:  # nothing worth resuming
             shutil.rmtree(keep, ignore_errors=True)
         raise
-    warmup.stop()  # (a run that never built a model did not wait for it)
+    if owner:
+        warmup.stop()  # (a run that never built a model did not wait for it)
     shutil.rmtree(keep, ignore_errors=True)
     out.folder = Path(out_dir)
     return out

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from pathlib import Path
 
 import meshio
 import numpy as np
@@ -17,7 +18,7 @@ from fem_rings.output import write_vtu
 
 from . import scene
 from ..overrides import StudyEntry, unused_keys
-from .case import SlewingCase
+from .case import SlewingCase, Study
 from .life import plot_subsurface_shear, worst_ball_life
 from ..results import plural, share_ylim
 from .plots import plot_ball_loads, plot_static, plot_travel
@@ -106,30 +107,33 @@ def study_static(case: SlewingCase, out, progress=None) -> None:
 
 # -- (c) undulation ----------------------------------------------------------------------------
 def study_undulation(case: SlewingCase, out, progress=None) -> None:
-    """Undulated bottom race, ``undulation_scales`` × ``top_E_Pa``: max load, unloaded balls."""
+    """Undulated bottom race, ``undulation_scales`` × ``top_E_Pa``: max load, unloaded balls.
+    Each pair is a ``single`` equilibrium in its own folder, the spacer run (:func:`_spacer_run`)
+    one more (:func:`_single_runs`)."""
     s = case.study
     base = case.with_(top={"kind": "modal"} if case.top.kind == "rigid" else {})
-    top0 = scene.top_body(base.with_(top={"E_Pa": scene.REFERENCE_E_PA}))
-    table, curves = [], {}
     items = [(E, h) for E in s.top_E_Pa for h in s.undulation_scales]
-    for E, h in (progress(items, "undulation cases") if progress else items):
-        c = base.with_(top={"E_Pa": E}, undulation={"scale": h})
-        bodies = scene.Bodies(scene.with_modulus(top0, E), scene.bottom_body(c))
-        res = equilibrium(c, bodies)
-        out.warn(res.warnings, f"E {E / 1e9:g} GPa, undulation ×{h:g}")
-        fig = _distribution_figures(res)
-        curves[(E, h)] = res.rows[0].load_N
-        table.append({"top_E_Pa": E, "undulation_scale": h, **fig,
-                      "error_estimates": error_estimates(c, bodies, res)})
+    points = [(f"E={E / 1e9:g}GPa_undulation={h:g}", f"E {E / 1e9:g} GPa, undulation ×{h:g}",
+               base.with_(top={"E_Pa": E}, undulation={"scale": h},
+                          analysis={"type": "quasi_static", "travel_steps": 0})) for E, h in items]
+    spacers = [_spacer_run(base)] if s.spacer_run_s > 0.0 else []
+    summaries = _single_runs(case, out, points + spacers, progress)  # (the kernels compile meanwhile)
+    table, curves = [], {}
+    for (E, h), (folder, label, _) in zip(items, points):
+        r = summaries[folder]
+        out.warn(r.get("warnings", ()), label)
+        fig = {k: r[k] for k in ("max_ball_load_N", "min_ball_load_N", "unloaded_balls", "equilibrium_error")}
+        curves[(E, h)] = np.asarray(r["ball_load_N"], float)
+        table.append({"top_E_Pa": E, "undulation_scale": h, **fig, "error_estimates": r["error_estimates"],
+                      "folder": folder})
         out.note(f"E {E / 1e9:7.4g} GPa, undulation ×{h:g}: max ball load {fig['max_ball_load_N']:.0f} N, "
-                 f"{plural(fig['unloaded_balls'], 'ball')} unloaded")
-        _write_top_vtu(out, f"top_E{E / 1e9:g}GPa_x{h:g}.vtu", bodies, res.modal("top"))
-    azimuth = res.rows[0].azimuth_rad
+                 f"{plural(fig['unloaded_balls'], 'ball')} unloaded ({folder}/)")
+    azimuth = np.radians(summaries[points[0][0]]["ball_azimuth_deg"])
     out.summary["cases"] = table
     out.write_csv("ball_loads.csv", ["ball", "azimuth_deg"] + [f"load_E{E / 1e9:g}GPa_x{h:g}_N" for E, h in curves],
                   [(i + 1, math.degrees(azimuth[i]), *(q[i] for q in curves.values())) for i in range(len(azimuth))])
-    if s.spacer_run_s > 0.0:
-        _spacer_run(base, out, progress)
+    if spacers:
+        _spacer_notes(case, out, summaries[spacers[0][0]])
     figs = {E: plot_ball_loads({h: curves[(E, h)] for h in s.undulation_scales}, azimuth, case,
                                f"top structure E = {E / 1e9:g} GPa") for E in s.top_E_Pa}
     share_ylim(f.axes[0] for f in figs.values())  # the moduli compared on one load scale
@@ -137,25 +141,36 @@ def study_undulation(case: SlewingCase, out, progress=None) -> None:
         out.save_figure(f, f"ball_loads_E{E / 1e9:g}GPa.png")
 
 
-def _spacer_run(case: SlewingCase, out, progress) -> None:
-    """Spacer–load ball forces: the undulated ring (×1, from its quasi-static equilibrium; rigid top
-    structure, or ``study.spacer_run_top = "modal"`` the case's modal one at E = ``top_E_Pa[0]``)
-    turning for ``spacer_run_s``, into the sub-folder ``spacer_run``."""
-    from ..results import RunOutput
-    from .dynamic import run_dynamic
+def _single_runs(case: SlewingCase, out, points, progress) -> dict[str, dict]:
+    """Each ``(folder, label, case)`` of ``points`` run as the ``single`` study into
+    ``<results>/<folder>/`` (:func:`cases.sweep.variants.run_variants`: in this process, or on
+    Dask with ``flexbearing run --workers/--scheduler``, resumed with ``--resume``); returns
+    folder → the run's ``summary.json`` (output units)."""
+    from ..sweep.variants import run_variants
 
+    runs = [(folder, replace(c, study=Study(), name=f"{case.name}-{folder.replace('=', '-')}",
+                             description=f"{label} of {case.name}"))
+            for folder, label, c in points]
+    return run_variants(runs, out, progress)
+
+
+def _spacer_run(case: SlewingCase) -> tuple[str, str, SlewingCase]:
+    """The run for the spacer–load ball forces: the undulated ring (×1, from its quasi-static
+    equilibrium; rigid top structure, or ``study.spacer_run_top = "modal"`` the case's modal one
+    at E = ``top_E_Pa[0]``) turning for ``spacer_run_s``, in the sub-folder ``spacer_run``."""
     modal = case.study.spacer_run_top == "modal"
     top = {"kind": "modal", "E_Pa": case.study.top_E_Pa[0]} if modal else {"kind": "rigid"}
-    c = case.with_(top=top, undulation={"scale": 1.0},
-                   analysis={"type": "dynamic_explicit", "duration_s": case.study.spacer_run_s})
-    sub = RunOutput(out.path("spacer_run/summary.json").parent)
-    run_dynamic(c, sub, progress)
-    sub.write_summary()
-    fs = {k: sub.summary[k] for k in ("max_spacer_force_N", "mean_spacer_force_N", "p99_spacer_force_N",
-                                      "start_up_excluded_s", "start_up_max_spacer_force_N", "timestep_s")
-          if k in sub.summary}
+    return "spacer_run", "spacer run", case.with_(top=top, undulation={"scale": 1.0}, analysis={
+        "type": "dynamic_explicit", "duration_s": case.study.spacer_run_s})
+
+
+def _spacer_notes(case: SlewingCase, out, summary: dict) -> None:
+    fs = {k: summary[k] for k in ("max_spacer_force_N", "mean_spacer_force_N", "p99_spacer_force_N",
+                                  "start_up_excluded_s", "start_up_max_spacer_force_N", "timestep_s") if k in summary}
+    modal = case.study.spacer_run_top == "modal"
     what = f"modal top E {case.study.top_E_Pa[0] / 1e9:g} GPa" if modal else "rigid top"
     out.summary["spacer_run"] = {"duration_s": case.study.spacer_run_s, "top": case.study.spacer_run_top, **fs}
+    out.warn(summary.get("warnings", ()), "spacer run")
     start = (f"; the first {fs['start_up_excluded_s']:.3g} s left out (start-up, peak "
              f"{fs['start_up_max_spacer_force_N']:.0f} N)" if "start_up_max_spacer_force_N" in fs else "")
     out.note(f"dynamic, {what}, undulation ×1, {case.study.spacer_run_s:g} s: spacer–load ball force "
@@ -164,6 +179,10 @@ def _spacer_run(case: SlewingCase, out, progress) -> None:
 
 
 # -- (d) thermal offset and (e) combined -------------------------------------------------------
+def _history_csv(prefix: str, offset_m: float, E_Pa: float) -> str:
+    return f"{prefix}_ball_history_{offset_m * 1e3:g}mm_E{E_Pa / 1e9:g}GPa.csv"
+
+
 def _travel_study(case: SlewingCase, out, offsets, stiffness, undulation: float, progress, prefix: str):
     """Travels for every stiffness × offset: rows of key figures and, per case, the history
     (azimuth deg, load N, top rotation deg) of the ball that meets the largest load."""
@@ -186,7 +205,7 @@ def _travel_study(case: SlewingCase, out, offsets, stiffness, undulation: float,
                          "min_ball_load_N": float(tr.load_N.min())})
             out.note(f"{prefix} Δ = {d * 1e3:.2f} mm" + (f", E {E / 1e9:g} GPa" if case.top.kind == "modal" else "")
                      + f": worst ball load {tr.load_N.max():.0f} N at ψ = {rows[-1]['worst_azimuth_deg']:.0f}°")
-            out.write_csv(f"{prefix}_ball_history_{d * 1e3:g}mm_E{E / 1e9:g}GPa.csv",
+            out.write_csv(_history_csv(prefix, d, E),
                           ["top_rotation_deg", "ball_azimuth_deg", "load_N"],
                           zip(np.degrees(tr.top_rotation_rad), *histories[(E, d)][:2]))
             _write_balls_vtu(out, f"{prefix}_balls_worst_{d * 1e3:g}mm_E{E / 1e9:g}GPa.vtu", c,
@@ -194,9 +213,35 @@ def _travel_study(case: SlewingCase, out, offsets, stiffness, undulation: float,
     return rows, histories
 
 
+def _travel_runs(case: SlewingCase, out, offsets, stiffness, undulation: float, progress, prefix: str):
+    """:func:`_travel_study` with every stiffness × offset a ``single`` travel in its own folder
+    (:func:`_single_runs`); the ball histories are read back from the folders."""
+    modal = case.top.kind == "modal"
+    items = [(E, d) for E in stiffness for d in offsets]
+    points = [(f"offset={d * 1e3:g}mm" + (f"_E={E / 1e9:g}GPa" if modal else ""), f"{prefix} Δ = {d * 1e3:g} mm",
+               case.with_(thermal={"offset_m": d}, undulation={"scale": undulation},
+                          analysis={"type": "quasi_static", "travel_steps": case.analysis.travel_steps or 144},
+                          top={"E_Pa": E} if modal else {})) for E, d in items]
+    summaries = _single_runs(case, out, points, progress)
+    rows, histories = [], {}
+    for (E, d), (folder, _, c) in zip(items, points):
+        r = summaries[folder]
+        out.warn(r.get("warnings", ()))  # (each names its offset and modulus)
+        rows.append({"top_E_Pa": E, "offset_m": d, "folder": folder,
+                     **{k: r["cases"][0][k] for k in ("max_ball_load_N", "worst_ball", "worst_azimuth_deg",
+                                                      "worst_top_rotation_deg", "min_ball_load_N")}})
+        rotation, azimuth, load = np.loadtxt(Path(out.folder) / folder / _history_csv("travel", d, c.top.E_Pa),
+                                             delimiter=",", skiprows=1, ndmin=2).T
+        histories[(E, d)] = (azimuth, load, rotation)
+        out.note(f"{prefix} Δ = {d * 1e3:.2f} mm" + (f", E {E / 1e9:g} GPa" if modal else "")
+                 + f": worst ball load {rows[-1]['max_ball_load_N']:.0f} N at ψ = {rows[-1]['worst_azimuth_deg']:.0f}° "
+                 f"({folder}/)")
+    return rows, histories
+
+
 def study_thermal(case: SlewingCase, out, progress=None) -> None:
     """Radial offsets Δ of the top (80–100°, turning with it) and bottom (260–280°) race."""
-    rows, hist = _travel_study(case, out, case.study.offsets_m, (case.top.E_Pa,), 0.0, progress, "thermal")
+    rows, hist = _travel_runs(case, out, case.study.offsets_m, (case.top.E_Pa,), 0.0, progress, "thermal")
     out.summary["cases"] = rows
     out.summary["nominal_ball_load_N"] = nominal_ball_load_N(case)
     out.save_figure(plot_travel({f"Δ = {d * 1e3:g} mm": v for (E, d), v in hist.items()}, case,
@@ -207,12 +252,11 @@ def study_thermal(case: SlewingCase, out, progress=None) -> None:
 def study_combined(case: SlewingCase, out, progress=None) -> None:
     """Undulation × 1 with the thermal offsets ``combined_offsets_m``, modal top at each ``top_E_Pa``."""
     c = case.with_(top={"kind": "modal"}) if case.top.kind == "rigid" else case
-    rows, hist = _travel_study(c, out, case.study.combined_offsets_m, case.study.top_E_Pa, 1.0, progress, "combined")
+    rows, hist = _travel_runs(c, out, case.study.combined_offsets_m, case.study.top_E_Pa, 1.0, progress, "combined")
     out.summary["cases"] = rows
     label = {(E, d): f"Δ = {d * 1e3:g} mm, E = {E / 1e9:g} GPa" for (E, d) in hist}
     out.save_figure(plot_travel({label[k]: v for k, v in hist.items()}, case,
                                 "Worst ball over a revolution: undulation + thermal offset"), "combined_worst_ball.png")
-
 
 # -- (f) worst ball life -----------------------------------------------------------------------
 def study_life(case: SlewingCase, out, progress=None) -> None:
@@ -295,14 +339,15 @@ STUDIES = {
     "rotation": StudyEntry(None, runs=("dynamic",)),
     "undulation": StudyEntry(study_undulation, sweeps=("undulation_scales", "top_E_Pa", "spacer_run_s",
                                                        "spacer_run_top"),
-                             runs=("equilibria", "dynamic"), unused={
+                             runs=("equilibria", "dynamic"), variants=True, unused={
         **_TYPE, **_MODAL_TOP, "top.E_Pa": "set study.top_E_Pa (the moduli it sweeps)",
         "undulation.scale": "set study.undulation_scales (the scales it sweeps)",
         "analysis.duration_s": "set study.spacer_run_s (the simulated time of its spacer run)"}),
-    "thermal": StudyEntry(study_thermal, sweeps=("offsets_m",), runs=("travels",), unused={
+    "thermal": StudyEntry(study_thermal, sweeps=("offsets_m",), runs=("travels",), variants=True, unused={
         **_TYPE, "thermal.offset_m": "set study.offsets_m (the offsets it sweeps)",
         "undulation": 'flat races here; study.kind = "combined" adds the undulation'}),
-    "combined": StudyEntry(study_combined, sweeps=("combined_offsets_m", "top_E_Pa"), runs=("travels",), unused={
+    "combined": StudyEntry(study_combined, sweeps=("combined_offsets_m", "top_E_Pa"), runs=("travels",),
+                           variants=True, unused={
         **_TYPE, **_MODAL_TOP, "top.E_Pa": "set study.top_E_Pa (the moduli it sweeps)",
         "thermal.offset_m": "set study.combined_offsets_m (the offsets it sweeps)",
         "undulation.scale": "the study takes the undulation ×1"}),
@@ -413,7 +458,8 @@ def run_study(case: SlewingCase, out, progress=None) -> None:
     res = equilibrium(case, bodies)
     out.warn(res.warnings)
     out.summary.update(_distribution_figures(res), nominal_ball_load_N=nominal_ball_load_N(case),
-                       ball_load_N=res.rows[0].load_N, error_estimates=error_estimates(case, bodies, res))
+                       ball_load_N=res.rows[0].load_N, ball_azimuth_deg=np.degrees(res.rows[0].azimuth_rad),
+                       error_estimates=error_estimates(case, bodies, res))
     _write_balls_vtu(out, "balls.vtu", case, res.rows[0].azimuth_rad, res.rows[0].load_N)
     if bodies.top is not None:
         _write_top_vtu(out, "top_structure.vtu", bodies, res.modal("top"))

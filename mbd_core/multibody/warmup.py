@@ -32,7 +32,7 @@ from foundation.progress import phase
 
 from ..kernels.compile_progress import COMPILING_LABEL
 
-__all__ = ["start", "wait", "compile_kernels", "small_model", "kernels_cached", "WARMUP_ENV"]
+__all__ = ["start", "started", "stop", "wait", "compile_kernels", "small_model", "kernels_cached", "WARMUP_ENV"]
 
 log = logging.getLogger(__name__)
 
@@ -105,6 +105,11 @@ def wait() -> None:
                     proc.returncode, last[0])
         return
     log.info("dynamics kernels compiled in the background in %.0f s", time.perf_counter() - _started_s)
+
+
+def started() -> bool:
+    """True when this process launched a warm-up that was not stopped since (it may have finished)."""
+    return _process is not None
 
 
 def stop() -> None:
