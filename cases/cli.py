@@ -148,7 +148,8 @@ def cmd_run(args) -> dict:
     for line in out.report:
         print(f"  {line}")
     entries = sorted({f"*{p.suffix}" for p in out.folder.iterdir() if p.is_file() and not p.name.startswith(".")})
-    entries += sorted(f"{p.name}/" for p in out.folder.iterdir() if p.is_dir())
+    folders = sorted(f"{p.name}/" for p in out.folder.iterdir() if p.is_dir())
+    entries += folders if len(folders) <= 8 else [f"{len(folders)} folders {folders[0]} … {folders[-1]}"]
     print(f"wall time {out.summary['wall_time_s']:.1f} s, peak memory {out.summary['peak_rss_mb']:.0f} MB; "
           f"results in {out.folder}/ ({', '.join(entries)})")
     return out.summary
@@ -215,7 +216,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "at the cheapest rung of its fidelity ladder that meets it (flexbearing tradeoff)")
     rn.add_argument("--resume", action="store_true",
                     help="continue an interrupted run of the same case into the same folder from its last checkpoint")
-    add_cluster_options(rn, "studies that compare several runs (wind-friction, wind-driving-speed): run them on a "
+    add_cluster_options(rn, "studies that compare several runs (wind-friction, wind-static, slewing-thermal, …): run them on a "
                         "local Dask cluster of this many worker processes",
                         "as --workers, on a running Dask cluster (tcp://host:8786)")
     rn.set_defaults(func=cmd_run)

@@ -64,7 +64,8 @@ def _install_recorders(monkeypatch, log: list) -> None:
     def solve(bearing, load):
         log.append(("load distribution", bearing, load))
         return SimpleNamespace(equilibrium_error=0.0, warnings=[],
-                               rows=[SimpleNamespace(name=r.name, load_N=np.ones(3)) for r in bearing.rows])
+                               rows=[SimpleNamespace(name=r.name, load_N=np.ones(3), azimuth_rad=np.zeros(3))
+                                     for r in bearing.rows])
 
     monkeypatch.setattr(wind_dynamic, "run", run)
     monkeypatch.setattr(wind_dynamic, "roller_speeds", roller_speeds)
@@ -79,6 +80,7 @@ def _install_recorders(monkeypatch, log: list) -> None:
     monkeypatch.setattr(W, "_stress", lambda *a: None)
     # the modal bodies built ahead of the rigid-flexible runs: recorded, not meshed and reduced
     monkeypatch.setattr(W, "modal_bodies", lambda c: log.append(("modal bodies", c.bodies)))
+    monkeypatch.setattr(W, "plot_element_loads", lambda *a, **k: None)
     for name in ("roller_speed_figure", "sweep_figure", "max_loads_figure", "spectrum_figure"):
         monkeypatch.setattr(W.plots, name, lambda *a, **k: _blank_figure())
     # the variants of the driving-speed and friction studies are ordinary runs (cases.sweep.variants)

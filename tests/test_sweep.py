@@ -62,7 +62,9 @@ def test_vary_values_and_points(tmp_path):
 
 def _figures(folder: Path) -> dict:
     d = json.loads((folder / "summary.json").read_text())
-    return {k: v for k, v in d.items() if k not in ("wall_time_s", "peak_rss_mb", "sweep_point", "description")}
+    # (the times and places of the runs differ; "variants" records them for a study's own runs)
+    return {k: v for k, v in d.items() if k not in ("wall_time_s", "peak_rss_mb", "sweep_point", "description",
+                                                    "variants")}
 
 
 def test_local_cluster_matches_serial_runs(tmp_path, capsys):

@@ -27,8 +27,10 @@ __all__ = ["point_figures", "collect_rows", "write_table", "write_sweep_json", "
 
 #: lists up to this length become columns; longer ones are per-element data
 MAX_LIST = 12
-#: summary entries that are not figures of the point
-_NOT_FIGURES = {"case", "study", "description", "warnings", "sweep_point", "fidelity_choice", "fidelity_decisions"}
+#: summary entries that are not figures of the point (``variants``, ``cluster``: where and when a
+#: study's own runs went)
+_NOT_FIGURES = {"case", "study", "description", "warnings", "sweep_point", "fidelity_choice", "fidelity_decisions",
+                "variants", "cluster"}
 #: figures plotted by default: at most this many of those that vary over the points
 MAX_PLOTS = 6
 _BOOKKEEPING = {"wall_time_s", "peak_rss_mb"}

@@ -89,12 +89,14 @@ def run_point(task: PointTask) -> dict:
     ``error`` (one line), ``wall_time_s``, ``worker`` (host:pid) and ``peak_rss_mb`` of the worker."""
     from ..cli_input import USER_FAILURES
     from ..run import _peak_rss_mb, run_case
+    from .variants import as_variant
 
     t0 = time.perf_counter()
     record = {"name": task.name, "worker": _where()}
     extra = {"sweep_point": {"name": task.name, "values": {k: v for k, v in task.values}, "case_hash": task.case_hash}}
     try:
-        with one_thread() if task.pin_threads else contextlib.nullcontext():
+        with (one_thread() if task.pin_threads else contextlib.nullcontext()), \
+                (as_variant() if task.source == "variant" else contextlib.nullcontext()):
             run_case(task.case, task.folder, resume=task.resume, source=task.source, summary_extra=extra)
         record["status"] = "computed"
     except USER_FAILURES as exc:

@@ -29,10 +29,12 @@ from .collect import read_point
 from .engine import PointTask, compute
 from .spec import case_hash
 
-__all__ = ["executing", "run_variants", "VariantFailed"]
+__all__ = ["executing", "inside_study", "as_variant", "run_variants", "VariantFailed"]
 
 #: (scheduler, workers) of the case run going on; (None, None): variants in this process
 _EXECUTION: ContextVar[tuple[str | None, int | None]] = ContextVar("cases_variant_execution", default=(None, None))
+#: True while a run goes on as a variant of a study
+_INSIDE: ContextVar[bool] = ContextVar("cases_variant_inside", default=False)
 
 
 class VariantFailed(CaseError):
@@ -48,6 +50,23 @@ def executing(scheduler: str | None, workers: int | None):
         yield
     finally:
         _EXECUTION.reset(token)
+
+
+def inside_study() -> bool:
+    """True while the run going on is a variant of a study, whose study draws the figures that
+    compare the variants (a variant may then leave out a figure of its own that costs more than
+    its computation)."""
+    return _INSIDE.get()
+
+
+@contextlib.contextmanager
+def as_variant():
+    """Run the block as a variant of a study (:func:`inside_study`)."""
+    token = _INSIDE.set(True)
+    try:
+        yield
+    finally:
+        _INSIDE.reset(token)
 
 
 def run_variants(variants, out, progress=None) -> dict[str, dict]:
@@ -67,9 +86,10 @@ def run_variants(variants, out, progress=None) -> dict[str, dict]:
         out.note(f"{name}: reused from the interrupted run")
     t0, done = time.perf_counter(), {}
     if scheduler is None:
-        for name, c in todo:
+        for name, c in (progress(todo, "runs") if progress is not None and len(todo) > 1 else todo):
             extra = {"sweep_point": {"name": name, "values": {}, "case_hash": hashes[name]}}
-            run = run_case(c, where / name, progress=progress, summary_extra=extra)
+            with as_variant():
+                run = run_case(c, where / name, progress=progress, summary_extra=extra)
             done[name] = {"worker": "this process", "wall_time_s": run.summary["wall_time_s"],
                           "peak_rss_mb": run.summary["peak_rss_mb"], "finished_after_s": time.perf_counter() - t0}
     elif todo:

@@ -209,13 +209,14 @@ class Analysis:
 
 @dataclass(frozen=True)
 class Study:
-    """``static``: quasi-static load distribution under every load case, and the dynamic
-    equilibrium check; ``speeds``: roller and cage speeds against rolling kinematics; ``rigid-flexible``: the
-    same with rigid and with modal rings and cages, and the ratio of their errors;
+    """``static``: quasi-static load distribution under every load case (each a ``load-case``
+    run); ``load-case``: the one under ``loads.case_index``; ``speeds``: roller and cage speeds
+    against rolling kinematics; ``rigid-flexible``: the same with rigid and with modal rings and
+    cages, and the ratio of their errors;
     ``driving-speed``: cage and raceway forces at each of ``speeds_rpm``; ``friction``: cage
     forces for each (μ_dynamic, μ_static) of ``friction_sets``."""
 
-    kind: Literal["static", "speeds", "rigid-flexible", "driving-speed", "friction"] = "speeds"
+    kind: Literal["static", "load-case", "speeds", "rigid-flexible", "driving-speed", "friction"] = "speeds"
     speeds_rpm: tuple[float, ...] = (20.0, 25.0, 30.0)
     friction_sets: tuple[tuple[float, float], ...] = ((0.025, 0.05), (0.05, 0.1), (0.075, 0.15), (0.1, 0.2))
 

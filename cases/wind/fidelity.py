@@ -129,8 +129,8 @@ def ladder(case: WindCase, quick: bool = False) -> Ladder:
 def _scene_values(case: WindCase) -> dict:
     """The case tables that make the ladder's single run."""
     kind = case.study.kind
-    if kind == "static":
-        raise ValueError("tradeoff: the wind static study is quasi-static with rigid rings and has no fidelity "
+    if kind in ("static", "load-case"):
+        raise ValueError(f"tradeoff: the wind {kind} study is quasi-static with rigid rings and has no fidelity "
                          "knobs; the ladder measures the dynamic studies (speeds, rigid-flexible, driving-speed, "
                          "friction)")
     if case.loads.source == "csv":

@@ -21,6 +21,9 @@ _PRESET_TABLES = {
     "wind-static": dict(
         name="wind-static", description="12 MW main bearing: quasi-static roller loads of the three rows under "
         "each of the 32 synthetic load cases (rigid rings)", study={"kind": "static"}),
+    "wind-load-case": dict(
+        name="wind-load-case", description="12 MW main bearing: quasi-static load of every roller of the three "
+        "rows under load case 19 of the synthetic spectrum (rigid rings)", study={"kind": "load-case"}),
     "wind-speeds": dict(
         name="wind-speeds", description="12 MW main bearing, rigid rings, 30 r/min, 8 s of the load spectrum: "
         "roller and cage speeds against rolling kinematics, inner-ring equilibrium", study={"kind": "speeds"}),
@@ -48,6 +51,7 @@ _DYNAMIC_QUICK = dict(rollers={"n_slices": 5}, loads={"source": "constant"},
                       analysis={"duration_s": 0.3, "settle_s": 0.1, "record_every": 100})
 _QUICK = {
     "static": {},
+    "load-case": {},
     "speeds": _DYNAMIC_QUICK,
     "rigid-flexible": {**_DYNAMIC_QUICK, "analysis": {"duration_s": 0.1, "settle_s": 0.05, "record_every": 100},
                        "bodies": {"n_modes": 8, "bolts": 24, "ring_element_size_m": 0.18, "cage_element_size_m": 0.05}},

@@ -6,6 +6,7 @@ Table 4 (roller speeds), §4.3.1 (driving speed) and §4.3.2 (friction).
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import replace
 
@@ -13,6 +14,7 @@ import numpy as np
 
 from mbd_core.quasistatic import Bearing, solve_load_distribution
 
+from ..loaddist_plots import plot_element_loads
 from ..overrides import StudyEntry, unused_keys
 from . import dynamic, plots
 from .bodies import modal_bodies, stress_maps
@@ -34,29 +36,56 @@ def _spectrum_files(case: WindCase, out) -> None:
         plots.spectrum_figure(t, f, share, out.path("load_spectrum.png"))
 
 
-def study_static(case: WindCase, out, progress=None) -> None:
-    """Quasi-static load distribution (rigid rings) under each of the 32 load cases and the inner
-    ring's weight: largest roller load and loaded rollers per row; the equilibrium residual."""
+def study_load_case(case: WindCase, out, progress=None) -> None:
+    """Quasi-static load distribution (rigid rings) under load case ``loads.case_index`` of the
+    synthetic spectrum (× ``loads.scale``) and the inner ring's weight: the load of every roller
+    of each row, the largest and the loaded rollers per row, the equilibrium residual."""
+    from ..sweep.variants import inside_study
+
     loads, share = load_cases()
-    loads = loads * case.loads.scale
-    bearing = Bearing("three-row roller", rows(case))
-    per_row = {r.name: [] for r in bearing.rows}
-    worst = 0.0
-    for k in (progress(range(len(loads)), "load cases") if progress else range(len(loads))):
-        f = loads[k]
-        res = solve_load_distribution(bearing, inner_ring_load(f))
-        worst = max(worst, float(res.equilibrium_error))
-        out.warn(res.warnings, f"load case {k + 1}")
-        for r in res.rows:
-            per_row[r.name].append((float(r.load_N.max()), int(np.sum(r.load_N > 0))))
+    k = case.loads.case_index
+    res = solve_load_distribution(Bearing("three-row roller", rows(case)), inner_ring_load(loads[k] * case.loads.scale))
+    out.warn(res.warnings, f"load case {k + 1}")
+    out.write_csv("roller_loads.csv", ["row", "roller", "azimuth_deg", "load_N"],
+                  [(r.name, i + 1, math.degrees(r.azimuth_rad[i]) % 360.0, r.load_N[i])
+                   for r in res.rows for i in range(len(r.load_N))])
+    if not inside_study():  # (the static study draws its load cases together)
+        plot_element_loads([res], out.path("roller_loads.png"))
+    out.summary.update(load_case=k + 1, time_share=float(share[k]), equilibrium_error=float(res.equilibrium_error),
+                       max_roller_load_N={r.name: float(r.load_N.max()) for r in res.rows},
+                       loaded_rollers={r.name: int(np.sum(r.load_N > 0)) for r in res.rows})
+    for r in res.rows:
+        out.note(f"load case {k + 1}, {r.name:12s}: largest roller load {r.load_N.max():9.0f} N, "
+                 f"{int(np.sum(r.load_N > 0))} of {len(r.load_N)} rollers loaded")
+
+
+def study_static(case: WindCase, out, progress=None) -> None:
+    """:func:`study_load_case` under each of the 32 load cases, each a run in its own folder
+    ``load_case=NN/`` (:func:`cases.sweep.variants.run_variants`: in this process, or on Dask with
+    ``flexbearing run --workers/--scheduler``): largest roller load and loaded rollers per row
+    over the spectrum; the equilibrium residual."""
+    from ..sweep.variants import run_variants
+
+    _, share = load_cases()
+    runs = [(f"load_case={k + 1:02d}", replace(case, study=Study(kind="load-case"), loads=replace(case.loads, case_index=k),
+                                               name=f"{case.name}-load-case-{k + 1}",
+                                               description=f"load case {k + 1} of {case.name}"))
+            for k in range(len(share))]
+    done = run_variants(runs, out, progress)
+    summaries = [done[name] for name, _ in runs]
+    for r in summaries:
+        out.warn(r.get("warnings", ()))  # (each names its load case)
+    per_row = {n: [(v, r["loaded_rollers"][n]) for r in summaries for v in (r["max_roller_load_N"][n],)]
+               for n in summaries[0]["max_roller_load_N"]}
     out.write_csv("max_roller_loads.csv", ["case", "time_share", *[f"{n.replace(' ', '_')}_max_load_N" for n in per_row]],
-                  [(k + 1, share[k], *[per_row[n][k][0] for n in per_row]) for k in range(len(loads))])
+                  [(k + 1, share[k], *[per_row[n][k][0] for n in per_row]) for k in range(len(share))])
     out.save_figure(plots.max_loads_figure(per_row, share), "max_roller_loads.png")
     _spectrum_files(case, out)
-    out.summary.update(equilibrium_error_max=worst,
+    out.summary.update(equilibrium_error_max=max(r["equilibrium_error"] for r in summaries),
                        max_roller_load_N={n: max(v[0] for v in vals) for n, vals in per_row.items()})
     for n, vals in per_row.items():
-        out.note(f"{n:12s}: largest roller load {max(v[0] for v in vals):9.0f} N over the {len(loads)} load cases")
+        out.note(f"{n:12s}: largest roller load {max(v[0] for v in vals):9.0f} N over the {len(share)} load cases "
+                 "(each in load_case=NN/)")
 
 
 def _one_run(case: WindCase, progress=None, out=None, label: str = "") -> tuple[dict, object, dict]:
@@ -186,17 +215,20 @@ def study_friction(case: WindCase, out, progress=None) -> None:
 
 #: study kind → what runs it and the keys it does not read (:mod:`cases.overrides`); every
 #: study but ``static`` makes one kind of run, the dynamic one
-_STATIC_UNUSED = {
-    "bodies": "the static study is quasi-static with rigid rings",
-    "contact": "the static study is quasi-static (no damping, friction or cage pockets)",
-    "analysis": "the static study is quasi-static",
-    **{f"rollers.{k}": "the static study's load distribution has no roller ends or cage pockets"
+_QUASI_STATIC_UNUSED = {
+    "bodies": "the study is quasi-static with rigid rings",
+    "contact": "the study is quasi-static (no damping, friction or cage pockets)",
+    "analysis": "the study is quasi-static",
+    **{f"rollers.{k}": "a quasi-static load distribution has no roller ends or cage pockets"
        for k in ("rib_clearance_m", "thrust_end_radius_m", "pocket_clearance_m")},
-    **{f"loads.{k}": "the static study solves each of the 32 load cases of the synthetic spectrum (loads.scale "
-       "applies)" for k in ("source", "csv_path", "case_index", "spectrum_duration_s", "include_torque")},
+    **{f"loads.{k}": "the study solves load cases of the synthetic spectrum (loads.scale applies)"
+       for k in ("source", "csv_path", "spectrum_duration_s", "include_torque")},
 }
+_STATIC_UNUSED = {**_QUASI_STATIC_UNUSED,
+                  "loads.case_index": "the static study solves each of the 32 load cases of the synthetic spectrum"}
 STUDIES = {
-    "static": StudyEntry(study_static, runs=("equilibria",), unused=_STATIC_UNUSED),
+    "static": StudyEntry(study_static, runs=("equilibria",), variants=True, unused=_STATIC_UNUSED),
+    "load-case": StudyEntry(study_load_case, runs=("equilibria",), unused=_QUASI_STATIC_UNUSED),
     "speeds": StudyEntry(study_speeds, runs=("dynamic",)),
     "rigid-flexible": StudyEntry(study_rigid_flexible, runs=("dynamic",), unused={
         "bodies.rings": "the study runs rigid and modal rings", "bodies.cages": "the study runs rigid and modal cages"}),
