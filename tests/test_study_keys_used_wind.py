@@ -18,7 +18,7 @@ from cases.results import RunOutput
 from mbd_core.multibody import warmup
 from cases.overrides import _covering
 from cases.wind.presets import PRESETS, quick
-from tests.test_study_keys_used import _Out, discarded_keys
+from tests.test_study_keys_used import _Out, _blank_figure, discarded_keys
 
 ROWS = ("radial", "front thrust", "rear thrust")
 
@@ -41,15 +41,6 @@ def _contact(c):
         d.pop("damping_ratio")
     return tuple(sorted(d.items()))
 
-
-
-def _blank_figure():
-    """A figure with three empty axes in place of a plot (studies may align the axes of theirs)."""
-    from matplotlib.figure import Figure
-
-    fig = Figure()
-    fig.subplots(3, 1)
-    return fig
 
 def _install_recorders(monkeypatch, log: list) -> None:
     def run(c, progress=None):
@@ -87,6 +78,7 @@ def _install_recorders(monkeypatch, log: list) -> None:
     # into real results folders: their record is the recorders' stand-in, and no kernels compile
     monkeypatch.setattr(RunOutput, "write_timeseries", lambda self, *a, **k: None)
     monkeypatch.setattr(warmup, "start", lambda: False)
+    monkeypatch.setattr(RunOutput, "save_figure", lambda self, fig, name: None)  # (figures are not inputs)
 
 
 def _records(case, monkeypatch, tmp_path):

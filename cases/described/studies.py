@@ -13,7 +13,8 @@ from ..loaddist_command import LoaddistOptions, bearing_description, loaddist_ou
 from ..overrides import StudyEntry, unused_keys
 from .case import DescribedCase, RingFidelity
 
-__all__ = ["STUDIES", "case_unused_keys", "uses_dynamics", "run_study", "described_bearing"]
+__all__ = ["STUDIES", "PREPARE_TABLES", "case_unused_keys", "prepare", "uses_dynamics", "run_study",
+           "described_bearing"]
 
 
 def described_bearing(case: DescribedCase):
@@ -91,6 +92,21 @@ def case_unused_keys(case: DescribedCase) -> dict[str, str]:
         out.update({f"rings.{f.name}": 'bearing.rings = "rigid" (no modal rings)'
                     for f in dataclasses.fields(RingFidelity)})
     return out
+
+
+#: the case tables its modal rings depend on (:func:`prepare`)
+PREPARE_TABLES = ("bearing", "rings")
+
+
+def prepare(case: DescribedCase) -> bool:
+    """Mesh and reduce the modal rings of the case's bearing into the model cache (a sweep does this
+    once before its points start); False when the rings are rigid or the file makes none modal."""
+    from ..bearing_rings import flexible_rings
+
+    if case.bearing.rings == "rigid":
+        return False
+    _, desc = described_bearing(case)
+    return bool(desc.rings) and bool(flexible_rings(desc.rings, desc.bearing))
 
 
 def uses_dynamics(case: DescribedCase) -> bool:
