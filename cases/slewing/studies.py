@@ -165,6 +165,7 @@ def _spacer_run(case: SlewingCase) -> tuple[str, str, SlewingCase]:
 
 
 def _spacer_notes(case: SlewingCase, out, summary: dict) -> None:
+    """The spacer run's key figures (its ``summary.json``) into the study's summary and report."""
     fs = {k: summary[k] for k in ("max_spacer_force_N", "mean_spacer_force_N", "p99_spacer_force_N",
                                   "start_up_excluded_s", "start_up_max_spacer_force_N", "timestep_s") if k in summary}
     modal = case.study.spacer_run_top == "modal"
@@ -257,6 +258,7 @@ def study_combined(case: SlewingCase, out, progress=None) -> None:
     label = {(E, d): f"Δ = {d * 1e3:g} mm, E = {E / 1e9:g} GPa" for (E, d) in hist}
     out.save_figure(plot_travel({label[k]: v for k, v in hist.items()}, case,
                                 "Worst ball over a revolution: undulation + thermal offset"), "combined_worst_ball.png")
+
 
 # -- (f) worst ball life -----------------------------------------------------------------------
 def study_life(case: SlewingCase, out, progress=None) -> None:
