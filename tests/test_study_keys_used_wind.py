@@ -72,7 +72,7 @@ def _install_recorders(monkeypatch, log: list) -> None:
     # the modal bodies built ahead of the rigid-flexible runs: recorded, not meshed and reduced
     monkeypatch.setattr(W, "modal_bodies", lambda c: log.append(("modal bodies", c.bodies)))
     monkeypatch.setattr(W, "plot_element_loads", lambda *a, **k: None)
-    for name in ("roller_speed_figure", "sweep_figure", "max_loads_figure", "spectrum_figure"):
+    for name in ("roller_speed_figure", "sweep_figure", "max_loads_figure", "load_cases_figure", "spectrum_figure"):
         monkeypatch.setattr(W.plots, name, lambda *a, **k: _blank_figure())
     # the variants of the driving-speed and friction studies are ordinary runs (cases.sweep.variants)
     # into real results folders: their record is the recorders' stand-in, and no kernels compile

@@ -64,7 +64,8 @@ def test_static_load_cases(tmp_path):
     # estimate for zero clearance (Harris & Kotzalas §7.1) bounds the largest roller load from below
     f_r = 1.2753e6 + 3971 * 9.81
     assert s["max_roller_load_N"]["radial"] > 4.37 * f_r / 98
-    assert {p.name for p in out.iterdir()} >= {"load_spectrum.png", "max_roller_loads.png", "load_history.csv"}
+    assert {p.name for p in out.iterdir()} >= {"load_spectrum.png", "max_roller_loads.png", "roller_loads.png",
+                                              "load_history.csv", "load_case=01", "load_case=32"}
 
 
 @pytest.fixture(scope="module")

@@ -6,13 +6,13 @@ import math
 
 import numpy as np
 
-from cases.results import RPM_PER_RAD_S, plt, share_ylim
+from cases.results import RPM_PER_RAD_S, label_lines, plt, share_ylim
 
 from .dynamic import roller_spin_rad_s, watched_roller
 from .scene import rolling_speeds
 from .spectrum import plot_spectrum
 
-__all__ = ["spectrum_figure", "max_loads_figure", "roller_speed_figure", "roller_speed_figures", "sweep_figure"]
+__all__ = ["spectrum_figure", "max_loads_figure", "load_cases_figure", "roller_speed_figure", "roller_speed_figures", "sweep_figure"]
 
 
 def spectrum_figure(times_s, loads, share, path):
@@ -30,6 +30,31 @@ def max_loads_figure(per_row: dict, share):
     ax.set_title(f"Quasi-static roller loads (rigid rings) under the {len(share)} load cases")
     ax.grid(alpha=0.3)
     ax.legend()
+    return fig
+
+
+def load_cases_figure(per_case: list[dict]):
+    """The load of every roller against its azimuth, one panel per row and one line per load case
+    (coloured by its number from 1): ``per_case[k]`` row name → (azimuth deg, load N)."""
+    p = plt()
+    names = list(per_case[0])
+    fig, axes = p.subplots(len(names), 1, figsize=(9, 1.0 + 2.4 * len(names)), sharex=True, squeeze=False,
+                           constrained_layout=True)
+    for ax, name in zip(axes[:, 0], names):
+        lines = []
+        for rows in per_case:
+            psi, q = (np.asarray(v, float) for v in rows[name])
+            order = np.argsort(psi)
+            lines += ax.plot(psi[order], q[order], lw=0.9)
+        label_lines(ax, lines, range(1, len(per_case) + 1), "load case")
+        ax.set_ylabel("roller load, N")
+        ax.set_ylim(bottom=0)
+        ax.grid(alpha=0.3)
+        ax.set_title(f"{name} row", fontsize=9)
+    axes[-1, 0].set_xlabel("roller azimuth ψ (deg)")
+    axes[-1, 0].set_xlim(0, 360)
+    axes[-1, 0].set_xticks(np.arange(0, 361, 45))
+    fig.suptitle(f"Quasi-static roller loads (rigid rings) under the {len(per_case)} load cases")
     return fig
 
 

@@ -6,9 +6,11 @@ Table 4 (roller speeds), §4.3.1 (driving speed) and §4.3.2 (friction).
 
 from __future__ import annotations
 
+import csv
 import math
 import time
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 
@@ -59,11 +61,24 @@ def study_load_case(case: WindCase, out, progress=None) -> None:
                  f"{int(np.sum(r.load_N > 0))} of {len(r.load_N)} rollers loaded")
 
 
+def _roller_loads(path: Path) -> dict:
+    """Row name → (azimuth deg, load N) of every roller, from a load case's ``roller_loads.csv``."""
+    with open(path, newline="", encoding="utf-8") as fh:
+        table = list(csv.DictReader(fh))
+    rows: dict = {}
+    for r in table:
+        psi, q = rows.setdefault(r["row"], ([], []))
+        psi.append(float(r["azimuth_deg"]))
+        q.append(float(r["load_N"]))
+    return rows
+
+
 def study_static(case: WindCase, out, progress=None) -> None:
     """:func:`study_load_case` under each of the 32 load cases, each a run in its own folder
     ``load_case=NN/`` (:func:`cases.sweep.variants.run_variants`: in this process, or on Dask with
     ``flexbearing run --workers/--scheduler``): largest roller load and loaded rollers per row
-    over the spectrum; the equilibrium residual."""
+    over the spectrum (``max_roller_loads.png``), every roller's load under each load case
+    (``roller_loads.png``); the equilibrium residual."""
     from ..sweep.variants import run_variants
 
     _, share = load_cases()
@@ -80,6 +95,8 @@ def study_static(case: WindCase, out, progress=None) -> None:
     out.write_csv("max_roller_loads.csv", ["case", "time_share", *[f"{n.replace(' ', '_')}_max_load_N" for n in per_row]],
                   [(k + 1, share[k], *[per_row[n][k][0] for n in per_row]) for k in range(len(share))])
     out.save_figure(plots.max_loads_figure(per_row, share), "max_roller_loads.png")
+    out.save_figure(plots.load_cases_figure([_roller_loads(Path(out.folder) / name / "roller_loads.csv")
+                                             for name, _ in runs]), "roller_loads.png")
     _spectrum_files(case, out)
     out.summary.update(equilibrium_error_max=max(r["equilibrium_error"] for r in summaries),
                        max_roller_load_N={n: max(v[0] for v in vals) for n, vals in per_row.items()})
