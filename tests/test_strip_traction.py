@@ -1,6 +1,6 @@
 """Strip traction of an elliptical contact (mbd_core.kernels.strip_traction) against closed forms
 of the strip model, a fine numerical integral over the major axis (scipy quad, independent of the
-strip sums), its numpy twin, and the centre-point law as the narrow-ellipse limit.
+strip sums), its numpy twin (tests/reference), and the centre-point law as the narrow-ellipse limit.
 
 The strip model (DREB program, README Sources): slip of the centre line v(y) = (v_x − ω·y, v_y),
 load per unit length q(y) = (3Q/4a)·(1 − y²/a²) (Hertz pressure integrated over x).
@@ -14,6 +14,7 @@ from scipy.integrate import quad
 
 from mbd_core.kernels.laws import FRICTION_DREB_CONSTANT, FRICTION_DREB_LINEAR, FRICTION_KRAGELSKII, friction_coefficient
 from mbd_core.kernels.strip_traction import strip_traction
+from tests.reference import strip_traction as twin
 
 Q, A = 120.0, 1.2e-3  # N, m (a ball contact of the DMA bearing size)
 CONSTANT = (FRICTION_DREB_CONSTANT, 0.03, 1e-12, 0.0, 0.0)  # κ = 0.03 above 1e-12 m/s
@@ -44,18 +45,6 @@ def _integral(vx, vy, w, law, a=A):
                      for k in range(3)])
 
 
-def _numpy_twin(vx, vy, w, law, n, a=A):
-    """The same strips in numpy: exact strip loads and load centroids."""
-    s = np.linspace(-1.0, 1.0, n + 1)
-    share = 0.75 * (s - s**3 / 3) + 0.5
-    q = Q * np.diff(share)
-    y = a * np.diff(s**2 / 2 - s**4 / 4) / np.diff(s - s**3 / 3)
-    ux = vx - w * y
-    u = np.hypot(ux, vy)
-    f = np.array([_mu(law, ui) for ui in u]) * q / u
-    return np.array([-(f * ux).sum(), -(f * vy).sum(), (y * f * ux).sum()])
-
-
 def test_closed_forms_of_the_strip_model():
     # constant μ, pure spin: no force, M = −sign(ω)·(3/8)·μ·Q·a
     f = _kernel(0.0, 0.0, 5.0, CONSTANT)
@@ -78,8 +67,8 @@ def test_rolling_with_spin_matches_the_fine_integral(law):
         got = _kernel(vx, vy, w, law)
         scale = np.array([max(abs(ref[0]), abs(ref[1]), 1e-6 * Q)] * 2 + [max(abs(ref[2]), 1e-6 * Q * A)])
         assert np.all(np.abs(got - ref) <= 1e-3 * scale), (vx, vy, w, got, ref)
-        assert np.allclose(_kernel(vx, vy, w, law, n=40), _numpy_twin(vx, vy, w, law, 40), rtol=1e-12,
-                           atol=1e-14 * Q)
+        numpy = twin.strip_traction(Q, A, vx, vy, w, lambda u: _mu(law, u), 40)
+        assert np.allclose(_kernel(vx, vy, w, law, n=40), numpy, rtol=1e-12, atol=1e-14 * Q)
 
 
 def test_strip_count_converges_at_second_order_away_from_pure_rolling():

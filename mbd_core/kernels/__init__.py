@@ -13,7 +13,8 @@ histories), ``forces`` (the force stage of a whole model) with its contact famil
 ``friction_damping``, ``flexible_surface`` (contacts on modal bodies), ``explicit`` (the compiled step loop),
 ``implicit`` (generalized-α pieces), ``rigid`` (quaternions, symplectic free rotation),
 ``raceway`` (flexible-raceway interpolation and its transpose, for modal rings), ``modal``
-(generalized mass matrix and quadratic-velocity vector of a modal body from its invariants).
+(generalized mass matrix and quadratic-velocity vector of a modal body from its invariants),
+``strip_traction`` (traction and spin moment of an elliptical contact from strips along its major axis).
 """
 
 from pathlib import Path
