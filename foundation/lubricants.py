@@ -84,7 +84,8 @@ class Lubricant:
         if self.alpha_C == 0.0:
             return self.alpha_K_Pa_inv
         if not temperature_C > 0.0:
-            raise ValueError(f"lubricant {self.name!r}: its α = K/T^C needs a temperature above 0 °C, got {temperature_C}")
+            raise ValueError(f"lubricant {self.name!r}: its α = K/T^C needs a temperature above 0 °C, "
+                             f"got {temperature_C}")
         return self.alpha_K_Pa_inv / temperature_C ** self.alpha_C
 
     def temperature_viscosity_K(self, temperature_C: float) -> float:

@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from mbd_core.kernels.laws import FRICTION_DREB_CONSTANT, FRICTION_DREB_LINEAR, FRICTION_KRAGELSKII, friction_coefficient
+from mbd_core.kernels.laws import (FRICTION_DREB_CONSTANT, FRICTION_DREB_LINEAR, FRICTION_KRAGELSKII,
+                                   friction_coefficient)
 from mbd_core.kernels.strip_traction import strip_traction
 from tests.reference import strip_traction as twin
 

@@ -82,9 +82,9 @@ def study_static(case: WindCase, out, progress=None) -> None:
     from ..sweep.variants import run_variants
 
     _, share = load_cases()
-    runs = [(f"load_case={k + 1:02d}", replace(case, study=Study(kind="load-case"), loads=replace(case.loads, case_index=k),
-                                               name=f"{case.name}-load-case-{k + 1}",
-                                               description=f"load case {k + 1} of {case.name}"))
+    runs = [(f"load_case={k + 1:02d}",
+             replace(case, study=Study(kind="load-case"), loads=replace(case.loads, case_index=k),
+                     name=f"{case.name}-load-case-{k + 1}", description=f"load case {k + 1} of {case.name}"))
             for k in range(len(share))]
     done = run_variants(runs, out, progress)
     summaries = [done[name] for name, _ in runs]

@@ -108,15 +108,18 @@ def thermal_reduction_factor(L: float) -> float:
     return 3.94 / (3.94 + L**0.62)
 
 
-def starvation_factor(meniscus_m: float, central_film_m: float, Rx_m: float, half_width_b_m: float) -> float:
-    """Film reduction of a starved point contact whose inlet meniscus lies ``meniscus_m`` (in
-    contact half-widths b from the centre, > 1) upstream (Hamrock & Dowson 1977, Part IV); 1 when
-    the inlet is fully flooded."""
+def starvation_factor(meniscus_half_widths: float, central_film_m: float, Rx_m: float,
+                      half_width_b_m: float) -> float:
+    """Film reduction of a starved point contact whose inlet meniscus lies ``meniscus_half_widths``
+    contact half-widths b upstream of the centre (m > 1; Hamrock & Dowson 1977, Part IV); 1 when
+    the inlet is fully flooded (m ≥ m*)."""
     check_positive("starvation", central_film_m=central_film_m, Rx_m=Rx_m, half_width_b_m=half_width_b_m)
-    if not meniscus_m > 1.0:
-        raise ValueError(f"the inlet meniscus must lie more than one half-width upstream (m > 1), got {meniscus_m}")
+    m = meniscus_half_widths
+    if not m > 1.0:
+        raise ValueError(f"meniscus_half_widths: the inlet meniscus must lie more than one half-width upstream "
+                         f"(m > 1), got {m}")
     m_star = 1.0 + 3.06 * ((Rx_m / half_width_b_m) ** 2 * central_film_m / Rx_m) ** 0.58
-    return 1.0 if meniscus_m >= m_star else ((meniscus_m - 1.0) / (m_star - 1.0)) ** 0.29
+    return 1.0 if m >= m_star else ((m - 1.0) / (m_star - 1.0)) ** 0.29
 
 
 def film_parameter(minimum_film_m: float, roughness_1_rms_m: float, roughness_2_rms_m: float) -> float:
