@@ -90,7 +90,7 @@ def study_static(case: WindCase, out, progress=None) -> None:
     summaries = [done[name] for name, _ in runs]
     for r in summaries:
         out.warn(r.get("warnings", ()))  # (each names its load case)
-    per_row = {n: [(v, r["loaded_rollers"][n]) for r in summaries for v in (r["max_roller_load_N"][n],)]
+    per_row = {n: [(r["max_roller_load_N"][n], r["loaded_rollers"][n]) for r in summaries]
                for n in summaries[0]["max_roller_load_N"]}
     out.write_csv("max_roller_loads.csv", ["case", "time_share", *[f"{n.replace(' ', '_')}_max_load_N" for n in per_row]],
                   [(k + 1, share[k], *[per_row[n][k][0] for n in per_row]) for k in range(len(share))])
