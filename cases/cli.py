@@ -32,6 +32,7 @@ from .cli_input import USER_FAILURES, UserError, require_finite, require_positiv
 from .hertz_command import add_hertz_parser
 from .sweep.command import add_cluster_options, add_sweep_parser, cluster_options, cmd_sweep
 from .bearing_solver import bearing_solver
+from .edge_stress_report import check_edge_stress
 from .loaddist_command import (LOAD_NAMES, add_loaddist_parser, bearing_description, check_loaddist_options,
                                chosen_loads, loaddist_outputs)
 from .outdir import check_output_target
@@ -58,6 +59,8 @@ def cmd_loaddist(args) -> dict:
     _check_out(args)
     check_loaddist_options(args)
     name, desc = bearing_description(args.bearing)
+    if args.edge_stress:
+        check_edge_stress(desc.bearing)
     loads, time_share = chosen_loads(desc, {k: getattr(args, k) for k in LOAD_NAMES})
     solver = bearing_solver(desc, rigid=args.rigid_rings)
     with phase(f"load distribution of {name}"):

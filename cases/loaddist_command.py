@@ -17,6 +17,7 @@ from .bearing_report import (bearing_checks, bearing_checks_lines, curve_compari
                              write_limiting_curve)
 from .bearing_solver import BearingSolver
 from .catalog import BUILTIN_BEARINGS
+from .edge_stress_report import EDGE_STRESS_FILES, edge_stress_lines, edge_stresses, write_edge_stress
 from .report import format_table, load_distribution_table, write_load_distribution
 from .results import output_units
 
@@ -36,6 +37,7 @@ class LoaddistOptions:
     rotating_ring: str | None = None
     speed_rpm: float | None = None
     json: bool = False
+    edge_stress: bool = False
 
 
 def add_loaddist_parser(sub, func) -> None:
@@ -60,6 +62,9 @@ def add_loaddist_parser(sub, func) -> None:
                     help="ring that turns relative to the load; with --speed-rpm gives the L10 rating life")
     ld.add_argument("--speed-rpm", dest="speed_rpm", type=float, default=None,
                     help="relative speed of the rings, rev/min (with --rotating-ring: L10 in hours)")
+    ld.add_argument("--edge-stress", dest="edge_stress", action="store_true",
+                    help="raceway pressures along the most loaded roller of each roller row with the slices coupled "
+                    "through the elastic half-space (edge stresses), beside the ISO/TS 16281 slices")
     ld.add_argument("--rigid-rings", dest="rigid_rings", action="store_true",
                     help="solve with rigid rings even where the description file makes rings modal ([rings.X])")
     ld.add_argument("--out", default=None,
@@ -92,9 +97,16 @@ def loaddist_outputs(args, name: str, desc: BearingDescription, results, time_sh
     written = ["summary.json", "element_loads.csv", "contacts.csv", "element_loads.png"]
     if any(r.kind == "ball" for r in results[0].rows):
         written.append("contact_angles.png")
+    edges = edge_stresses(desc.bearing, results) if args.edge_stress else None
+    if edges is not None:
+        extra["edge_stress"] = [{**e.to_dict(), **({"load_case": case + 1} if len(results) > 1 else {})}
+                                for case, e in edges]
+        written.extend(EDGE_STRESS_FILES)
     if args.out:
         def more(folder):
             write_contacts_csv(desc.bearing, results, folder / "contacts.csv")
+            if edges is not None:
+                write_edge_stress(edges, folder, len(results) > 1)
             if args.limiting_curve:
                 p0 = None if args.p0_limit_MPa is None else args.p0_limit_MPa * 1e6
                 curve, rigid = write_limiting_curve(desc.bearing, folder, results, s0=args.s0, pressure_limit_Pa=p0,
@@ -118,6 +130,8 @@ def loaddist_outputs(args, name: str, desc: BearingDescription, results, time_sh
                              *stiffness_lines(results[0])]))
         else:
             print(cases_table(results, time_share, checks))
+        if edges is not None:
+            print("\n".join(edge_stress_lines(edges, len(results) > 1)))
         print("\n".join(life_lines(extra["rating_life"])))
         if args.out:
             print(f"\nresults: {args.out}/{', '.join(written)}")
@@ -126,8 +140,11 @@ def loaddist_outputs(args, name: str, desc: BearingDescription, results, time_sh
         d.update({k: v for k, v in checks[0].items() if k != "warnings"})
         d["warnings"] = d["warnings"] + checks[0]["warnings"]
         d["rating_life"] = extra["rating_life"]
+        if edges is not None:
+            d["edge_stress"] = extra["edge_stress"]
         return output_units(d)
-    return output_units({"bearing": desc.name, "rating_life": extra["rating_life"], "load_cases": [
+    return output_units({"bearing": desc.name, "rating_life": extra["rating_life"],
+                         **({"edge_stress": extra["edge_stress"]} if edges is not None else {}), "load_cases": [
         {"case": k + 1, **r.to_dict(), **{k2: v for k2, v in c.items() if k2 != "warnings"},
          "warnings": r.to_dict()["warnings"] + c["warnings"]} for k, (r, c) in enumerate(zip(results, checks))]})
 

@@ -26,7 +26,7 @@ from mbd_core.contact.line_halfspace import (
 from mbd_core.quasistatic.rows import roller_drop_m
 from tests.reference.halfspace_grid import grid_contact, rectangle_influence
 
-E_EFF_PA = 2.26e11  # steel on steel, E = 207 GPa, ν = 0.29 (BEARING_STEEL): E' = 2E/(1 − ν²)
+E_EFF_PA = 2.26e11  # steel on steel, E = 207 GPa, ν = 0.29 (BEARING_STEEL): E' = 2/(2(1 − ν²)/E) = E/(1 − ν²)
 ROLLER_RADIUS_M = 8e-3  # Ø16 mm roller on a flat raceway: R = 8 mm across
 LENGTH_M = 16e-3
 
@@ -149,7 +149,7 @@ def test_logarithmic_roller_converges_with_slice_count():
 def test_unloaded_and_bad_input():
     zero = coupled_slice_loads(np.full(8, -1e-6), LENGTH_M, ROLLER_RADIUS_M, E_EFF_PA)
     assert zero.total_load_N == 0.0
-    with pytest.raises(ValueError, match="interference_m"):
+    with pytest.raises(ValueError, match="interference_m must be"):
         coupled_slice_loads(np.array([1e-6, np.nan]), LENGTH_M, ROLLER_RADIUS_M, E_EFF_PA)
     with pytest.raises(ValueError, match="length_m"):
         coupled_slice_loads(np.full(4, 1e-6), -1.0, ROLLER_RADIUS_M, E_EFF_PA)

@@ -45,7 +45,6 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy.optimize import brentq
 
 from foundation.validation import check_positive
 
@@ -127,25 +126,66 @@ def _half_width_m(load_N, width_m, effective_radius_m, E_eff_Pa):
     return np.sqrt(8.0 * np.maximum(load_N, 0.0) / width_m * effective_radius_m / (math.pi * E_eff_Pa))
 
 
-def _active_set_solve(A: np.ndarray, interference_m: np.ndarray, active: np.ndarray) -> np.ndarray:
-    """q ≥ 0 with (A q)_i = e_i where q_i > 0 and (A q)_i ≥ e_i elsewhere (a few active-set passes)."""
-    n = interference_m.size
+def _active_set_solve(A: np.ndarray, gap_m: np.ndarray, approach_m: float | None, total_load_N: float | None):
+    """q ≥ 0 with (A q)_i = δ − g_i where q_i > 0 and (A q)_i ≥ δ − g_i elsewhere; δ given, or the
+    unknown that makes Σ q = ``total_load_N`` (then bordered by that row). Returns (q, δ)."""
+    n = gap_m.size
+    fixed = total_load_N is None
+    active = (approach_m - gap_m > 0.0) if fixed else np.ones(n, dtype=bool)
     q = np.zeros(n)
+    delta = approach_m
     for _ in range(4 * n + 10):
         q[:] = 0.0
-        if active.any():
-            sub = np.ix_(active, active)
-            q[active] = np.linalg.solve(A[sub], interference_m[active])
+        idx = np.flatnonzero(active)
+        if fixed:
+            q[idx] = np.linalg.solve(A[np.ix_(idx, idx)], delta - gap_m[idx]) if idx.size else 0.0
+        else:
+            m = idx.size
+            K = np.zeros((m + 1, m + 1))
+            K[:m, :m] = A[np.ix_(idx, idx)]
+            K[:m, m] = -1.0
+            K[m, :m] = 1.0
+            sol = np.linalg.solve(K, np.concatenate((-gap_m[idx], [total_load_N])))
+            q[idx], delta = sol[:m], float(sol[m])
         negative = active & (q < 0.0)
         if negative.any():
-            active = active & ~negative
+            active &= ~negative
             continue
-        gap = A @ q - interference_m
-        penetrating = ~active & (gap < -1e-12 * np.max(np.abs(interference_m)))
+        e = delta - gap_m
+        penetrating = ~active & (A @ q - e < -1e-12 * np.max(np.abs(e)))
         if not penetrating.any():
-            return np.maximum(q, 0.0)
-        active = active | penetrating
+            return np.maximum(q, 0.0), delta
+        active |= penetrating
     raise RuntimeError("coupled slices: the active set did not settle")
+
+
+def _coupled(gap_m, length_m, effective_radius_m, E_eff_Pa, approach_m, total_load_N, rtol, max_iter):
+    """Fixed point on the half-widths around the active-set solve (module docstring)."""
+    n = gap_m.size
+    width = length_m / n
+    q = np.zeros(n)
+    beta = np.full(n, 1.0)  # first pass with b = w everywhere; A depends on b only logarithmically
+    for it in range(1, max_iter + 1):
+        A = influence_matrix(n, beta, E_eff_Pa, width)
+        q_new, delta = _active_set_solve(A, gap_m, approach_m, total_load_N)
+        change = np.max(np.abs(q_new - q))
+        q = q_new
+        beta = np.maximum(_half_width_m(q, width, effective_radius_m, E_eff_Pa) / width, 1e-6)
+        if change <= rtol * max(np.max(q), 1e-300):
+            break
+    else:
+        raise RuntimeError(f"coupled slices: half-widths did not settle in {max_iter} passes")
+    b = _half_width_m(q, width, effective_radius_m, E_eff_Pa)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        p0 = np.where(q > 0.0, 2.0 * q / (math.pi * np.where(b > 0, b, 1.0) * width), 0.0)
+    return CoupledSlices(q, b, p0, it), delta
+
+
+def _check_slices(name, values) -> np.ndarray:
+    v = np.asarray(values, dtype=float)
+    if v.ndim != 1 or v.size < 1 or not np.all(np.isfinite(v)):
+        raise ValueError(f"{name} must be a finite 1-D array with one value per slice")
+    return v
 
 
 def coupled_slice_loads(interference_m, length_m: float, effective_radius_m: float, E_eff_Pa: float,
@@ -164,52 +204,23 @@ def coupled_slice_loads(interference_m, length_m: float, effective_radius_m: flo
         E' = 2/((1−ν1²)/E1 + (1−ν2²)/E2), Pa.
     """
     check_positive(length_m=length_m, effective_radius_m=effective_radius_m, E_eff_Pa=E_eff_Pa)
-    e = np.asarray(interference_m, dtype=float)
-    if e.ndim != 1 or e.size < 1 or not np.all(np.isfinite(e)):
-        raise ValueError("interference_m must be a finite 1-D array of slice interferences")
-    n = e.size
-    width = length_m / n
+    e = _check_slices("interference_m", interference_m)
     if np.max(e) <= 0.0:
-        zero = np.zeros(n)
+        zero = np.zeros(e.size)
         return CoupledSlices(zero, zero.copy(), zero.copy(), 0)
-    # first pass with b = w everywhere; A depends on b only logarithmically
-    active = e > 0.0
-    q = np.zeros(n)
-    beta = np.full(n, 1.0)
-    for it in range(1, max_iter + 1):
-        A = influence_matrix(n, beta, E_eff_Pa, width)
-        q_new = _active_set_solve(A, e, active.copy())
-        change = np.max(np.abs(q_new - q))
-        q = q_new
-        beta = np.maximum(_half_width_m(q, width, effective_radius_m, E_eff_Pa) / width, 1e-6)
-        if change <= rtol * max(np.max(q), 1e-300):
-            break
-    else:
-        raise RuntimeError(f"coupled slices: half-widths did not settle in {max_iter} passes")
-    b = _half_width_m(q, width, effective_radius_m, E_eff_Pa)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        p0 = np.where(q > 0.0, 2.0 * q / (math.pi * np.where(b > 0, b, 1.0) * width), 0.0)
-    return CoupledSlices(q, b, p0, it)
+    return _coupled(-e, length_m, effective_radius_m, E_eff_Pa, 0.0, None, rtol, max_iter)[0]
 
 
 def coupled_slices_under_load(total_load_N: float, gap_m, length_m: float, effective_radius_m: float,
-                              E_eff_Pa: float, *, rtol: float = 1e-9) -> tuple[CoupledSlices, float]:
+                              E_eff_Pa: float, *, rtol: float = 1e-10, max_iter: int = 60) -> tuple[CoupledSlices, float]:
     """Coupled slice loads for a given total load, and the approach δ (m) that carries it (e_k = δ − g_k).
 
     ``gap_m`` (n,) is the gap of each slice centre when the roller just touches (profile drop,
-    tilt; its minimum is the first point to touch), m.
+    tilt; its minimum is the first point to touch), m. The approach is an unknown of the same
+    fixed point (the load balance borders the active-set system).
     """
-    check_positive(total_load_N=total_load_N)
-    g = np.asarray(gap_m, dtype=float)
+    check_positive(total_load_N=total_load_N, length_m=length_m, effective_radius_m=effective_radius_m,
+                   E_eff_Pa=E_eff_Pa)
+    g = _check_slices("gap_m", gap_m)
     g = g - np.min(g)
-
-    def excess(delta):
-        return coupled_slice_loads(delta - g, length_m, effective_radius_m, E_eff_Pa).total_load_N - total_load_N
-
-    hi = 1e-6
-    while excess(hi) < 0.0:
-        hi *= 2.0
-        if hi > 1.0:
-            raise ValueError(f"coupled slices: no approach below 1 m carries {total_load_N} N")
-    delta = brentq(excess, 0.0, hi, xtol=1e-15, rtol=rtol)
-    return coupled_slice_loads(delta - g, length_m, effective_radius_m, E_eff_Pa), float(delta)
+    return _coupled(g, length_m, effective_radius_m, E_eff_Pa, None, total_load_N, rtol, max_iter)
