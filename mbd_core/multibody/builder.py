@@ -8,24 +8,18 @@ Positions and forces are given in the world frame, m and N; angular velocities i
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from ..contact.friction import Coulomb, DrebConstant, DrebFalling, DrebLinear, Kragelskii
-from ..kernels.element_contacts import POCKET_CYLINDER, POCKET_SLOT
 from ..kernels.forces import BALL_BALL, BALL_GROOVE, ELEMENT_POCKET, ROLLER_RACEWAY, ROLLER_RIB
 from ..kernels.laws import NORMAL_HUNT_CROSSLEY, NORMAL_IMPACT
-from ..kernels.roller_slices import (
-    RACEWAY_INNER_CYLINDER,
-    RACEWAY_OUTER_CYLINDER,
-    RACEWAY_PLANE_DOWN,
-    RACEWAY_PLANE_UP,
-)
 from foundation.validation import check_positive
 from . import warmup
+from .builder_arrays import _f64, _i64, _quat_conj, _quat_mul, _rotate, _rotate_back, _skew, modal_arrays
+from .builder_geometry import POCKET_KINDS, GeometryMixin, _Body, _vec
 from .model import Model, ModelArrays, State
+from .parts import ContactLaw, Driven, Fixed, Free, quat_from_axis_angle, quat_z_to
 
 __all__ = ["ModelBuilder", "ContactLaw", "Free", "Fixed", "Driven", "quat_from_axis_angle", "quat_z_to"]
 
@@ -33,129 +27,9 @@ PAIR_KIND_NAMES = {
     BALL_GROOVE: "ball_groove", BALL_BALL: "ball_ball", ROLLER_RACEWAY: "roller_raceway",
     ROLLER_RIB: "roller_rib", ELEMENT_POCKET: "element_pocket",
 }
-SURFACE_KINDS = {
-    "inner_cylinder": RACEWAY_INNER_CYLINDER, "outer_cylinder": RACEWAY_OUTER_CYLINDER,
-    "plane_up": RACEWAY_PLANE_UP, "plane_down": RACEWAY_PLANE_DOWN,
-}
-POCKET_KINDS = {"cylinder": POCKET_CYLINDER, "slot": POCKET_SLOT}
-FRICTION_TYPES = (Coulomb, DrebLinear, DrebConstant, DrebFalling, Kragelskii)
 
 
-def quat_from_axis_angle(axis, angle_rad: float) -> np.ndarray:
-    """Unit quaternion (w, x, y, z) of a rotation by ``angle_rad`` about ``axis``."""
-    a = np.asarray(axis, float)
-    a = a / np.linalg.norm(a)
-    return np.concatenate([[math.cos(angle_rad / 2)], math.sin(angle_rad / 2) * a])
-
-
-def quat_z_to(direction) -> np.ndarray:
-    """Unit quaternion turning the body z axis onto ``direction`` (shortest rotation)."""
-    d = np.asarray(direction, float)
-    d = d / np.linalg.norm(d)
-    axis = np.cross([0.0, 0.0, 1.0], d)
-    s = np.linalg.norm(axis)
-    if s < 1e-15:
-        return np.array([1.0, 0, 0, 0]) if d[2] > 0 else np.array([0.0, 1, 0, 0])
-    return quat_from_axis_angle(axis / s, math.atan2(s, d[2]))
-
-
-@dataclass(frozen=True)
-class Free:
-    """All six velocity components integrated."""
-
-
-@dataclass(frozen=True)
-class Fixed:
-    """Held at its initial pose (a housing, a ring bolted to the structure)."""
-
-
-@dataclass(frozen=True)
-class Driven:
-    """Spin about the body's own z axis held at ``omega_rad_s``.
-
-    ``translation_free``: the centre moves under the forces (else it is held);
-    ``tilt_free``: the rotations about body x and y are integrated (else held at zero rate).
-    """
-
-    omega_rad_s: float
-    translation_free: bool = False
-    tilt_free: bool = False
-
-    def __post_init__(self) -> None:
-        if not math.isfinite(self.omega_rad_s):
-            raise ValueError(f"Driven: omega_rad_s must be finite, got {self.omega_rad_s!r}")
-
-
-@dataclass(frozen=True)
-class ContactLaw:
-    """Penalty law of a contact pair.
-
-    Parameters
-    ----------
-    stiffness : float
-        K of F = K δⁿ (N/m^n); for roller–raceway pairs the stiffness of one slice.
-    exponent : float
-        n (1.5 point contact, 10/9 line contact slices, 1 linear).
-    damping : float
-        IMPACT: c in N·s/m reached at δ = d_max; Hunt–Crossley: c in s/m.
-    d_max_m : float
-        Penetration over which the IMPACT damping ramps from 0 to c.
-    model : {"impact", "hunt_crossley"}
-    friction : friction law object or None
-        One of :mod:`mbd_core.contact.friction` (None: frictionless).
-    max_penetration_m : float or None
-        Divergence bound: a run stops when this pair penetrates deeper. Default: 2 % of the
-        element radius (far beyond the range where Hertz theory holds).
-    """
-
-    stiffness: float
-    exponent: float = 1.5
-    damping: float = 0.0
-    d_max_m: float = 1e-6
-    model: str = "impact"
-    friction: object | None = None
-    max_penetration_m: float | None = None
-
-    def __post_init__(self) -> None:
-        for name in ("stiffness", "exponent", "d_max_m"):
-            v = getattr(self, name)
-            if not (math.isfinite(v) and v > 0):
-                raise ValueError(f"contact law: {name} must be a positive number, got {v!r}")
-        if not (math.isfinite(self.damping) and self.damping >= 0):
-            raise ValueError(f"contact law: damping must be ≥ 0, got {self.damping!r}")
-        if self.model not in ("impact", "hunt_crossley"):
-            raise ValueError(f"contact law: model must be 'impact' or 'hunt_crossley', got {self.model!r}")
-        if self.friction is not None and not isinstance(self.friction, FRICTION_TYPES):
-            raise TypeError(f"contact law: friction must be one of {[t.__name__ for t in FRICTION_TYPES]}")
-        if self.max_penetration_m is not None and not self.max_penetration_m > 0:
-            raise ValueError(f"contact law: max_penetration_m must be > 0, got {self.max_penetration_m!r}")
-
-    def without_friction(self) -> "ContactLaw":
-        return ContactLaw(self.stiffness, self.exponent, self.damping, self.d_max_m, self.model, None,
-                          self.max_penetration_m)
-
-
-@dataclass
-class _Body:
-    name: str
-    mass: float
-    inertia: np.ndarray
-    q: np.ndarray
-    v: np.ndarray
-    free: np.ndarray
-    force: np.ndarray = field(default_factory=lambda: np.zeros(6))
-    modal: dict | None = None
-    frame_z_m: float = 0.0  # ring-frame height of the reference point (a free modal body's centre of mass)
-
-
-def _vec(owner: str, name: str, value, n: int) -> np.ndarray:
-    a = np.asarray(value, dtype=float).reshape(-1)
-    if a.shape != (n,) or not np.all(np.isfinite(a)):
-        raise ValueError(f"{owner}: {name} must be {n} finite numbers, got {value!r}")
-    return a
-
-
-class ModelBuilder:
+class ModelBuilder(GeometryMixin):
     """Edit freely, then :meth:`finalize` into a frozen :class:`Model` and its initial :class:`State`.
 
     ``gravity_m_s2``: world gravity. ``implicit_friction``: the friction on rigid bodies with a free
@@ -326,178 +200,6 @@ class ModelBuilder:
             raise ValueError("bushing: stiffness and damping must be ≥ 0")
         self._bushings.append(dict(a=a, b=b, point=_vec("bushing", "point_m", point_m, 3), k=k, c=c))
 
-    # -- contact geometry -----------------------------------------------------------------------
-    def add_groove(self, ring, centre_radius_m: float, centre_height_m: float, groove_radius_m: float,
-                   undulation_m=None, radial_offset_m=None, raceway=None) -> int:
-        """A groove on ``ring``: circle of curvature centres (radius, height in the ring frame) and f·D.
-
-        ``undulation_m`` h(θ) and ``radial_offset_m`` Δr(θ): tables on a uniform grid over
-        [0, 2π) (ring frame angle), interpolated linearly and periodically; None = 0.
-        ``raceway``: on a modal ring, the sampled raceway the groove deforms with — a
-        :class:`cms_reduction.sampling.RacewaySample` or the name of one stored with the body.
-        """
-        owner = "groove"
-        r = self._body_index(ring, owner)
-        check_positive(owner, centre_radius_m=centre_radius_m, groove_radius_m=groove_radius_m)
-        if not math.isfinite(centre_height_m):
-            raise ValueError(f"{owner}: centre_height_m must be finite")
-        tables = []
-        for name, tab in (("undulation_m", undulation_m), ("radial_offset_m", radial_offset_m)):
-            a = np.zeros(1) if tab is None else np.asarray(tab, float).reshape(-1)
-            if a.size == 0 or not np.all(np.isfinite(a)):
-                raise ValueError(f"{owner}: {name} must be a non-empty table of finite values")
-            tables.append(a)
-        body = self._bodies[r]
-        sample = self._raceway_sample(body, raceway, owner)
-        self._grooves.append(dict(ring=r, rc=float(centre_radius_m), zc=float(centre_height_m) - body.frame_z_m,
-                                  r=float(groove_radius_m), h=tables[0], dr=tables[1], sample=sample))
-        return len(self._grooves) - 1
-
-    @staticmethod
-    def _raceway_sample(body: _Body, raceway, owner: str):
-        """The raceway sample of a groove on a modal body (None on a rigid one), in the body's frame."""
-        if body.modal is None:
-            if raceway is not None:
-                raise ValueError(f"{owner}: body {body.name!r} is rigid; a raceway sample needs a modal body")
-            return None
-        from cms_reduction.sampling import RacewaySample, samples_from_arrays
-
-        reduced = body.modal["reduced"]
-        if isinstance(raceway, str):
-            samples = samples_from_arrays(reduced.extras)
-            if raceway not in samples:
-                raise ValueError(f"{owner}: modal body {body.name!r} has no raceway sample {raceway!r} "
-                                 f"(has {sorted(samples)})")
-            raceway = samples[raceway]
-        if not isinstance(raceway, RacewaySample):
-            raise ValueError(f"{owner}: a groove on modal body {body.name!r} needs raceway= (the sampled raceway "
-                             "it deforms with, a RacewaySample or its name)")
-        if raceway.displacement.shape[2] != reduced.n_modes:
-            raise ValueError(f"{owner}: raceway sample {raceway.name!r} has {raceway.displacement.shape[2]} modes, "
-                             f"the body {reduced.n_modes}")
-        th = np.asarray(raceway.theta_rad, float)
-        if raceway.periodic and th.size > 1 and not np.allclose(np.diff(th), 2 * np.pi / th.size, rtol=1e-6):
-            raise ValueError(f"{owner}: raceway sample {raceway.name!r} must be uniform in θ over the full circle")
-        return dict(theta=th, points=np.asarray(raceway.points_m, float) - body.modal["shift"],
-                    disp=np.asarray(raceway.displacement, float), rot=np.asarray(raceway.rotation, float),
-                    periodic=int(raceway.periodic))
-
-    def add_surface(self, ring, kind: str, value_m: float, raceway=None, raceway_s_m=None) -> int:
-        """A raceway or rib surface on ``ring``: kind in {inner_cylinder, outer_cylinder, plane_up,
-        plane_down} with its radius or height ``value_m`` (ring frame).
-
-        On a modal ring, ``raceway`` is the (θ, s) grid the surface deforms with (roller slices and
-        roller ends on it then follow the ring's modes): a list of
-        :class:`cms_reduction.sampling.RacewaySample` circles (or names of samples stored with the
-        body), or one name — a stored sample, or a segment whose ``"<segment>@s<k>"`` circles
-        (:func:`cms_reduction.sampling.sample_across`) are stored with the body. Every circle has the
-        same angles. ``raceway_s_m`` (n_c,) is the coordinate of each circle across the surface in the
-        ring's FE frame — z on a cylinder, r on a plane; None takes it from the sample points. A
-        surface on a modal ring without ``raceway`` carries no contacts.
-        """
-        owner = "surface"
-        r = self._body_index(ring, owner)
-        if kind not in SURFACE_KINDS:
-            raise ValueError(f"{owner}: kind must be one of {sorted(SURFACE_KINDS)}, got {kind!r}")
-        if not math.isfinite(value_m) or (kind.endswith("cylinder") and value_m <= 0):
-            raise ValueError(f"{owner}: value_m must be finite (and > 0 for a cylinder), got {value_m!r}")
-        body = self._bodies[r]
-        if kind.startswith("plane"):
-            value_m -= body.frame_z_m
-        grid = self._surface_grid(body, kind, raceway, raceway_s_m, owner)
-        self._surfaces.append(dict(kind=SURFACE_KINDS[kind], value=float(value_m), ring=r, grid=grid))
-        return len(self._surfaces) - 1
-
-    def _surface_grid(self, body: _Body, kind: str, raceway, raceway_s_m, owner: str):
-        """The (θ, s) grid of a surface on a modal body, circles by ascending s, in the body's frame."""
-        if raceway is None:
-            if raceway_s_m is not None:
-                raise ValueError(f"{owner}: raceway_s_m needs raceway= (the sampled circles)")
-            return None
-        if body.modal is None:
-            raise ValueError(f"{owner}: body {body.name!r} is rigid; a raceway sample needs a modal body")
-        from cms_reduction.sampling import RacewaySample, samples_from_arrays
-
-        if isinstance(raceway, str):
-            stored = samples_from_arrays(body.modal["reduced"].extras)
-            if raceway in stored:
-                circles = [stored[raceway]]
-            else:
-                found = {int(n[len(raceway) + 2:]): smp for n, smp in stored.items()
-                         if n.startswith(f"{raceway}@s") and n[len(raceway) + 2:].isdigit()}
-                if not found:
-                    raise ValueError(f"{owner}: modal body {body.name!r} has no raceway sample {raceway!r} and no "
-                                     f"circles '{raceway}@s<k>' (has {sorted(stored)})")
-                circles = [found[k] for k in sorted(found)]
-        elif isinstance(raceway, RacewaySample):
-            circles = [raceway]
-        else:
-            circles = list(raceway)
-            if not circles:
-                raise ValueError(f"{owner}: raceway must name at least one sampled circle")
-        samples = [self._raceway_sample(body, c, owner) for c in circles]
-        th0, periodic = samples[0]["theta"], samples[0]["periodic"]
-        for smp in samples[1:]:
-            if smp["periodic"] != periodic or smp["theta"].shape != th0.shape or not np.allclose(
-                    smp["theta"], th0, rtol=0.0, atol=1e-12):
-                raise ValueError(f"{owner}: every circle of a (θ, s) grid needs the same sample angles")
-        cylinder = kind.endswith("cylinder")
-        if raceway_s_m is None:
-            coords = [smp["points"][:, 2] if cylinder else np.hypot(smp["points"][:, 0], smp["points"][:, 1])
-                      for smp in samples]
-            scale = max(float(np.abs(np.concatenate(coords)).max()), 1.0)
-            if any(np.ptp(x) > 1e-9 * scale for x in coords):
-                raise ValueError(f"{owner}: a sampled circle does not lie at one {'z' if cylinder else 'r'}: give "
-                                 "raceway_s_m, the coordinate of each circle across the surface")
-            s_m = np.array([x.mean() for x in coords])
-        else:
-            s_m = _vec(owner, "raceway_s_m", raceway_s_m, len(samples)) - (body.frame_z_m if cylinder else 0.0)
-        order = np.argsort(s_m, kind="stable")
-        s_m = s_m[order]
-        if np.any(np.diff(s_m) <= 0.0):
-            raise ValueError(f"{owner}: the circles of a (θ, s) grid need distinct coordinates s, got {s_m.tolist()}")
-        samples = [samples[i] for i in order]
-        return dict(theta=np.concatenate([smp["theta"] for smp in samples]),
-                    points=np.concatenate([smp["points"] for smp in samples]),
-                    disp=np.concatenate([smp["disp"] for smp in samples]),
-                    rot=np.concatenate([smp["rot"] for smp in samples]), periodic=periodic, circle_s=s_m)
-
-    def add_pocket(self, cage, kind: str, angle_rad: float, radius_m: float, height_m: float, clearance_m: float,
-                   walls=None) -> int:
-        """A cage pocket (kind "cylinder" for balls, "slot" for rollers) at angle/radius/height in the cage frame.
-
-        On a modal cage, ``walls`` gives the samples its walls deform with: the index k of the pocket
-        in the body's stored ``"pockets"`` sample (rows 2k, 2k + 1: leading then trailing wall,
-        :func:`cms_reduction.sampling.pocket_contact_points`), or (sample, k) with a
-        :class:`cms_reduction.sampling.RacewaySample` or the name of one stored with the body. A
-        pocket on a modal cage without ``walls`` carries no contacts.
-        """
-        owner = "pocket"
-        i = self._body_index(cage, owner)
-        if kind not in POCKET_KINDS:
-            raise ValueError(f"{owner}: kind must be one of {sorted(POCKET_KINDS)}, got {kind!r}")
-        check_positive(owner, radius_m=radius_m)
-        if not (math.isfinite(clearance_m) and clearance_m >= 0):
-            raise ValueError(f"{owner}: clearance_m must be ≥ 0, got {clearance_m!r}")
-        body = self._bodies[i]
-        height_m -= body.frame_z_m
-        sample = None
-        if walls is not None:
-            sample, k = ("pockets", walls) if isinstance(walls, (int, np.integer)) else walls
-            smp = self._raceway_sample(body, sample, owner)
-            if not (isinstance(k, (int, np.integer)) and 0 <= 2 * k + 1 < smp["theta"].size):
-                raise ValueError(f"{owner}: the wall sample has no pocket {k!r} ({smp['theta'].size // 2} pockets)")
-            rows = slice(2 * int(k), 2 * int(k) + 2)
-            sample = {key: smp[key][rows] for key in ("theta", "points", "disp", "rot")}
-            centre = np.array([radius_m * math.cos(angle_rad), radius_m * math.sin(angle_rad), height_m])
-            off = float(np.linalg.norm(sample["points"].mean(axis=0) - centre))
-            if off > 1e-3 * radius_m:
-                raise ValueError(f"{owner}: wall samples of pocket {k} are centred {off:.3g} m away from the pocket "
-                                 f"at {angle_rad:.6g} rad, r = {radius_m} m")
-        self._pockets.append(dict(kind=POCKET_KINDS[kind], angle=float(angle_rad), r=float(radius_m),
-                                  z=float(height_m), clearance=float(clearance_m), cage=i, walls=sample))
-        return len(self._pockets) - 1
-
     # -- contact pairs --------------------------------------------------------------------------
     def _add_pair(self, kind: int, element, other, geom: int, law: ContactLaw, radius: float, name: str | None,
                   radius_b: float = 0.0, length: float = 0.0, aux=(0.0, 0.0), drop=()) -> int:
@@ -570,7 +272,7 @@ class ModelBuilder:
         owner = "element–pocket contact"
         if not 0 <= pocket < len(self._pockets):
             raise ValueError(f"{owner}: no pocket {pocket}")
-        if self._pockets[pocket]["kind"] == POCKET_SLOT:
+        if self._pockets[pocket]["kind"] == POCKET_KINDS["slot"]:
             check_positive(owner, length_m=length_m)
         self._check_owner(self._pockets[pocket]["walls"], self._pockets[pocket]["cage"], cage, owner, "pocket")
         return self._add_pair(ELEMENT_POCKET, element, cage, pocket, law, radius_m, name, length=length_m)
@@ -614,7 +316,7 @@ class ModelBuilder:
         p_a = [_rotate_back(q0[bu["a"]], bu["point"]) for bu in self._bushings]
         p_b = [_rotate_back(q0[bu["b"]], bu["point"]) for bu in self._bushings]
         grooves = self._grooves
-        modal_arrays = self._modal_arrays()
+        modal_arrays_ = modal_arrays(self._bodies, self._grooves, self._surfaces, self._pockets)
         for p in pairs:
             if bodies[p["b"]].modal is None or p["kind"] in (BALL_GROOVE, BALL_BALL):
                 continue
@@ -660,7 +362,7 @@ class ModelBuilder:
             pocket_angle=_f64([p["angle"] for p in self._pockets]),
             pocket_r=_f64([p["r"] for p in self._pockets]), pocket_z=_f64([p["z"] for p in self._pockets]),
             pocket_clearance=_f64([p["clearance"] for p in self._pockets]),
-            gravity=self.gravity_m_s2.copy(), **modal_arrays,
+            gravity=self.gravity_m_s2.copy(), **modal_arrays_,
         )
         model = Model(arrays, tuple(b.name for b in bodies), tuple(p["name"] for p in pairs),
                       tuple(PAIR_KIND_NAMES[p["kind"]] for p in pairs), self.gravity_m_s2.copy())
@@ -669,105 +371,3 @@ class ModelBuilder:
                       np.concatenate([d["eta"] for d in modal] or [np.zeros(0)]),
                       np.concatenate([d["eta_dot"] for d in modal] or [np.zeros(0)]))
         return model, state
-
-    def _modal_arrays(self) -> dict:
-        """The modal-body arrays of :class:`ModelArrays` and those of the grooves, surfaces and pockets that
-        deform with them (zero-padded to M modes); the samples go to samp_* in that order."""
-        bodies = self._bodies
-        modal = [b.modal for b in bodies if b.modal is not None]
-        n_mb = len(modal)
-        M = max([d["I6"].shape[0] for d in modal] or [0])
-        counts = [d["I6"].shape[0] for d in modal]
-
-        def pad(key, shape):
-            out = np.zeros((n_mb, *shape))
-            for j, d in enumerate(modal):
-                a = d[key]
-                out[(j, *tuple(slice(0, n) for n in a.shape))] = a
-            return out
-
-        body_modal = np.full(len(bodies), -1, dtype=np.int64)
-        j = 0
-        for i, b in enumerate(bodies):
-            if b.modal is not None:
-                body_modal[i] = j
-                j += 1
-        samples = [g["sample"] for g in self._grooves]
-        grids = [s["grid"] for s in self._surfaces]
-        walls = [p["walls"] for p in self._pockets]
-        n_s = [0 if smp is None else smp["theta"].size for smp in samples]
-        n_grid = [0 if grid is None else grid["theta"].size for grid in grids]
-        start = sum(n_s) + np.concatenate([[0], np.cumsum(n_grid)])
-        pocket_samp = start[-1] + np.cumsum([0] + [0 if x is None else 2 for x in walls])[:-1]
-        s_theta, s_point, s_disp, s_rot = [np.zeros(0)], [np.zeros((0, 3))], [np.zeros((0, 3, M))], [np.zeros((0, 3, M))]
-        for smp in samples + grids + walls:
-            if smp is None:
-                continue
-            s_theta.append(smp["theta"])
-            s_point.append(smp["points"])
-            for key, lst in (("disp", s_disp), ("rot", s_rot)):
-                a = np.zeros((smp["theta"].size, 3, M))
-                a[:, :, :smp[key].shape[2]] = smp[key]
-                lst.append(a)
-        I6 = pad("I6", (M, M))
-        unit = [int(np.allclose(d["I6"], np.eye(d["I6"].shape[0]), rtol=0.0, atol=1e-12)) for d in modal]
-        return dict(
-            body_modal=body_modal, modal_body=_i64([i for i, b in enumerate(bodies) if b.modal is not None]),
-            modal_off=_i64(np.concatenate([[0], np.cumsum(counts)])),
-            modal_frame_free=_i64([d["frame_free"] for d in modal]).reshape(-1, 6),
-            modal_implicit=_i64([d["implicit"] for d in modal]), modal_unit=_i64(unit),
-            modal_omega2=_f64(np.concatenate([d["omega2"] for d in modal] or [np.zeros(0)])),
-            modal_damp=_f64(np.concatenate([d["damp"] for d in modal] or [np.zeros(0)])),
-            modal_mass=_f64([d["mass"] for d in modal]), modal_I2=pad("I2", (3,)), modal_I3=pad("I3", (3, M)),
-            modal_I4=pad("I4", (3, M)), modal_I5=pad("I5", (3, M, M)), modal_I6=I6, modal_I7=pad("I7", (3, 3)),
-            modal_I8=pad("I8", (3, 3, M)), modal_I9=pad("I9", (3, 3, M, M)),
-            groove_modal=_i64([-1 if smp is None else body_modal[g["ring"]] for g, smp in zip(self._grooves, samples)]),
-            groove_periodic=_i64([0 if smp is None else smp["periodic"] for smp in samples]),
-            groove_samp_off=_i64(np.concatenate([[0], np.cumsum(n_s)])),
-            samp_theta=_f64(np.concatenate(s_theta)), samp_point=_f64(np.concatenate(s_point)),
-            samp_disp=_f64(np.concatenate(s_disp)), samp_rot=_f64(np.concatenate(s_rot)),
-            race_modal=_i64([-1 if grid is None else body_modal[s["ring"]] for s, grid in zip(self._surfaces, grids)]),
-            race_periodic=_i64([0 if grid is None else grid["periodic"] for grid in grids]),
-            race_samp_off=_i64(start),
-            race_circle_off=_i64(np.concatenate([[0], np.cumsum([0 if x is None else x["circle_s"].size
-                                                                 for x in grids])])),
-            race_circle_s=_f64(np.concatenate([x["circle_s"] for x in grids if x is not None] or [np.zeros(0)])),
-            pocket_modal=_i64([-1 if x is None else body_modal[p["cage"]] for p, x in zip(self._pockets, walls)]),
-            pocket_samp=_i64([-1 if x is None else r for x, r in zip(walls, pocket_samp)]),
-        )
-
-
-def _i64(x) -> np.ndarray:
-    return np.asarray(x, dtype=np.int64)
-
-
-def _f64(x, shape=None) -> np.ndarray:
-    """float64 array; ``shape`` (e.g. (-1, 3)) keeps empty tables two-dimensional for the kernels."""
-    a = np.asarray(x, dtype=np.float64)
-    return a.reshape(shape) if shape else a
-
-
-def _skew(a) -> np.ndarray:
-    """ã with ã b = a × b."""
-    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
-
-
-def _rotate(q, x) -> np.ndarray:
-    """R(q) x for a unit quaternion (w, x, y, z)."""
-    return _quat_mul(_quat_mul(q, np.concatenate([[0.0], x])), _quat_conj(q))[1:]
-
-
-def _quat_conj(q):
-    return np.array([q[0], -q[1], -q[2], -q[3]])
-
-
-def _quat_mul(p, q):
-    pw, pv, qw, qv = p[0], p[1:], q[0], q[1:]
-    return np.concatenate([[pw * qw - pv @ qv], pw * qv + qw * pv + np.cross(pv, qv)])
-
-
-def _rotate_back(q7, point):
-    """Coordinates of a world point in the frame of a body at pose q7 = (r, quaternion)."""
-    qc = _quat_conj(q7[3:])
-    d = np.concatenate([[0.0], np.asarray(point) - q7[:3]])
-    return _quat_mul(_quat_mul(qc, d), q7[3:])[1:]

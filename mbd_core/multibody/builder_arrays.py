@@ -1,0 +1,107 @@
+"""Flat arrays of a finalized model: the modal bodies' invariants and samples, and small numpy helpers
+(dtype casts, quaternions) of the builder."""
+
+from __future__ import annotations
+
+import numpy as np
+
+def modal_arrays(bodies, grooves, surfaces, pockets) -> dict:
+    """The modal-body arrays of :class:`ModelArrays` and those of the grooves, surfaces and pockets that
+    deform with them (zero-padded to M modes); the samples go to samp_* in that order."""
+    modal = [b.modal for b in bodies if b.modal is not None]
+    n_mb = len(modal)
+    M = max([d["I6"].shape[0] for d in modal] or [0])
+    counts = [d["I6"].shape[0] for d in modal]
+
+    def pad(key, shape):
+        out = np.zeros((n_mb, *shape))
+        for j, d in enumerate(modal):
+            a = d[key]
+            out[(j, *tuple(slice(0, n) for n in a.shape))] = a
+        return out
+
+    body_modal = np.full(len(bodies), -1, dtype=np.int64)
+    j = 0
+    for i, b in enumerate(bodies):
+        if b.modal is not None:
+            body_modal[i] = j
+            j += 1
+    samples = [g["sample"] for g in grooves]
+    grids = [s["grid"] for s in surfaces]
+    walls = [p["walls"] for p in pockets]
+    n_s = [0 if smp is None else smp["theta"].size for smp in samples]
+    n_grid = [0 if grid is None else grid["theta"].size for grid in grids]
+    start = sum(n_s) + np.concatenate([[0], np.cumsum(n_grid)])
+    pocket_samp = start[-1] + np.cumsum([0] + [0 if x is None else 2 for x in walls])[:-1]
+    s_theta, s_point, s_disp, s_rot = [np.zeros(0)], [np.zeros((0, 3))], [np.zeros((0, 3, M))], [np.zeros((0, 3, M))]
+    for smp in samples + grids + walls:
+        if smp is None:
+            continue
+        s_theta.append(smp["theta"])
+        s_point.append(smp["points"])
+        for key, lst in (("disp", s_disp), ("rot", s_rot)):
+            a = np.zeros((smp["theta"].size, 3, M))
+            a[:, :, :smp[key].shape[2]] = smp[key]
+            lst.append(a)
+    I6 = pad("I6", (M, M))
+    unit = [int(np.allclose(d["I6"], np.eye(d["I6"].shape[0]), rtol=0.0, atol=1e-12)) for d in modal]
+    return dict(
+        body_modal=body_modal, modal_body=_i64([i for i, b in enumerate(bodies) if b.modal is not None]),
+        modal_off=_i64(np.concatenate([[0], np.cumsum(counts)])),
+        modal_frame_free=_i64([d["frame_free"] for d in modal]).reshape(-1, 6),
+        modal_implicit=_i64([d["implicit"] for d in modal]), modal_unit=_i64(unit),
+        modal_omega2=_f64(np.concatenate([d["omega2"] for d in modal] or [np.zeros(0)])),
+        modal_damp=_f64(np.concatenate([d["damp"] for d in modal] or [np.zeros(0)])),
+        modal_mass=_f64([d["mass"] for d in modal]), modal_I2=pad("I2", (3,)), modal_I3=pad("I3", (3, M)),
+        modal_I4=pad("I4", (3, M)), modal_I5=pad("I5", (3, M, M)), modal_I6=I6, modal_I7=pad("I7", (3, 3)),
+        modal_I8=pad("I8", (3, 3, M)), modal_I9=pad("I9", (3, 3, M, M)),
+        groove_modal=_i64([-1 if smp is None else body_modal[g["ring"]] for g, smp in zip(grooves, samples)]),
+        groove_periodic=_i64([0 if smp is None else smp["periodic"] for smp in samples]),
+        groove_samp_off=_i64(np.concatenate([[0], np.cumsum(n_s)])),
+        samp_theta=_f64(np.concatenate(s_theta)), samp_point=_f64(np.concatenate(s_point)),
+        samp_disp=_f64(np.concatenate(s_disp)), samp_rot=_f64(np.concatenate(s_rot)),
+        race_modal=_i64([-1 if grid is None else body_modal[s["ring"]] for s, grid in zip(surfaces, grids)]),
+        race_periodic=_i64([0 if grid is None else grid["periodic"] for grid in grids]),
+        race_samp_off=_i64(start),
+        race_circle_off=_i64(np.concatenate([[0], np.cumsum([0 if x is None else x["circle_s"].size
+                                                             for x in grids])])),
+        race_circle_s=_f64(np.concatenate([x["circle_s"] for x in grids if x is not None] or [np.zeros(0)])),
+        pocket_modal=_i64([-1 if x is None else body_modal[p["cage"]] for p, x in zip(pockets, walls)]),
+        pocket_samp=_i64([-1 if x is None else r for x, r in zip(walls, pocket_samp)]),
+    )
+
+
+def _i64(x) -> np.ndarray:
+    return np.asarray(x, dtype=np.int64)
+
+
+def _f64(x, shape=None) -> np.ndarray:
+    """float64 array; ``shape`` (e.g. (-1, 3)) keeps empty tables two-dimensional for the kernels."""
+    a = np.asarray(x, dtype=np.float64)
+    return a.reshape(shape) if shape else a
+
+
+def _skew(a) -> np.ndarray:
+    """ã with ã b = a × b."""
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+def _rotate(q, x) -> np.ndarray:
+    """R(q) x for a unit quaternion (w, x, y, z)."""
+    return _quat_mul(_quat_mul(q, np.concatenate([[0.0], x])), _quat_conj(q))[1:]
+
+
+def _quat_conj(q):
+    return np.array([q[0], -q[1], -q[2], -q[3]])
+
+
+def _quat_mul(p, q):
+    pw, pv, qw, qv = p[0], p[1:], q[0], q[1:]
+    return np.concatenate([[pw * qw - pv @ qv], pw * qv + qw * pv + np.cross(pv, qv)])
+
+
+def _rotate_back(q7, point):
+    """Coordinates of a world point in the frame of a body at pose q7 = (r, quaternion)."""
+    qc = _quat_conj(q7[3:])
+    d = np.concatenate([[0.0], np.asarray(point) - q7[:3]])
+    return _quat_mul(_quat_mul(qc, d), q7[3:])[1:]

@@ -1,0 +1,109 @@
+"""What a model is built from, as a user names it: the motion of a body (free, fixed, driven), the
+penalty law of a contact pair, and the quaternions that place bodies."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..contact.friction import Coulomb, DrebConstant, DrebFalling, DrebLinear, Kragelskii
+
+__all__ = ["ContactLaw", "Free", "Fixed", "Driven", "FRICTION_TYPES", "quat_from_axis_angle", "quat_z_to"]
+
+FRICTION_TYPES = (Coulomb, DrebLinear, DrebConstant, DrebFalling, Kragelskii)
+
+
+def quat_from_axis_angle(axis, angle_rad: float) -> np.ndarray:
+    """Unit quaternion (w, x, y, z) of a rotation by ``angle_rad`` about ``axis``."""
+    a = np.asarray(axis, float)
+    a = a / np.linalg.norm(a)
+    return np.concatenate([[math.cos(angle_rad / 2)], math.sin(angle_rad / 2) * a])
+
+
+def quat_z_to(direction) -> np.ndarray:
+    """Unit quaternion turning the body z axis onto ``direction`` (shortest rotation)."""
+    d = np.asarray(direction, float)
+    d = d / np.linalg.norm(d)
+    axis = np.cross([0.0, 0.0, 1.0], d)
+    s = np.linalg.norm(axis)
+    if s < 1e-15:
+        return np.array([1.0, 0, 0, 0]) if d[2] > 0 else np.array([0.0, 1, 0, 0])
+    return quat_from_axis_angle(axis / s, math.atan2(s, d[2]))
+
+
+@dataclass(frozen=True)
+class Free:
+    """All six velocity components integrated."""
+
+
+@dataclass(frozen=True)
+class Fixed:
+    """Held at its initial pose (a housing, a ring bolted to the structure)."""
+
+
+@dataclass(frozen=True)
+class Driven:
+    """Spin about the body's own z axis held at ``omega_rad_s``.
+
+    ``translation_free``: the centre moves under the forces (else it is held);
+    ``tilt_free``: the rotations about body x and y are integrated (else held at zero rate).
+    """
+
+    omega_rad_s: float
+    translation_free: bool = False
+    tilt_free: bool = False
+
+    def __post_init__(self) -> None:
+        if not math.isfinite(self.omega_rad_s):
+            raise ValueError(f"Driven: omega_rad_s must be finite, got {self.omega_rad_s!r}")
+
+
+@dataclass(frozen=True)
+class ContactLaw:
+    """Penalty law of a contact pair.
+
+    Parameters
+    ----------
+    stiffness : float
+        K of F = K δⁿ (N/m^n); for roller–raceway pairs the stiffness of one slice.
+    exponent : float
+        n (1.5 point contact, 10/9 line contact slices, 1 linear).
+    damping : float
+        IMPACT: c in N·s/m reached at δ = d_max; Hunt–Crossley: c in s/m.
+    d_max_m : float
+        Penetration over which the IMPACT damping ramps from 0 to c.
+    model : {"impact", "hunt_crossley"}
+    friction : friction law object or None
+        One of :mod:`mbd_core.contact.friction` (None: frictionless).
+    max_penetration_m : float or None
+        Divergence bound: a run stops when this pair penetrates deeper. Default: 2 % of the
+        element radius (far beyond the range where Hertz theory holds).
+    """
+
+    stiffness: float
+    exponent: float = 1.5
+    damping: float = 0.0
+    d_max_m: float = 1e-6
+    model: str = "impact"
+    friction: object | None = None
+    max_penetration_m: float | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("stiffness", "exponent", "d_max_m"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and v > 0):
+                raise ValueError(f"contact law: {name} must be a positive number, got {v!r}")
+        if not (math.isfinite(self.damping) and self.damping >= 0):
+            raise ValueError(f"contact law: damping must be ≥ 0, got {self.damping!r}")
+        if self.model not in ("impact", "hunt_crossley"):
+            raise ValueError(f"contact law: model must be 'impact' or 'hunt_crossley', got {self.model!r}")
+        if self.friction is not None and not isinstance(self.friction, FRICTION_TYPES):
+            raise TypeError(f"contact law: friction must be one of {[t.__name__ for t in FRICTION_TYPES]}")
+        if self.max_penetration_m is not None and not self.max_penetration_m > 0:
+            raise ValueError(f"contact law: max_penetration_m must be > 0, got {self.max_penetration_m!r}")
+
+    def without_friction(self) -> "ContactLaw":
+        return ContactLaw(self.stiffness, self.exponent, self.damping, self.d_max_m, self.model, None,
+                          self.max_penetration_m)
