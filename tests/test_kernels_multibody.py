@@ -34,6 +34,7 @@ from mbd_core.kernels.roller_slices import (
 )
 from mbd_core.kernels.splines import spline_value
 from mbd_core.multibody import ContactLaw, Fixed, ModelBuilder, quat_from_axis_angle, quat_z_to
+from mbd_core.multibody.parts import StripTraction
 from mbd_core.multibody.model import make_work
 from tests.reference import multibody as ref
 
@@ -287,10 +288,11 @@ ALPHA = math.radians(15)
 DELTA_0 = 3e-5                    # nominal ball–groove penetration, m
 
 
-def _ball_bearing(external=True):
+def _ball_bearing(external=True, strips=None):
     """Fixed outer ring, free inner ring, cage, 6 balls in three touching pairs; Coulomb, Kragelskii and
     DREB friction; gravity, a constant force and a load history unless ``external`` is False. The inner
-    ring is built turned by 0.3 rad, so the outer–inner bushing rests at q_ref ≠ 1."""
+    ring is built turned by 0.3 rad, so the outer–inner bushing rests at q_ref ≠ 1. ``strips``: the
+    ball–groove traction over the contact ellipse in that many strips (a = 2e-5 m·F_n^(1/3))."""
     rng = np.random.default_rng(SEED + 100)
     mb = ModelBuilder(gravity_m_s2=(0.0, -9.81, -3.0) if external else (0.0, 0.0, 0.0))
     mb.add_body("outer", 0.4, (2e-4, 2e-4, 4e-4), motion=Fixed())
@@ -316,9 +318,13 @@ def _ball_bearing(external=True):
     falling = ContactLaw(2e8, 1.5, 50.0, 1e-5, "impact", DrebFalling(0.1, 0.01))
     pocket_push = [2e-5, -1e-5, 3e-5, 1e-5, -5e-5, 2e-5]      # pocket offsets beyond the clearance, m
     clearance = 2e-4
+    groove_laws = (coulomb, kragelskii)
+    if strips:
+        groove_laws = tuple(ContactLaw(l.stiffness, l.exponent, l.damping, l.d_max_m, l.model, l.friction,
+                                       strips=StripTraction(strips, 2e-5)) for l in groove_laws)
     for i, (b, phi) in enumerate(zip(balls, angles)):
-        mb.add_ball_groove(b, "outer", outer_groove, R_BALL, coulomb)
-        mb.add_ball_groove(b, "inner", inner_groove, R_BALL, kragelskii)
+        mb.add_ball_groove(b, "outer", outer_groove, R_BALL, groove_laws[0])
+        mb.add_ball_groove(b, "inner", inner_groove, R_BALL, groove_laws[1])
         mb.add_ball_ball(b, balls[(i + 1) % 6], R_BALL, R_BALL, coulomb if i % 2 else falling)
         shift = (-1) ** i * (clearance + pocket_push[i]) / R_PITCH
         pocket = mb.add_pocket("cage", "cylinder", phi + 0.2 + shift, R_PITCH, 0.0, clearance)
@@ -506,8 +512,9 @@ def test_contact_force_matches_twin_is_zero_when_touching_and_reverses_friction_
         assert t1 @ (ref.point_velocity(q[a], v[a], p) - ref.point_velocity(q[b], v[b], p)) < 0   # opposes slip
 
 
-def test_ball_bearing_forces_match_twin():
-    model, state = _ball_bearing()
+@pytest.mark.parametrize("strips", [None, 7])
+def test_ball_bearing_forces_match_twin(strips):
+    model, state = _ball_bearing(strips=strips)
     rng = np.random.default_rng(SEED + 9)
     ws = [_compare_with_twin(model, st) for st in _random_states(model, state, rng, 8, 1e-5, 3e-4)]
     _mix_checks(ws, model)
@@ -549,9 +556,10 @@ def _assert_balanced(model, w, q):
     assert np.abs(total_moment).max() < 1e-13 * scale * 0.1            # lever arms ≤ 0.1 m
 
 
-@pytest.mark.parametrize("builder", ["ball", "roller"])
+@pytest.mark.parametrize("builder", ["ball", "ball-strips", "roller"])
 def test_internal_forces_obey_action_reaction_and_moment_balance(builder):
-    model, state = _ball_bearing(external=False) if builder == "ball" else _roller_bearing()
+    model, state = (_roller_bearing() if builder == "roller"
+                    else _ball_bearing(external=False, strips=5 if builder == "ball-strips" else None))
     assert not model.arrays.body_force.any() and model.arrays.load_body.size == 0
     rng = np.random.default_rng(SEED + 11)
     for st in _random_states(model, state, rng, 6, 1e-5 if builder == "ball" else 3e-6, 3e-4):

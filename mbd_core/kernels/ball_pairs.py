@@ -1,5 +1,14 @@
 """Ball contact stages: ball–groove pairs (rigid or modal rings) and ball–ball pairs (spacer balls,
-full-complement neighbours)."""
+full-complement neighbours).
+
+A ball–groove pair on a rigid ring with strips (``m.pair_strips[c] > 0``) takes its traction from the
+slip distribution over the contact ellipse (:mod:`.strip_traction`): x the rolling direction (the
+groove's circumferential direction e_θ at the ball, projected on the tangent plane), y = m × x the
+major axis, z = x × y = m the normal of the force on the ball; the slip is that of the ball's surface
+relative to the ring's at the contact centre, the spin (ω_ball − ω_ring)·m, the semi-major axis
+a = c·F_n^(1/3). The ball gets F_n m + F_x x + F_y y at the contact point and the spin moment M_z m;
+the ring the opposite.
+"""
 
 from __future__ import annotations
 
@@ -13,7 +22,50 @@ from .element_contacts import ball_ball
 from .flexible_surface import _add_section_force, _nearest_deformed_centre, _section_velocity
 from .friction_damping import _note_friction
 from .pair_types import BALL_BALL, BALL_GROOVE
+from .laws import normal_force_elastic
 from .point_contact import contact_force, point_force, _store
+from .strip_traction import strip_traction_forces
+
+
+@njit(cache=True, inline="always")
+def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fric, n_strips, a_coef, delta,
+                   mx, my, mz, px, py, pz, ex, ey, ez):
+    """Normal force and strip traction of a ball contact (module docstring); (ex, ey, ez) the rolling
+    direction, world. Returns (F_n N, |v_t| m/s at the centre, |F_t| N, elastic energy J)."""
+    if delta <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0
+    vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
+    vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
+    rx, ry, rz = vax - vbx, vay - vby, vaz - vbz
+    vn = rx * mx + ry * my + rz * mz
+    elastic = k * delta**n_exp
+    fn = normal_force_elastic(law, elastic, delta, -vn, damping, d_max)
+    d = ex * mx + ey * my + ez * mz
+    xx, xy, xz = ex - d * mx, ey - d * my, ez - d * mz
+    nx = math.sqrt(xx * xx + xy * xy + xz * xz)
+    xx, xy, xz = xx / nx, xy / nx, xz / nx
+    yx, yy, yz = my * xz - mz * xy, mz * xx - mx * xz, mx * xy - my * xx
+    sx = rx * xx + ry * xy + rz * xz
+    sy = rx * yx + ry * yy + rz * yz
+    oax, oay, oaz = rotate(q, a, v[a, 3], v[a, 4], v[a, 5])
+    obx, oby, obz = rotate(q, b, v[b, 3], v[b, 4], v[b, 5])
+    spin = (oax - obx) * mx + (oay - oby) * my + (oaz - obz) * mz
+    tx, ty, tm = 0.0, 0.0, 0.0
+    if fn > 0.0:
+        tx, ty, tm = strip_traction_forces(fn, a_coef * fn ** (1.0 / 3.0), sx, sy, spin, fric, fp[c, 0], fp[c, 1],
+                                           fp[c, 2], fp[c, 3], n_strips)
+    fx = fn * mx + tx * xx + ty * yx
+    fy = fn * my + tx * xy + ty * yy
+    fz = fn * mz + tx * xz + ty * yz
+    _add_force(q, bf, bt, a, fx, fy, fz, px, py, pz)
+    _add_force(q, bf, bt, b, -fx, -fy, -fz, px, py, pz)
+    bt[a, 0] += tm * mx
+    bt[a, 1] += tm * my
+    bt[a, 2] += tm * mz
+    bt[b, 0] -= tm * mx
+    bt[b, 1] -= tm * my
+    bt[b, 2] -= tm * mz
+    return fn, math.sqrt(sx * sx + sy * sy), math.sqrt(tx * tx + ty * ty), elastic * delta / (n_exp + 1.0)
 
 
 @njit(cache=True)
@@ -35,9 +87,15 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
         if m.groove_modal[g] < 0:
             mx, my, mz = rotate(q, b, -nx, -ny, -nz)
             px, py, pz = q[a, 0] - ra * mx, q[a, 1] - ra * my, q[a, 2] - ra * mz
-            fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
-                                         m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
-                                         px, py, pz)
+            if m.pair_strips[c] > 0:
+                ex, ey, ez = rotate(q, b, -math.sin(th), math.cos(th), 0.0)
+                fn, u, ft, e = _strip_contact(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
+                                              m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], m.pair_strips[c],
+                                              m.pair_semi_major[c], delta, mx, my, mz, px, py, pz, ex, ey, ez)
+            else:
+                fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
+                                             m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
+                                             px, py, pz)
             _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
         else:
             # a groove on a modal ring (see _nearest_deformed_centre); the arrays are sliced here so

@@ -31,7 +31,7 @@ from numba import njit
 
 from .laws import friction_coefficient
 
-__all__ = ["strip_traction", "strip_load_share"]
+__all__ = ["strip_traction", "strip_traction_forces", "strip_load_share"]
 
 
 @njit(cache=True)
@@ -40,15 +40,12 @@ def strip_load_share(s):
     return 0.75 * (s - s * s * s / 3.0) + 0.5
 
 
-@njit(cache=True)
-def strip_traction(load_N, a_m, slip_x, slip_y, spin_rad_s, law, p0, p1, p2, p3, n_strips, out):
-    """Tangential force on body 1 (``out[0]``, ``out[1]``: along x and y, N) and its moment about
-    the contact normal (``out[2]``, N·m) from ``n_strips`` strips (module docstring)."""
-    out[0] = 0.0
-    out[1] = 0.0
-    out[2] = 0.0
+@njit(cache=True, inline="always")
+def strip_traction_forces(load_N, a_m, slip_x, slip_y, spin_rad_s, law, p0, p1, p2, p3, n_strips):
+    """(F_x N, F_y N, M_z N·m) on body 1 from ``n_strips`` strips (module docstring)."""
+    fx, fy, mz = 0.0, 0.0, 0.0
     if load_N <= 0.0:
-        return
+        return fx, fy, mz
     s0 = -1.0
     w0 = strip_load_share(-1.0)
     for i in range(n_strips):
@@ -63,7 +60,15 @@ def strip_traction(load_N, a_m, slip_x, slip_y, spin_rad_s, law, p0, p1, p2, p3,
         u = math.sqrt(vx * vx + slip_y * slip_y)
         if u > 0.0:
             f = friction_coefficient(law, u, p0, p1, p2, p3) * q / u
-            out[0] -= f * vx
-            out[1] -= f * slip_y
-            out[2] += y * f * vx
+            fx -= f * vx
+            fy -= f * slip_y
+            mz += y * f * vx
         s0, w0 = s1, w1
+    return fx, fy, mz
+
+
+@njit(cache=True)
+def strip_traction(load_N, a_m, slip_x, slip_y, spin_rad_s, law, p0, p1, p2, p3, n_strips, out):
+    """:func:`strip_traction_forces` into ``out`` (3,): F_x, F_y (N) and M_z (N·m) on body 1."""
+    out[0], out[1], out[2] = strip_traction_forces(load_N, a_m, slip_x, slip_y, spin_rad_s, law, p0, p1, p2, p3,
+                                                   n_strips)

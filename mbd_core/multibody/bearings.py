@@ -35,6 +35,7 @@ from ..kernels.ball_groove import groove_point
 from ..quasistatic.rows import BallRow, RollerRow
 from ..quasistatic.rows_four_point import FourPointRow
 from .builder import ContactLaw, ModelBuilder, quat_z_to
+from .parts import StripTraction
 from .model import Model, State
 
 __all__ = ["RowBodies", "add_ball_row", "add_roller_row", "set_rolling_velocities", "ball_mass_kg", "roller_mass_kg",
@@ -86,8 +87,8 @@ def _azimuths(n: int, first_rad: float) -> np.ndarray:
 
 
 def _law(stiffness: float, exponent: float, damping: float, d_max_m: float, friction,
-         max_penetration_m=None) -> ContactLaw:
-    return ContactLaw(stiffness, exponent, damping, d_max_m, "impact", friction, max_penetration_m)
+         max_penetration_m=None, strips=None) -> ContactLaw:
+    return ContactLaw(stiffness, exponent, damping, d_max_m, "impact", friction, max_penetration_m, strips)
 
 
 def _cage_body(builder, name, mass_kg, radius_m, motion):
@@ -98,9 +99,11 @@ def _cage_body(builder, name, mass_kg, radius_m, motion):
 
 
 def _diagonal(builder: ModelBuilder, row, axial_sign: int, moving_ring, fixed_ring, damping_N_s_m: float,
-              d_max_m: float, friction, moving_sample, fixed_sample, moving_groove_m, fixed_groove_m):
+              d_max_m: float, friction, moving_sample, fixed_sample, moving_groove_m, fixed_groove_m,
+              traction_strips: int = 0):
     """The moving and the fixed groove of one contact diagonal of a ball row (its curvature centres,
-    module docstring) and the Hertz laws of a ball on them: (g_m, g_f, law_m, law_f)."""
+    module docstring) and the Hertz laws of a ball on them: (g_m, g_f, law_m, law_f). With
+    ``traction_strips`` the laws integrate the friction over the Hertz ellipse of each contact."""
     D, R = row.ball_diameter_m, row.pitch_diameter_m / 2
     a0 = row.contact_angle_rad
     s_rad = -1.0 if row.moving_raceway == "inner" else 1.0
@@ -109,18 +112,22 @@ def _diagonal(builder: ModelBuilder, row, axial_sign: int, moving_ring, fixed_ri
     c_m = np.array([R, row.axial_position_m]) - (row.conformity_moving * D - D / 2) * u + play
     c_f = np.array([R, row.axial_position_m]) + (row.conformity_fixed * D - D / 2) * u - play
     fixed_raceway = "outer" if row.moving_raceway == "inner" else "inner"
+    hertz_m = ball_on_groove(D, row.conformity_moving, row.pitch_diameter_m, a0, row.moving_raceway,
+                             row.ball_material, row.race_material)
+    hertz_f = ball_on_groove(D, row.conformity_fixed, row.pitch_diameter_m, a0, fixed_raceway,
+                             row.ball_material, row.race_material)
     if row.stiffness_N_per_m1p5 is not None:
         k_m = k_f = row.stiffness_N_per_m1p5 * 2.0**1.5  # two equal contacts in series give K back
     else:
-        k_m = ball_on_groove(D, row.conformity_moving, row.pitch_diameter_m, a0, row.moving_raceway,
-                             row.ball_material, row.race_material).stiffness_N_per_m1p5
-        k_f = ball_on_groove(D, row.conformity_fixed, row.pitch_diameter_m, a0, fixed_raceway,
-                             row.ball_material, row.race_material).stiffness_N_per_m1p5
+        k_m, k_f = hertz_m.stiffness_N_per_m1p5, hertz_f.stiffness_N_per_m1p5
     g_m = builder.add_groove(moving_ring, c_m[0], c_m[1], row.conformity_moving * D,
                              *(moving_groove_m or (None, None)), raceway=moving_sample)
     g_f = builder.add_groove(fixed_ring, c_f[0], c_f[1], row.conformity_fixed * D,
                              *(fixed_groove_m or (None, None)), raceway=fixed_sample)
-    law_m, law_f = (_law(k, 1.5, damping_N_s_m, d_max_m, friction) for k in (k_m, k_f))
+    strips = [None, None]
+    if traction_strips:
+        strips = [StripTraction(int(traction_strips), float(h.semi_axes_m(1.0)[0])) for h in (hertz_m, hertz_f)]
+    law_m, law_f = (_law(k, 1.5, damping_N_s_m, d_max_m, friction, strips=st) for k, st in zip((k_m, k_f), strips))
     return g_m, g_f, law_m, law_f
 
 
@@ -128,7 +135,7 @@ def add_ball_row(builder: ModelBuilder, row: BallRow | FourPointRow, moving_ring
                  damping_N_s_m: float = 0.0, d_max_m: float = 1e-6, cage_mass_kg: float | None = None,
                  pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8,
                  pocket_friction=None, moving_sample=None, fixed_sample=None, moving_groove_m=None,
-                 fixed_groove_m=None, cage_motion=None) -> RowBodies:
+                 fixed_groove_m=None, cage_motion=None, traction_strips: int = 0) -> RowBodies:
     """Add the balls of ``row`` with their ball–groove contacts (and a cage if ``cage_mass_kg``).
 
     A :class:`~mbd_core.quasistatic.BallRow` gives each ball two contacts, one per ring; a
@@ -145,13 +152,17 @@ def add_ball_row(builder: ModelBuilder, row: BallRow | FourPointRow, moving_ring
     :meth:`ModelBuilder.add_groove`); ``moving_groove_m`` / ``fixed_groove_m``: (undulation h(θ),
     radial offset Δr(θ)) tables of that ring's groove, m (None: none); ``cage_motion``: the cage's
     :class:`Free` (default), :class:`Fixed` (balls held at their azimuths, as in the quasi-static
-    model) or :class:`Driven` motion.
+    model) or :class:`Driven` motion. ``traction_strips`` > 0: the raceway friction acts strip by strip
+    over each contact's Hertz ellipse (:class:`~mbd_core.multibody.parts.StripTraction`, rigid rings),
+    so the balls' spin gives spin moments; 0: at the contact centre.
     """
     D, R = row.ball_diameter_m, row.pitch_diameter_m / 2
     four_point = isinstance(row, FourPointRow)
     signs = row.DIAGONAL_SIGNS if four_point else (row.axial_sign,)
+    if traction_strips and friction is None:
+        raise ValueError(f"ball row {row.name!r}: traction_strips integrate the raceway friction: give friction")
     diagonals = [_diagonal(builder, row, s, moving_ring, fixed_ring, damping_N_s_m, d_max_m, friction, moving_sample,
-                           fixed_sample, moving_groove_m, fixed_groove_m) for s in signs]
+                           fixed_sample, moving_groove_m, fixed_groove_m, traction_strips) for s in signs]
     mass = ball_mass_kg(D, row.ball_material.density_kg_m3)
     inertia = 0.1 * mass * D * D
     cage = None

@@ -19,9 +19,9 @@ from . import warmup
 from .builder_arrays import _f64, _i64, _quat_conj, _quat_mul, _rotate, _rotate_back, _skew, modal_arrays
 from .builder_geometry import POCKET_KINDS, GeometryMixin, _Body, _vec
 from .model import Model, ModelArrays, State
-from .parts import ContactLaw, Driven, Fixed, Free, quat_from_axis_angle, quat_z_to
+from .parts import ContactLaw, Driven, Fixed, Free, StripTraction, quat_from_axis_angle, quat_z_to
 
-__all__ = ["ModelBuilder", "ContactLaw", "Free", "Fixed", "Driven", "quat_from_axis_angle", "quat_z_to"]
+__all__ = ["ModelBuilder", "ContactLaw", "StripTraction", "Free", "Fixed", "Driven", "quat_from_axis_angle", "quat_z_to"]
 
 PAIR_KIND_NAMES = {
     BALL_GROOVE: "ball_groove", BALL_BALL: "ball_ball", ROLLER_RACEWAY: "roller_raceway",
@@ -283,6 +283,21 @@ class ModelBuilder(GeometryMixin):
             raise ValueError(f"{owner}: the sampled {what} belongs to body {self._bodies[geom_body].name!r}")
 
     # -- finalize -------------------------------------------------------------------------------
+    def _check_strips(self, pairs) -> None:
+        """Strip traction: ball–groove pairs on rigid grooves, explicit friction (ValueError naming the pair)."""
+        for p in pairs:
+            if p["law"].strips is None:
+                continue
+            if p["kind"] != BALL_GROOVE:
+                raise ValueError(f"model: contact {p['name']!r}: strip traction is for ball–groove contacts, not "
+                                 f"{PAIR_KIND_NAMES[p['kind']]}")
+            if self._grooves[p["geom"]]["sample"] is not None:
+                raise ValueError(f"model: contact {p['name']!r}: strip traction on a modal ring's groove is not "
+                                 "available; use the centre-point law (strips=None) there")
+            if self.implicit_friction:
+                raise ValueError(f"model: contact {p['name']!r}: strip traction is integrated explicitly; build "
+                                 "the model without implicit_friction")
+
     def finalize(self) -> tuple[Model, State]:
         """Validate and freeze: returns the model of flat arrays and the initial state."""
         warmup.wait()  # before the first kernel call of a model (module docstring of .warmup)
@@ -329,6 +344,7 @@ class ModelBuilder(GeometryMixin):
                 raise ValueError(f"model: contact {p['name']!r}: surface {p['geom']} on the modal ring "
                                  f"{bodies[p['b']].name!r} is not sampled; give add_surface(..., raceway=...) (the "
                                  "(θ, s) grid of circles it deforms with)")
+        self._check_strips(pairs)
         arrays = ModelArrays(
             body_mass=mass, body_inertia=np.array([b.inertia for b in bodies]),
             body_free=np.array([b.free for b in bodies], dtype=np.int64), body_force=force,
@@ -349,6 +365,8 @@ class ModelBuilder(GeometryMixin):
             pair_length=_f64([p["length"] for p in pairs]), pair_aux=_f64([p["aux"] for p in pairs], (-1, 2)),
             pair_slice_off=_i64(np.concatenate([[0], np.cumsum(slice_counts)])),
             slice_drop=_f64(np.concatenate([p["drop"] for p in pairs if p["kind"] == ROLLER_RACEWAY] or [np.zeros(0)])),
+            pair_strips=_i64([0 if l.strips is None else l.strips.n_strips for l in laws]),
+            pair_semi_major=_f64([0.0 if l.strips is None else l.strips.semi_major_m_per_N3 for l in laws]),
             pair_delta_max=_f64([l.max_penetration_m if l.max_penetration_m is not None else 0.02 * p["radius"]
                                 for l, p in zip(laws, pairs)]),
             groove_rc=_f64([g["rc"] for g in grooves]), groove_zc=_f64([g["zc"] for g in grooves]),

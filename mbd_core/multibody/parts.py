@@ -10,7 +10,7 @@ import numpy as np
 
 from ..contact.friction import Coulomb, DrebConstant, DrebFalling, DrebLinear, Kragelskii
 
-__all__ = ["ContactLaw", "Free", "Fixed", "Driven", "FRICTION_TYPES", "quat_from_axis_angle", "quat_z_to"]
+__all__ = ["ContactLaw", "StripTraction", "Free", "Fixed", "Driven", "FRICTION_TYPES", "quat_from_axis_angle", "quat_z_to"]
 
 FRICTION_TYPES = (Coulomb, DrebLinear, DrebConstant, DrebFalling, Kragelskii)
 
@@ -61,6 +61,32 @@ class Driven:
 
 
 @dataclass(frozen=True)
+class StripTraction:
+    """Traction of a ball contact integrated over its Hertz ellipse in strips
+    (:mod:`mbd_core.kernels.strip_traction`) instead of the slip at the contact centre alone, so that
+    the spin of the ball about the contact normal gives a spin moment and points of pure rolling.
+
+    Parameters
+    ----------
+    n_strips : int
+        Strips across the ellipse's major axis (1: the centre-point law with the spin ignored).
+    semi_major_m_per_N3 : float
+        c in a = c·F_n^(1/3): the semi-major axis of the contact ellipse at 1 N, m/N^(1/3) (Hertz,
+        :meth:`mbd_core.contact.hertz.HertzPointContact.semi_axes_m`).
+    """
+
+    n_strips: int
+    semi_major_m_per_N3: float
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.n_strips, (int, np.integer)) and 1 <= self.n_strips <= 1000):
+            raise ValueError(f"strip traction: n_strips must be an integer in [1, 1000], got {self.n_strips!r}")
+        if not (math.isfinite(self.semi_major_m_per_N3) and self.semi_major_m_per_N3 > 0):
+            raise ValueError(f"strip traction: semi_major_m_per_N3 must be a positive number, got "
+                             f"{self.semi_major_m_per_N3!r}")
+
+
+@dataclass(frozen=True)
 class ContactLaw:
     """Penalty law of a contact pair.
 
@@ -80,6 +106,9 @@ class ContactLaw:
     max_penetration_m : float or None
         Divergence bound: a run stops when this pair penetrates deeper. Default: 2 % of the
         element radius (far beyond the range where Hertz theory holds).
+    strips : StripTraction or None
+        Ball–groove pairs on rigid rings: the friction law applied strip by strip over the contact
+        ellipse (None: at the contact centre only). Needs ``friction``.
     """
 
     stiffness: float
@@ -89,6 +118,7 @@ class ContactLaw:
     model: str = "impact"
     friction: object | None = None
     max_penetration_m: float | None = None
+    strips: StripTraction | None = None
 
     def __post_init__(self) -> None:
         for name in ("stiffness", "exponent", "d_max_m"):
@@ -103,6 +133,11 @@ class ContactLaw:
             raise TypeError(f"contact law: friction must be one of {[t.__name__ for t in FRICTION_TYPES]}")
         if self.max_penetration_m is not None and not self.max_penetration_m > 0:
             raise ValueError(f"contact law: max_penetration_m must be > 0, got {self.max_penetration_m!r}")
+        if self.strips is not None:
+            if not isinstance(self.strips, StripTraction):
+                raise TypeError("contact law: strips must be a StripTraction")
+            if self.friction is None:
+                raise ValueError("contact law: strips integrate a friction law over the contact: give friction")
 
     def without_friction(self) -> "ContactLaw":
         return ContactLaw(self.stiffness, self.exponent, self.damping, self.d_max_m, self.model, None,

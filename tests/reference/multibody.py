@@ -33,6 +33,7 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.spatial.transform import Rotation
 
 from . import contact_laws as laws
+from . import strip_traction as strips
 from .roller_slices import roller_slices
 
 # integer codes of the kernels (mbd_core.kernels.forces, .roller_slices, .element_contacts)
@@ -227,6 +228,28 @@ def contact_point_force(m, bodies, c, delta, normal, p, surface_velocity=None):
     mu = float(laws.friction_coefficient(m.pair_fric[c], slip, m.pair_fric_p[c])) if slip > 0 and fn > 0 else 0.0
     f_t = -mu * fn * v_t / slip if slip > 0 else np.zeros(3)
     return fn, slip, mu * fn, k * delta ** (n + 1) / (n + 1), fn * normal + f_t
+
+
+def strip_point_force(m, bodies, c, delta, normal, p, theta):
+    """A ball–groove point with strip traction (pair_strips > 0, rigid ring): the slip and spin at the
+    contact centre in the frame x = rolling direction e_θ (projected), y = m × x, then the strips' twin.
+    Returns (F_n, |v_t|, |F_t|, energy, force (3,) and spin moment (3,) on body a, world)."""
+    if not delta > 0:
+        return 0.0, 0.0, 0.0, 0.0, np.zeros(3), np.zeros(3)
+    a, b = m.pair_a[c], m.pair_b[c]
+    rel = bodies.velocity(a, p) - bodies.velocity(b, p)
+    k, n = m.pair_k[c], m.pair_n[c]
+    fn = float(laws.normal_force(m.pair_law[c], delta, -(rel @ normal), k, n, m.pair_c[c], m.pair_dmax[c]))
+    e_theta = bodies.R[b] @ np.array([-np.sin(theta), np.cos(theta), 0.0])
+    x = e_theta - (e_theta @ normal) * normal
+    x /= np.linalg.norm(x)
+    y = np.cross(normal, x)
+    spin = (bodies.omega[a] - bodies.omega[b]) @ normal
+    fx, fy, mz = strips.strip_traction(
+        fn, m.pair_semi_major[c] * fn ** (1.0 / 3.0), rel @ x, rel @ y, spin,
+        lambda u: float(laws.friction_coefficient(m.pair_fric[c], u, m.pair_fric_p[c])), int(m.pair_strips[c]))
+    return (fn, float(np.hypot(rel @ x, rel @ y)), float(np.hypot(fx, fy)), k * delta ** (n + 1) / (n + 1),
+            fn * normal + fx * x + fy * y, mz * normal)
 
 
 def contact_force(m, q, v, c, delta, normal, p):
@@ -577,8 +600,13 @@ def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
             if not delta > 0:
                 continue
             surface = surface[0] if surface else None
-            fn, slip, ft, e, force = contact_point_force(m, bodies, c, delta, normal, p,
-                                                         None if surface is None else surface.velocity)
+            if kind == BALL_GROOVE and surface is None and m.pair_strips[c] > 0:
+                fn, slip, ft, e, force, moment = strip_point_force(m, bodies, c, delta, normal, p, theta)
+                bodies.add_moment(a, moment)
+                bodies.add_moment(b, -moment)
+            else:
+                fn, slip, ft, e, force = contact_point_force(m, bodies, c, delta, normal, p,
+                                                             None if surface is None else surface.velocity)
             bodies.add(a, force, p)
             bodies.add(b, -force, p)
             if surface is not None:

@@ -16,5 +16,6 @@ def strip_traction(load_N, a_m, slip_x, slip_y, spin_rad_s, mu, n_strips):
     y = a_m * np.diff(s**2 / 2 - s**4 / 4) / np.diff(s - s**3 / 3)
     ux = slip_x - spin_rad_s * y
     u = np.hypot(ux, slip_y)
-    f = np.array([mu(ui) for ui in u]) * q / u
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f = np.where(u > 0.0, np.array([mu(ui) for ui in u]) * q / u, 0.0)  # no slip, no traction
     return np.array([-(f * ux).sum(), -(f * slip_y).sum(), (y * f * ux).sum()])
