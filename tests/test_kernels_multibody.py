@@ -333,6 +333,8 @@ def _ball_bearing(external=True, strips=None):
                    (1e3, 1e3, 2e3, 0.5, 0.5, 0.1))
     if external:
         mb.add_force("inner", (30.0, -200.0, 500.0), (1.0, -2.0, 0.5))
+        mb.add_drag(balls[0], 0.05, 0.3)                          # fluid drag, linear and quadratic
+        mb.add_drag("cage", 0.2)
         mb.add_load_history("inner", [0.0, 0.01, 0.025, 0.04], rng.normal(size=(4, 6)) * [300, 300, 500, 3, 3, 1])
     return mb.finalize()
 

@@ -8,7 +8,7 @@ work ``w`` one of preallocated scratch arrays (:class:`mbd_core.multibody.model.
 State: ``q`` (n_b, 7) = position r (world, m) and unit quaternion (w, x, y, z) body → world;
 ``v`` (n_b, 6) = velocity (world, m/s) and angular velocity ω (body frame, rad/s).
 
-Stages: external loads (constant + cubic-spline histories) → bushings → contacts. Each
+Stages: external loads (constant + cubic-spline histories) → bushings → fluid drag → contacts. Each
 contact gives a penetration δ, the unit normal m of the force on its element (body a), and a
 contact point p; then
 
@@ -84,6 +84,18 @@ def _external_loads(m, q, w, t):
 
 
 @njit(cache=True)
+def _drag(m, v, w):
+    """Fluid drag at the centres of the bodies that have one: F = −(c₁ + c₂|v|) v (world)."""
+    for j in range(m.drag_body.shape[0]):
+        i = m.drag_body[j]
+        speed = math.sqrt(v[i, 0] ** 2 + v[i, 1] ** 2 + v[i, 2] ** 2)
+        c = m.drag_c[j, 0] + m.drag_c[j, 1] * speed
+        w.body_f[i, 0] -= c * v[i, 0]
+        w.body_f[i, 1] -= c * v[i, 1]
+        w.body_f[i, 2] -= c * v[i, 2]
+
+
+@njit(cache=True)
 def _small_rotation(qa, qb, qr):
     """Rotation vector (≈ small angles, rad) of q_a⁻¹ q_b relative to the reference q_r, in a's frame."""
     # e = (q_a⁻¹ q_b) q_r⁻¹ = q_a⁻¹ (q_b q_b,rest⁻¹) q_a: b's turn from its rest pose q_a q_r, in a's axes
@@ -147,6 +159,8 @@ def compute_forces(m, t, q, v, eta, eta_dot, w):
         w.modal_f[k] = 0.0
     w.fric_n[0] = 0
     w.energy[1] = _bushings(m, q, v, w) if m.bush_a.shape[0] > 0 else 0.0
+    if m.drag_body.shape[0] > 0:
+        _drag(m, v, w)
     e = 0.0
     n_of = w.type_count
     if n_of[BALL_GROOVE] > 0:

@@ -48,6 +48,7 @@ class ModelBuilder(GeometryMixin):
         self._surfaces: list[dict] = []
         self._pockets: list[dict] = []
         self._bushings: list[dict] = []
+        self._drags: list[tuple[int, float, float]] = []
         self._loads: list[tuple[int, np.ndarray, np.ndarray]] = []
 
     # -- bodies ---------------------------------------------------------------------------------
@@ -183,6 +184,16 @@ class ModelBuilder(GeometryMixin):
         if f.shape != (t.size, 6) or not np.all(np.isfinite(f)):
             raise ValueError(f"load history: loads must be finite with shape ({t.size}, 6), got {f.shape}")
         self._loads.append((i, t, f))
+
+    def add_drag(self, body, linear_N_s_m: float, quadratic_N_s2_m2: float = 0.0) -> None:
+        """Drag of the surrounding fluid (at rest in the world frame) on a body's centre:
+        F = −(c₁ + c₂|v|)·v, v the centre's velocity. For a ball of diameter d in a fluid of viscosity
+        μ at small Reynolds numbers c₁ = 3π·μ·d (Stokes); c₂ = ½·ρ·C_D·A for a constant drag coefficient."""
+        i = self._body_index(body, "drag")
+        for name, value in (("linear_N_s_m", linear_N_s_m), ("quadratic_N_s2_m2", quadratic_N_s2_m2)):
+            if not (math.isfinite(value) and value >= 0.0):
+                raise ValueError(f"drag: {name} must be a number ≥ 0, got {value!r}")
+        self._drags.append((i, float(linear_N_s_m), float(quadratic_N_s2_m2)))
 
     # -- joints ---------------------------------------------------------------------------------
     def add_bushing(self, body_a, body_b, point_m, stiffness, damping=(0, 0, 0, 0, 0, 0)) -> None:
@@ -355,6 +366,7 @@ class ModelBuilder(GeometryMixin):
             bush_a=_i64([b["a"] for b in self._bushings]), bush_b=_i64([b["b"] for b in self._bushings]),
             bush_p_a=_f64(p_a, (-1, 3)), bush_p_b=_f64(p_b, (-1, 3)), bush_q_ref=_f64(bq, (-1, 4)),
             bush_k=_f64([b["k"] for b in self._bushings], (-1, 6)), bush_c=_f64([b["c"] for b in self._bushings], (-1, 6)),
+            drag_body=_i64([d[0] for d in self._drags]), drag_c=_f64([d[1:] for d in self._drags], (-1, 2)),
             pair_type=_i64([p["kind"] for p in pairs]), pair_a=_i64([p["a"] for p in pairs]),
             pair_b=_i64([p["b"] for p in pairs]), pair_geom=_i64([p["geom"] for p in pairs]),
             pair_law=_i64([NORMAL_IMPACT if l.model == "impact" else NORMAL_HUNT_CROSSLEY for l in laws]),

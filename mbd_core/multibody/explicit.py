@@ -155,6 +155,8 @@ def stable_timestep(model: Model, state: State, load_factor: float = 3.0, safety
         if h_f < best[0]:
             best = (h_f, f"friction at contact {model.pair_names[c]!r} (slope dμ/du up to {slope:.3g} s/m at "
                          f"{f_ref:.3g} N on a tangential effective mass {1.0 / inv_mt:.3g} kg)")
+    for j, i in enumerate(a.drag_body):     # drag damps the centre's motion (its linear part)
+        c_sum[i] += a.drag_c[j, 0] * inv_m[i]
     for i in np.flatnonzero(k_sum > 0):
         omega = math.sqrt(k_sum[i])
         zeta = c_sum[i] / (2.0 * omega)

@@ -17,6 +17,8 @@ Load histories (cubic splines, :mod:`mbd_core.kernels.splines`)
 Bushings (:func:`mbd_core.kernels.forces._bushings`)
     bush_a, bush_b (n_u,); bush_p_a, bush_p_b (n_u, 3) m in each body's frame; bush_q_ref (n_u, 4)
     relative orientation q_a⁻¹ q_b at rest; bush_k (n_u, 6) N/m, N·m/rad; bush_c (n_u, 6).
+Drag of the surrounding fluid (:func:`mbd_core.kernels.forces._drag`)
+    drag_body (n_d,) int64; drag_c (n_d, 2): c₁ N·s/m and c₂ N·s²/m² of F = −(c₁ + c₂|v|) v.
 Contact pairs (body a: the rolling element; b: the ring, cage or other ball)
     pair_type, pair_a, pair_b, pair_geom (index into the geometry of its type) (n_c,) int64;
     pair_law (n_c,) int64, pair_k (n_c,) N/m^n (per slice for rollers), pair_n, pair_c N·s/m,
@@ -70,7 +72,7 @@ import numpy as np
 MODEL_FIELDS = (
     "body_mass body_inertia body_free body_force body_fric_implicit "
     "load_body load_off knot_t knot_coef "
-    "bush_a bush_b bush_p_a bush_p_b bush_q_ref bush_k bush_c "
+    "bush_a bush_b bush_p_a bush_p_b bush_q_ref bush_k bush_c drag_body drag_c "
     "pair_type pair_a pair_b pair_geom pair_law pair_k pair_n pair_c pair_dmax pair_fric pair_fric_p "
     "pair_radius pair_radius_b pair_length pair_aux pair_slice_off slice_drop pair_delta_max pair_strips pair_semi_major "
     "groove_rc groove_zc groove_r groove_h_off groove_h groove_dr_off groove_dr "

@@ -581,6 +581,8 @@ def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
         bodies.add(i, load[:3], bodies.r[i])
         bodies.add_moment(i, load[3:])
     e_bushing = _bushings(m, q, bodies)
+    for j, i in enumerate(m.drag_body):        # fluid drag at the centre, F = −(c₁ + c₂|v|) v
+        bodies.add(i, -(m.drag_c[j, 0] + m.drag_c[j, 1] * np.linalg.norm(bodies.v[i])) * bodies.v[i], bodies.r[i])
     out = {k: np.zeros(nc) for k in ("fn", "delta", "slip", "ft", "angle", "theta")}
     point, normal_out = np.zeros((nc, 3)), np.zeros((nc, 3))
     e_contact = 0.0
