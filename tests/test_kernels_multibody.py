@@ -292,7 +292,8 @@ def _ball_bearing(external=True, strips=None):
     """Fixed outer ring, free inner ring, cage, 6 balls in three touching pairs; Coulomb, Kragelskii and
     DREB friction; gravity, a constant force and a load history unless ``external`` is False. The inner
     ring is built turned by 0.3 rad, so the outer–inner bushing rests at q_ref ≠ 1. ``strips``: the
-    ball–groove traction over the contact ellipse in that many strips (a = 2e-5 m·F_n^(1/3))."""
+    ball–groove traction over the contact ellipse in that many strips (a = 2e-5 m·F_n^(1/3),
+    deformed surface radius 4 mm)."""
     rng = np.random.default_rng(SEED + 100)
     mb = ModelBuilder(gravity_m_s2=(0.0, -9.81, -3.0) if external else (0.0, 0.0, 0.0))
     mb.add_body("outer", 0.4, (2e-4, 2e-4, 4e-4), motion=Fixed())
@@ -321,7 +322,7 @@ def _ball_bearing(external=True, strips=None):
     groove_laws = (coulomb, kragelskii)
     if strips:
         groove_laws = tuple(ContactLaw(l.stiffness, l.exponent, l.damping, l.d_max_m, l.model, l.friction,
-                                       strips=StripTraction(strips, 2e-5)) for l in groove_laws)
+                                       strips=StripTraction(strips, 2e-5, 4e-3)) for l in groove_laws)
     for i, (b, phi) in enumerate(zip(balls, angles)):
         mb.add_ball_groove(b, "outer", outer_groove, R_BALL, groove_laws[0])
         mb.add_ball_groove(b, "inner", inner_groove, R_BALL, groove_laws[1])

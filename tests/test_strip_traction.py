@@ -90,3 +90,30 @@ def test_narrow_ellipse_is_the_centre_point_law():
     assert np.allclose(narrow[:2], centre, rtol=1e-6)
     assert abs(narrow[2]) < 1e-6 * Q * 1e-7
     assert not np.any(_kernel(vx, vy, 4.0, KRAGELSKII, load=0.0))
+
+
+def _curved(vx, vy, omega, curvature, law, n=400):
+    from mbd_core.kernels.strip_traction import strip_traction_forces
+    return np.array(strip_traction_forces(Q, A, vx, vy, *omega, curvature, *law, n))
+
+
+def test_curved_contact_closed_forms_and_two_points_of_pure_rolling():
+    """Rolling over the surface z = κy² of a conforming groove (Heathcote slip):
+
+    - linear law κ = B·u, rolling only: F_x = −B·Q·(v_x + ω_y·κ·a²/5) (Σ q_i ȳ_i² → Q a²/5);
+    - constant μ with v_x = −ω_y·κ·(s₀a)²: pure rolling at y = ±s₀a, the middle slipping one way and
+      the sides the other, F_x = −μQ·(1 − 2·(3/2)(s₀ − s₀³/3)) (the load share inside |y| < s₀a);
+    - the twin (independent cross products) to 1e-12 with a spin and a side slip added.
+    """
+    kappa, wy = 1.0 / (2 * 4e-3), 150.0
+    vx = 0.002
+    f = _curved(vx, 0.0, (0.0, wy, 0.0), kappa, LINEAR)
+    assert f[0] == pytest.approx(-2.0 * Q * (vx + wy * kappa * A**2 / 5), rel=1e-4)
+    s0 = 0.5
+    f = _curved(-wy * kappa * (s0 * A) ** 2, 0.0, (0.0, wy, 0.0), kappa, CONSTANT, n=2000)
+    inside = 1.5 * (s0 - s0**3 / 3)
+    assert f[0] == pytest.approx(-0.03 * Q * (1.0 - 2.0 * inside), rel=2e-3)
+    omega = (3.0, wy, -5.0)
+    got = _curved(0.001, -0.0004, omega, kappa, KRAGELSKII, n=40)
+    want = twin.strip_traction_curved(Q, A, 0.001, -0.0004, omega, kappa, lambda u: _mu(KRAGELSKII, u), 40)
+    assert np.allclose(got, want, rtol=1e-12, atol=1e-14 * Q * A)

@@ -5,9 +5,10 @@ A ball–groove pair on a rigid ring with strips (``m.pair_strips[c] > 0``) take
 slip distribution over the contact ellipse (:mod:`.strip_traction`): x the rolling direction (the
 groove's circumferential direction e_θ at the ball, projected on the tangent plane), y = m × x the
 major axis, z = x × y = m the normal of the force on the ball; the slip is that of the ball's surface
-relative to the ring's at the contact centre, the spin (ω_ball − ω_ring)·m, the semi-major axis
-a = c·F_n^(1/3). The ball gets F_n m + F_x x + F_y y at the contact point and the spin moment M_z m;
-the ring the opposite.
+relative to the ring's at the contact centre, ω_ball − ω_ring in that frame, the semi-major axis
+a = c·F_n^(1/3) and the curvature κ = 1/(2R_d) of the deformed contact surface across it
+(``m.pair_strip_curv``). The ball gets F_n m + F_x x + F_y y at the contact point and the strips'
+moment M_x x + M_y y + M_z m about it; the ring the opposite.
 """
 
 from __future__ import annotations
@@ -28,8 +29,8 @@ from .strip_traction import strip_traction_forces
 
 
 @njit(cache=True, inline="always")
-def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fric, n_strips, a_coef, delta,
-                   mx, my, mz, px, py, pz, ex, ey, ez):
+def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fric, n_strips, a_coef, curvature,
+                   delta, mx, my, mz, px, py, pz, ex, ey, ez):
     """Normal force and strip traction of a ball contact (module docstring); (ex, ey, ez) the rolling
     direction, world. Returns (F_n N, |v_t| m/s at the centre, |F_t| N, elastic energy J)."""
     if delta <= 0.0:
@@ -49,22 +50,27 @@ def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fri
     sy = rx * yx + ry * yy + rz * yz
     oax, oay, oaz = rotate(q, a, v[a, 3], v[a, 4], v[a, 5])
     obx, oby, obz = rotate(q, b, v[b, 3], v[b, 4], v[b, 5])
-    spin = (oax - obx) * mx + (oay - oby) * my + (oaz - obz) * mz
-    tx, ty, tm = 0.0, 0.0, 0.0
+    ox, oy, oz = oax - obx, oay - oby, oaz - obz
+    tx, ty, tmx, tmy, tmz = 0.0, 0.0, 0.0, 0.0, 0.0
     if fn > 0.0:
-        tx, ty, tm = strip_traction_forces(fn, a_coef * fn ** (1.0 / 3.0), sx, sy, spin, fric, fp[c, 0], fp[c, 1],
-                                           fp[c, 2], fp[c, 3], n_strips)
+        tx, ty, tmx, tmy, tmz = strip_traction_forces(
+            fn, a_coef * fn ** (1.0 / 3.0), sx, sy, ox * xx + oy * xy + oz * xz, ox * yx + oy * yy + oz * yz,
+            ox * mx + oy * my + oz * mz, curvature, fric, fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3], n_strips)
     fx = fn * mx + tx * xx + ty * yx
     fy = fn * my + tx * xy + ty * yy
     fz = fn * mz + tx * xz + ty * yz
     _add_force(q, bf, bt, a, fx, fy, fz, px, py, pz)
     _add_force(q, bf, bt, b, -fx, -fy, -fz, px, py, pz)
-    bt[a, 0] += tm * mx
-    bt[a, 1] += tm * my
-    bt[a, 2] += tm * mz
-    bt[b, 0] -= tm * mx
-    bt[b, 1] -= tm * my
-    bt[b, 2] -= tm * mz
+    # the strips' moment about the contact centre: M_x x + M_y y + M_z m
+    gx = tmx * xx + tmy * yx + tmz * mx
+    gy = tmx * xy + tmy * yy + tmz * my
+    gz = tmx * xz + tmy * yz + tmz * mz
+    bt[a, 0] += gx
+    bt[a, 1] += gy
+    bt[a, 2] += gz
+    bt[b, 0] -= gx
+    bt[b, 1] -= gy
+    bt[b, 2] -= gz
     return fn, math.sqrt(sx * sx + sy * sy), math.sqrt(tx * tx + ty * ty), elastic * delta / (n_exp + 1.0)
 
 
@@ -91,7 +97,8 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
                 ex, ey, ez = rotate(q, b, -math.sin(th), math.cos(th), 0.0)
                 fn, u, ft, e = _strip_contact(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                               m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], m.pair_strips[c],
-                                              m.pair_semi_major[c], delta, mx, my, mz, px, py, pz, ex, ey, ez)
+                                              m.pair_semi_major[c], m.pair_strip_curv[c], delta, mx, my, mz, px, py,
+                                              pz, ex, ey, ez)
             else:
                 fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                              m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,

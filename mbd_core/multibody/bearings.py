@@ -98,6 +98,13 @@ def _cage_body(builder, name, mass_kg, radius_m, motion):
     return builder.add_body(name, mass_kg, inertia, motion=motion or Free())
 
 
+def _deformed_radius_m(groove_radius_m: float, ball_radius_m: float) -> float:
+    """Radius of the deformed surface of a ball in a groove across the contact's major axis,
+    2·r_g·r_b/(r_g + r_b) (equal elastic constants: the mean of the two curvatures; Harris &
+    Kotzalas, *Rolling Bearing Analysis*, ball–raceway sliding)."""
+    return 2.0 * groove_radius_m * ball_radius_m / (groove_radius_m + ball_radius_m)
+
+
 def _diagonal(builder: ModelBuilder, row, axial_sign: int, moving_ring, fixed_ring, damping_N_s_m: float,
               d_max_m: float, friction, moving_sample, fixed_sample, moving_groove_m, fixed_groove_m,
               traction_strips: int = 0):
@@ -126,7 +133,8 @@ def _diagonal(builder: ModelBuilder, row, axial_sign: int, moving_ring, fixed_ri
                              *(fixed_groove_m or (None, None)), raceway=fixed_sample)
     strips = [None, None]
     if traction_strips:
-        strips = [StripTraction(int(traction_strips), float(h.semi_axes_m(1.0)[0])) for h in (hertz_m, hertz_f)]
+        strips = [StripTraction(int(traction_strips), float(h.semi_axes_m(1.0)[0]), _deformed_radius_m(f * D, D / 2))
+                  for h, f in ((hertz_m, row.conformity_moving), (hertz_f, row.conformity_fixed))]
     law_m, law_f = (_law(k, 1.5, damping_N_s_m, d_max_m, friction, strips=st) for k, st in zip((k_m, k_f), strips))
     return g_m, g_f, law_m, law_f
 

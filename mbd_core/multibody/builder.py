@@ -379,6 +379,7 @@ class ModelBuilder(GeometryMixin):
             slice_drop=_f64(np.concatenate([p["drop"] for p in pairs if p["kind"] == ROLLER_RACEWAY] or [np.zeros(0)])),
             pair_strips=_i64([0 if l.strips is None else l.strips.n_strips for l in laws]),
             pair_semi_major=_f64([0.0 if l.strips is None else l.strips.semi_major_m_per_N3 for l in laws]),
+            pair_strip_curv=_f64([0.0 if l.strips is None else l.strips.curvature_per_m for l in laws]),
             pair_delta_max=_f64([l.max_penetration_m if l.max_penetration_m is not None else 0.02 * p["radius"]
                                 for l, p in zip(laws, pairs)]),
             groove_rc=_f64([g["rc"] for g in grooves]), groove_zc=_f64([g["zc"] for g in grooves]),

@@ -26,7 +26,8 @@ Contact pairs (body a: the rolling element; b: the ring, cage or other ball)
     pair_length (n_c,) m; pair_aux (n_c, 2) (roller end: end sign, edge radius m);
     pair_slice_off (n_c + 1,) into slice_drop (n_s,) m; pair_delta_max (n_c,) m (divergence bound);
     pair_strips (n_c,) int64 strips of the traction over a ball contact's ellipse (0: at its centre) and
-    pair_semi_major (n_c,) m/N^(1/3), a = pair_semi_major·F_n^(1/3) (:mod:`mbd_core.kernels.strip_traction`).
+    pair_semi_major (n_c,) m/N^(1/3), a = pair_semi_major·F_n^(1/3), and pair_strip_curv (n_c,) 1/m, κ of
+    the curved contact surface z = κ·y² (:mod:`mbd_core.kernels.strip_traction`).
 Grooves (ball–groove)
     groove_rc, groove_zc, groove_r (n_g,) m; groove_h_off, groove_dr_off (n_g + 1,) into the
     undulation h(θ) and radial offset Δr(θ) tables groove_h, groove_dr, m.
@@ -74,7 +75,7 @@ MODEL_FIELDS = (
     "load_body load_off knot_t knot_coef "
     "bush_a bush_b bush_p_a bush_p_b bush_q_ref bush_k bush_c drag_body drag_c "
     "pair_type pair_a pair_b pair_geom pair_law pair_k pair_n pair_c pair_dmax pair_fric pair_fric_p "
-    "pair_radius pair_radius_b pair_length pair_aux pair_slice_off slice_drop pair_delta_max pair_strips pair_semi_major "
+    "pair_radius pair_radius_b pair_length pair_aux pair_slice_off slice_drop pair_delta_max pair_strips pair_semi_major pair_strip_curv "
     "groove_rc groove_zc groove_r groove_h_off groove_h groove_dr_off groove_dr "
     "race_kind race_value "
     "pocket_kind pocket_angle pocket_r pocket_z pocket_clearance "

@@ -73,10 +73,14 @@ class StripTraction:
     semi_major_m_per_N3 : float
         c in a = c·F_n^(1/3): the semi-major axis of the contact ellipse at 1 N, m/N^(1/3) (Hertz,
         :meth:`mbd_core.contact.hertz.HertzPointContact.semi_axes_m`).
+    deformed_radius_m : float
+        Radius R_d of the deformed contact surface across the major axis, its centre on the ball's
+        side (a groove: 2·r_groove·r_ball/(r_groove + r_ball)); inf for a flat contact surface.
     """
 
     n_strips: int
     semi_major_m_per_N3: float
+    deformed_radius_m: float = math.inf
 
     def __post_init__(self) -> None:
         if not (isinstance(self.n_strips, (int, np.integer)) and 1 <= self.n_strips <= 1000):
@@ -84,6 +88,13 @@ class StripTraction:
         if not (math.isfinite(self.semi_major_m_per_N3) and self.semi_major_m_per_N3 > 0):
             raise ValueError(f"strip traction: semi_major_m_per_N3 must be a positive number, got "
                              f"{self.semi_major_m_per_N3!r}")
+        if not self.deformed_radius_m > 0:
+            raise ValueError(f"strip traction: deformed_radius_m must be > 0 (inf: flat), got {self.deformed_radius_m!r}")
+
+    @property
+    def curvature_per_m(self) -> float:
+        """κ = 1/(2R_d) of z(y) = κ·y², 1/m (0 for a flat surface)."""
+        return 0.5 / self.deformed_radius_m
 
 
 @dataclass(frozen=True)

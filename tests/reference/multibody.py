@@ -231,8 +231,9 @@ def contact_point_force(m, bodies, c, delta, normal, p, surface_velocity=None):
 
 
 def strip_point_force(m, bodies, c, delta, normal, p, theta):
-    """A ball–groove point with strip traction (pair_strips > 0, rigid ring): the slip and spin at the
-    contact centre in the frame x = rolling direction e_θ (projected), y = m × x, then the strips' twin.
+    """A ball–groove point with strip traction (pair_strips > 0, rigid ring): the slip and relative angular
+    velocity at the contact centre in the frame x = rolling direction e_θ (projected), y = m × x, z = m,
+    then the strips' twin over the curved surface z = κ y² (κ = pair_strip_curv).
     Returns (F_n, |v_t|, |F_t|, energy, force (3,) and spin moment (3,) on body a, world)."""
     if not delta > 0:
         return 0.0, 0.0, 0.0, 0.0, np.zeros(3), np.zeros(3)
@@ -244,12 +245,13 @@ def strip_point_force(m, bodies, c, delta, normal, p, theta):
     x = e_theta - (e_theta @ normal) * normal
     x /= np.linalg.norm(x)
     y = np.cross(normal, x)
-    spin = (bodies.omega[a] - bodies.omega[b]) @ normal
-    fx, fy, mz = strips.strip_traction(
-        fn, m.pair_semi_major[c] * fn ** (1.0 / 3.0), rel @ x, rel @ y, spin,
-        lambda u: float(laws.friction_coefficient(m.pair_fric[c], u, m.pair_fric_p[c])), int(m.pair_strips[c]))
+    omega = bodies.omega[a] - bodies.omega[b]
+    fx, fy, mx, my, mz = strips.strip_traction_curved(
+        fn, m.pair_semi_major[c] * fn ** (1.0 / 3.0), rel @ x, rel @ y, (omega @ x, omega @ y, omega @ normal),
+        m.pair_strip_curv[c], lambda u: float(laws.friction_coefficient(m.pair_fric[c], u, m.pair_fric_p[c])),
+        int(m.pair_strips[c]))
     return (fn, float(np.hypot(rel @ x, rel @ y)), float(np.hypot(fx, fy)), k * delta ** (n + 1) / (n + 1),
-            fn * normal + fx * x + fy * y, mz * normal)
+            fn * normal + fx * x + fy * y, mx * x + my * y + mz * normal)
 
 
 def contact_force(m, q, v, c, delta, normal, p):
