@@ -37,6 +37,9 @@ from .results import RunOutput, output_units
 from .described import presets as described_presets
 from .described import studies as described_studies
 from .described.case import DescribedCase
+from .dma import presets as dma_presets
+from .dma import studies as dma_studies
+from .dma.case import DmaCase
 from .slewing import presets as slewing_presets
 from .slewing import studies as slewing_studies
 from .slewing.case import SlewingCase
@@ -50,7 +53,7 @@ log = logging.getLogger(__name__)
 
 #: the bearings with cases: case class → (presets module, studies module)
 _FAMILIES = {SlewingCase: (slewing_presets, slewing_studies), WindCase: (wind_presets, wind_studies),
-             DescribedCase: (described_presets, described_studies)}
+             DescribedCase: (described_presets, described_studies), DmaCase: (dma_presets, dma_studies)}
 PRESETS = {name: c for presets, _ in _FAMILIES.values() for name, c in presets.PRESETS.items()}
 #: named cases: name → one-line description
 CASES = {name: c.description for name, c in PRESETS.items()}
@@ -58,7 +61,8 @@ CASES = {name: c.description for name, c in PRESETS.items()}
 
 #: tables that only one family's case files have (to read files written before ``family`` existed)
 _OWN_TABLES = {SlewingCase: {"geometry", "load", "undulation", "thermal", "top", "bottom"},
-               WindCase: {"rollers", "bodies", "loads"}, DescribedCase: {"bearing", "life"}}
+               WindCase: {"rollers", "bodies", "loads"}, DescribedCase: {"bearing", "life"},
+               DmaCase: {"operation", "traction"}}
 
 
 def _case_class(data: dict, source: str) -> type:

@@ -89,10 +89,12 @@ class DrebConstant:
 
 @dataclass(frozen=True)
 class DrebFalling:
-    """Traction κ = A − B·u, not below zero."""
+    """Traction κ = A − B·u, not below zero; blended from 0 below ``u0_m_s`` (m/s) when it is > 0
+    (0: none, κ jumps to A at the first slip, which no explicit step resolves)."""
 
     A: float
     B_s_m: float
+    u0_m_s: float = 0.0
 
     code = 3
 
@@ -100,10 +102,12 @@ class DrebFalling:
         _finite("DREB falling traction", A=self.A, B_s_m=self.B_s_m)
         if not (self.A >= 0.0 and self.B_s_m >= 0.0):
             raise ValueError(f"DREB falling traction: A and B_s_m must be ≥ 0, got {self.A}, {self.B_s_m}")
+        if not (math.isfinite(self.u0_m_s) and self.u0_m_s >= 0.0):
+            raise ValueError(f"DREB falling traction: u0_m_s must be ≥ 0, got {self.u0_m_s}")
 
     @property
     def params(self) -> np.ndarray:
-        return np.array([self.A, self.B_s_m, 0.0, 0.0])
+        return np.array([self.A, self.B_s_m, self.u0_m_s, 0.0])
 
 
 @dataclass(frozen=True)

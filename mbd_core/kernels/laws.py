@@ -19,7 +19,8 @@ Friction coefficient μ(u) of the slip speed u = |v_slip| ≥ 0 (m/s), parameter
     1977: *Rolling Element Bearing and Lubricant Technology Program, Part I: Prediction of Torque
     in DMA Bearings*).
 ``FRICTION_DREB_CONSTANT`` — κ = A (p0 = A) for u > 0 (blended to 0 below p1 = u_0, m/s).
-``FRICTION_DREB_FALLING`` — κ = A − B u (p0 = A, p1 = B), not below 0.
+``FRICTION_DREB_FALLING`` — κ = A − B u (p0 = A, p1 = B), not below 0; blended from 0 below
+    p2 = u_0 (m/s) when p2 > 0 (as the constant law; 0: none, κ(0⁺) = A).
 ``FRICTION_KRAGELSKII`` — κ = (A + B u) e^(−C u) + D (p0 = A, p1 = B, p2 = C, p3 = D).
 
 The friction force on body 1 opposes the slip velocity v_t of body 1 relative to body 2:
@@ -85,6 +86,9 @@ def friction_coefficient(law, u, p0, p1, p2, p3):
     if law == FRICTION_DREB_CONSTANT:
         return step(u, 0.0, 0.0, p1, p0)
     if law == FRICTION_DREB_FALLING:
+        if u < p2:
+            edge = p0 - p1 * p2
+            return step(u, 0.0, 0.0, p2, edge if edge > 0.0 else 0.0)
         mu = p0 - p1 * u
         return mu if mu > 0.0 else 0.0
     mu = (p0 + p1 * u) * math.exp(-p2 * u) + p3
@@ -114,6 +118,9 @@ def friction_slope(law, u, p0, p1, p2, p3):
     if law == FRICTION_DREB_CONSTANT:
         return step_slope(u, 0.0, 0.0, p1, p0)
     if law == FRICTION_DREB_FALLING:
+        if u < p2:
+            edge = p0 - p1 * p2
+            return step_slope(u, 0.0, 0.0, p2, edge if edge > 0.0 else 0.0)
         return -p1 if p0 - p1 * u > 0.0 else 0.0
     mu = (p0 + p1 * u) * math.exp(-p2 * u) + p3
     if mu <= 0.0:

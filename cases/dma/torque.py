@@ -1,0 +1,170 @@
+"""One dynamic run of the DMA bearing and its friction torque (:mod:`cases.dma.case`).
+
+Model: the inner race held, the outer race driven at its speed about z and free to move along and
+across it under the thrust (so it seats on the balls), 24 balls free in six degrees of freedom with
+Hertz contacts in both grooves (each its own constant, :func:`mbd_core.contact.hertz.ball_on_groove`),
+frictionless Hertz contacts between neighbours, the case's traction at the raceways over the contact
+ellipses, and a Stokes drag on every ball. The run starts at the static equilibrium under the thrust
+with the balls rolling without slip (:func:`mbd_core.multibody.bearings.set_rolling_velocities`).
+
+Torque of a race: the moment about the bearing axis of every force and moment the balls put on it,
+re-evaluated at each recorded sample from the recorded state (:func:`mbd_core.multibody.evaluate_forces`).
+Its mean and ripple are taken over the run after ``analysis.settle_fraction`` of it; its spectrum
+and that of ball 0's radial and axial position over the same part (Hann window).
+
+Reference frequency: the elastic contact frequency of a ball between its two linearised Hertz
+contacts, f = sqrt((k_i + k_o)/m)/(2π), k = 1.5·Q/δ at the mean contact load Q.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from foundation.lubricants import LUBRICANT_A
+from foundation.materials import ElasticMaterial
+from mbd_core.contact.hertz import ball_on_groove, sphere_on_sphere
+from mbd_core.multibody import (ContactLaw, Driven, Fixed, ModelBuilder, State, evaluate_forces, simulate,
+                                stable_timestep)
+from mbd_core.multibody.bearings import add_ball_row, ball_mass_kg, set_rolling_velocities
+from mbd_core.multibody.statics import static_equilibrium
+from mbd_core.quasistatic import BallRow
+
+from .case import DmaCase
+
+__all__ = ["TorqueRun", "ball_row", "build", "run_torque", "stokes_drag_N_s_m", "spectrum_peaks_Hz"]
+
+
+def ball_row(case: DmaCase) -> BallRow:
+    """The bearing as a row with the outer race moving (it carries the thrust)."""
+    b = case.bearing
+    steel = ElasticMaterial("DMA bearing steel", b.E_Pa, b.poisson, b.density_kg_m3)
+    return BallRow("balls", b.n_balls, b.ball_diameter_m, b.pitch_diameter_m, math.radians(b.contact_angle_deg),
+                   b.conformity_outer, b.conformity_inner, "outer", axial_sign=1, ball_material=steel,
+                   race_material=steel)
+
+
+def stokes_drag_N_s_m(case: DmaCase) -> float:
+    """c = 3π·μ·D: the drag of a ball in the oil at the case's temperature, N·s/m."""
+    return 3.0 * math.pi * LUBRICANT_A.dynamic_viscosity_Pa_s(case.operation.temperature_C) * case.bearing.ball_diameter_m
+
+
+def build(case: DmaCase):
+    """(model, state at rest, row bodies, inner, outer) of the case (module docstring)."""
+    row = ball_row(case)
+    b = ModelBuilder()
+    inner = b.add_body("inner race", 1.0, (1e-3, 1e-3, 2e-3), motion=Fixed())
+    outer = b.add_body("outer race", 1.0, (1e-3, 1e-3, 2e-3),
+                       motion=Driven(case.operation.outer_speed_rpm * math.pi / 30.0, translation_free=True))
+    rows = add_ball_row(b, row, outer, inner, friction=case.traction.law(), traction_strips=case.traction.strips)
+    r = row.ball_diameter_m / 2
+    k_ball = sphere_on_sphere(row.ball_diameter_m, row.ball_diameter_m, row.ball_material,
+                              row.ball_material).stiffness_N_per_m1p5
+    n = len(rows.elements)
+    for j, e in enumerate(rows.elements):
+        b.add_ball_ball(e, rows.elements[(j + 1) % n], r, r, ContactLaw(k_ball))
+        if case.operation.drag:
+            b.add_drag(e, stokes_drag_N_s_m(case))
+    b.add_force(outer, (0.0, 0.0, case.operation.thrust_N))
+    model, state = b.finalize()
+    return model, state, rows, inner, outer
+
+
+@dataclass(frozen=True)
+class TorqueRun:
+    """Race torques of one run. ``t_s`` (k,) the samples; ``inner_Nm``, ``outer_Nm`` (k,) the torque
+    the balls put on each race about +z (the outer race turns about +z); ``ball_radial_m``,
+    ``ball_axial_m`` (k,) ball 0's centre; ``settled`` (k,) bool, the part the means are taken over;
+    ``drag_moment_Nm`` the mean moment of the balls' drag about the axis over it (in a steady state
+    the race torques balance it: T_inner + T_outer = M_drag)."""
+
+    t_s: np.ndarray
+    inner_Nm: np.ndarray
+    outer_Nm: np.ndarray
+    ball_radial_m: np.ndarray
+    ball_axial_m: np.ndarray
+    settled: np.ndarray
+    n_balls: int
+    contact_load_N: float
+    contact_frequency_Hz: float
+    drag_per_ball_N: float
+    drag_moment_Nm: float
+    steps: int
+
+    def mean_per_ball(self, which: str) -> float:
+        return float(np.mean(getattr(self, f"{which}_Nm")[self.settled]) / self.n_balls)
+
+    def ripple_per_ball(self, which: str) -> float:
+        """Standard deviation of the race torque per ball over the settled part, N·m."""
+        return float(np.std(getattr(self, f"{which}_Nm")[self.settled]) / self.n_balls)
+
+    def summary(self) -> dict:
+        out = {"steps": self.steps, "contact_load_N": self.contact_load_N,
+               "contact_frequency_Hz": self.contact_frequency_Hz, "drag_per_ball_N": self.drag_per_ball_N,
+               "drag_moment_Nm": self.drag_moment_Nm}
+        for which in ("inner", "outer"):
+            out[f"{which}_race_torque_per_ball_Nm"] = self.mean_per_ball(which)
+            out[f"{which}_race_torque_Nm"] = self.mean_per_ball(which) * self.n_balls
+            out[f"{which}_race_ripple_per_ball_Nm"] = self.ripple_per_ball(which)
+        dt = self.t_s[1] - self.t_s[0]
+        out["ball_motion_peaks_Hz"] = spectrum_peaks_Hz(self.ball_axial_m[self.settled], dt)
+        out["inner_torque_peaks_Hz"] = spectrum_peaks_Hz(self.inner_Nm[self.settled], dt)
+        return out
+
+
+def spectrum_peaks_Hz(signal: np.ndarray, dt_s: float, n_peaks: int = 3) -> list[float]:
+    """Frequencies of the ``n_peaks`` highest local maxima of the Hann-windowed amplitude spectrum
+    (the mean removed), Hz, highest first; the lowest three bins (below three periods in the record)
+    are left out, where the window's leakage of a slow drift sits."""
+    s = np.asarray(signal, float)
+    if s.size < 8:
+        return []
+    amp = np.abs(np.fft.rfft((s - s.mean()) * np.hanning(s.size)))
+    f = np.fft.rfftfreq(s.size, dt_s)
+    local = np.flatnonzero((amp[1:-1] > amp[:-2]) & (amp[1:-1] >= amp[2:])) + 1
+    local = local[local >= 3]
+    top = local[np.argsort(amp[local])[::-1][:n_peaks]]
+    return [float(f[i]) for i in top]
+
+
+def _contact_frequency_Hz(case: DmaCase, row: BallRow, load_N: float) -> float:
+    a0 = row.contact_angle_rad
+    k = 0.0
+    for raceway, f in (("inner", case.bearing.conformity_inner), ("outer", case.bearing.conformity_outer)):
+        hertz = ball_on_groove(row.ball_diameter_m, f, row.pitch_diameter_m, a0, raceway, row.ball_material,
+                               row.race_material)
+        k += 1.5 * load_N / float(hertz.approach_m(load_N))
+    m = ball_mass_kg(row.ball_diameter_m, row.ball_material.density_kg_m3)
+    return math.sqrt(k / m) / (2.0 * math.pi)
+
+
+def run_torque(case: DmaCase) -> TorqueRun:
+    """The run of the case and its race torques (module docstring)."""
+    model, state, rows, inner, outer = build(case)
+    start = static_equilibrium(model, state).state
+    set_rolling_velocities(model, start, rows.elements, outer, inner)
+    step = stable_timestep(model, start).timestep_s
+    record_every = max(1, int(case.analysis.sample_interval_s / step))
+    run = simulate(model, start, case.analysis.duration_s, timestep_s=step, record_every=record_every)
+    t = run["t"]
+    torque = np.empty((t.size, 2))
+    work = None
+    for k in range(t.size):
+        s = State(float(t[k]), run["q"][k].copy(), run["v"][k].copy(), np.zeros(0), np.zeros(0))
+        work = evaluate_forces(model, s, work)
+        torque[k] = work.body_t[inner, 2], work.body_t[outer, 2]
+    settled = t >= t[0] + case.analysis.settle_fraction * (t[-1] - t[0])
+    e0 = rows.elements[0]
+    x = run["q"][:, e0, :3]
+    loads = run["fn"][:, list(rows.moving_pairs)][settled]
+    row = ball_row(case)
+    load = float(loads.mean())
+    c = stokes_drag_N_s_m(case) if case.operation.drag else 0.0
+    balls_q, balls_v = run["q"][settled][:, list(rows.elements), :3], run["v"][settled][:, list(rows.elements), :3]
+    drag = c * float(np.mean(np.linalg.norm(balls_v, axis=2)))
+    moment = -c * float(np.mean(np.sum(balls_q[..., 0] * balls_v[..., 1] - balls_q[..., 1] * balls_v[..., 0], axis=1)))
+    return TorqueRun(t, torque[:, 0], torque[:, 1], np.hypot(x[:, 0], x[:, 1]), x[:, 2], settled,
+                     len(rows.elements), load, _contact_frequency_Hz(case, row, load), drag, moment,
+                     int(round((t[-1] - t[0]) / step)))
