@@ -11,7 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Coulomb", "DrebLinear", "DrebConstant", "DrebFalling", "Kragelskii", "THESIS_FRICTION", "ADAMS_PAPER_FRICTION"]
+__all__ = ["Coulomb", "DrebLinear", "DrebConstant", "DrebFalling", "Kragelskii", "LimitingShear", "MixedFriction",
+           "asperity_load_share", "THESIS_FRICTION", "ADAMS_PAPER_FRICTION"]
 
 
 def _finite(owner: str, **values: float) -> None:
@@ -133,6 +134,82 @@ class Kragelskii:
     @property
     def params(self) -> np.ndarray:
         return np.array([self.A, self.B_s_m, self.C_s_m, self.D])
+
+
+@dataclass(frozen=True)
+class LimitingShear:
+    """Traction of a lubricant film, κ = κ_L·(1 − exp(−u/u_c)): viscous at small slip, at the limiting
+    shear stress τ_L = κ_L·p̄ beyond (Bair & Winer, J. Lubr. Technol. 101 (1979) 258–265:
+    τ/τ_L = 1 − exp(−η·γ̇/τ_L), γ̇ = u/h). :meth:`from_film` takes κ_L and u_c = h·τ_L/η from the
+    film, the mean pressure and the viscosity in the contact."""
+
+    kappa_L: float
+    u_c_m_s: float
+
+    code = 5
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.kappa_L) and self.kappa_L >= 0.0):
+            raise ValueError(f"limiting-shear traction: kappa_L must be ≥ 0, got {self.kappa_L}")
+        if not (math.isfinite(self.u_c_m_s) and self.u_c_m_s > 0.0):
+            raise ValueError(f"limiting-shear traction: u_c_m_s must be > 0, got {self.u_c_m_s}")
+
+    @classmethod
+    def from_film(cls, film_m: float, mean_pressure_Pa: float, viscosity_Pa_s: float,
+                  limiting_shear_coefficient: float = 0.075) -> "LimitingShear":
+        """κ_L = τ_L/p̄ = ``limiting_shear_coefficient`` (τ_L ∝ p, Bair & Winer; 0.05–0.1 for mineral
+        oils) and u_c = h·τ_L/η with η the viscosity in the contact (at its pressure)."""
+        for name, v in (("film_m", film_m), ("mean_pressure_Pa", mean_pressure_Pa),
+                        ("viscosity_Pa_s", viscosity_Pa_s), ("limiting_shear_coefficient", limiting_shear_coefficient)):
+            if not (math.isfinite(v) and v > 0.0):
+                raise ValueError(f"limiting-shear traction: {name} must be > 0, got {v!r}")
+        tau_L = limiting_shear_coefficient * mean_pressure_Pa
+        return cls(limiting_shear_coefficient, film_m * tau_L / viscosity_Pa_s)
+
+    @property
+    def params(self) -> np.ndarray:
+        return np.array([self.kappa_L, self.u_c_m_s, 0.0, 0.0])
+
+
+def asperity_load_share(film_parameter: float, B: float, C: float) -> float:
+    """φ = N_asperity/N = exp(−B·Λ^C) (Zhou & Hoeprich, J. Tribol. 113 (1991) 590–597); B and C
+    belong to the surfaces (their paper gives them for three finishes; measured surfaces their own)."""
+    for name, v in (("film_parameter", film_parameter), ("B", B), ("C", C)):
+        if not (math.isfinite(v) and v >= 0.0):
+            raise ValueError(f"asperity load share: {name} must be ≥ 0, got {v!r}")
+    return math.exp(-B * film_parameter**C)
+
+
+@dataclass(frozen=True)
+class MixedFriction:
+    """Mixed lubrication: the asperities carry the share φ(Λ) of the load with the boundary friction
+    μ_b, the film the rest with its traction κ_L, both reached over the film's slip scale u_c:
+    κ = (φ·μ_b + (1 − φ)·κ_L)·(1 − exp(−u/u_c)) (Zhou & Hoeprich's weighting,
+    :func:`asperity_load_share`). Φ is that of the operating point (the film parameter Λ given)."""
+
+    mu_boundary: float
+    fluid: LimitingShear
+    film_parameter: float
+    B: float
+    C: float
+
+    code = 5
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.mu_boundary) and self.mu_boundary >= 0.0):
+            raise ValueError(f"mixed friction: mu_boundary must be ≥ 0, got {self.mu_boundary}")
+        if not isinstance(self.fluid, LimitingShear):
+            raise TypeError("mixed friction: fluid must be a LimitingShear traction")
+        asperity_load_share(self.film_parameter, self.B, self.C)
+
+    @property
+    def asperity_share(self) -> float:
+        return asperity_load_share(self.film_parameter, self.B, self.C)
+
+    @property
+    def params(self) -> np.ndarray:
+        phi = self.asperity_share
+        return np.array([phi * self.mu_boundary + (1.0 - phi) * self.fluid.kappa_L, self.fluid.u_c_m_s, 0.0, 0.0])
 
 
 #: The slewing-ring thesis' friction: μs = 0.24, μd = 0.14, vs = 1 mm/s, vd = 2 mm/s.

@@ -26,6 +26,7 @@ from .laws import (
     FRICTION_DREB_FALLING,
     FRICTION_DREB_LINEAR,
     FRICTION_KRAGELSKII,
+    FRICTION_LIMITING_SHEAR,
     NORMAL_HUNT_CROSSLEY,
     NORMAL_IMPACT,
     friction_coefficient,
@@ -44,6 +45,7 @@ __all__ = [
     "NORMAL_IMPACT", "NORMAL_HUNT_CROSSLEY",
     "FRICTION_COULOMB", "FRICTION_DREB_LINEAR", "FRICTION_DREB_CONSTANT", "FRICTION_DREB_FALLING",
     "FRICTION_KRAGELSKII",
+    "FRICTION_LIMITING_SHEAR",
     "step", "normal_force", "friction_coefficient", "friction_force", "ball_groove_contacts",
     "free_rotation_step", "quat_rotate",
 ]

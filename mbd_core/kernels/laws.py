@@ -22,6 +22,10 @@ Friction coefficient μ(u) of the slip speed u = |v_slip| ≥ 0 (m/s), parameter
 ``FRICTION_DREB_FALLING`` — κ = A − B u (p0 = A, p1 = B), not below 0; blended from 0 below
     p2 = u_0 (m/s) when p2 > 0 (as the constant law; 0: none, κ(0⁺) = A).
 ``FRICTION_KRAGELSKII`` — κ = (A + B u) e^(−C u) + D (p0 = A, p1 = B, p2 = C, p3 = D).
+``FRICTION_LIMITING_SHEAR`` — κ = κ_L (1 − e^(−u/u_c)) (p0 = κ_L, p1 = u_c m/s): the traction of a
+    film that shears viscously at small slip and at its limiting shear stress τ_L = κ_L·p̄ beyond
+    (Bair & Winer's τ/τ_L = 1 − exp(−η γ̇/τ_L) with γ̇ = u/h, so u_c = h τ_L/η); also the mixed
+    lubrication law with κ_L the asperity-weighted blend (:mod:`mbd_core.contact.friction`).
 
 The friction force on body 1 opposes the slip velocity v_t of body 1 relative to body 2:
 F_t = −μ(|v_t|) F_n v_t/|v_t| (zero at |v_t| = 0).
@@ -41,6 +45,7 @@ FRICTION_DREB_LINEAR = 1
 FRICTION_DREB_CONSTANT = 2
 FRICTION_DREB_FALLING = 3
 FRICTION_KRAGELSKII = 4
+FRICTION_LIMITING_SHEAR = 5
 
 
 @njit(cache=True)
@@ -91,6 +96,8 @@ def friction_coefficient(law, u, p0, p1, p2, p3):
             return step(u, 0.0, 0.0, p2, edge if edge > 0.0 else 0.0)
         mu = p0 - p1 * u
         return mu if mu > 0.0 else 0.0
+    if law == FRICTION_LIMITING_SHEAR:
+        return p0 * -math.expm1(-u / p1)
     mu = (p0 + p1 * u) * math.exp(-p2 * u) + p3
     return mu if mu > 0.0 else 0.0
 
@@ -122,6 +129,8 @@ def friction_slope(law, u, p0, p1, p2, p3):
             edge = p0 - p1 * p2
             return step_slope(u, 0.0, 0.0, p2, edge if edge > 0.0 else 0.0)
         return -p1 if p0 - p1 * u > 0.0 else 0.0
+    if law == FRICTION_LIMITING_SHEAR:
+        return p0 / p1 * math.exp(-u / p1)
     mu = (p0 + p1 * u) * math.exp(-p2 * u) + p3
     if mu <= 0.0:
         return 0.0

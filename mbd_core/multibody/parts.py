@@ -8,11 +8,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..contact.friction import Coulomb, DrebConstant, DrebFalling, DrebLinear, Kragelskii
+from ..contact.friction import Coulomb, DrebConstant, DrebFalling, DrebLinear, Kragelskii, LimitingShear, MixedFriction
 
 __all__ = ["ContactLaw", "StripTraction", "Free", "Fixed", "Driven", "FRICTION_TYPES", "quat_from_axis_angle", "quat_z_to"]
 
-FRICTION_TYPES = (Coulomb, DrebLinear, DrebConstant, DrebFalling, Kragelskii)
+FRICTION_TYPES = (Coulomb, DrebLinear, DrebConstant, DrebFalling, Kragelskii, LimitingShear, MixedFriction)
 
 
 def quat_from_axis_angle(axis, angle_rad: float) -> np.ndarray:

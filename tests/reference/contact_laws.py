@@ -32,6 +32,8 @@ def friction_coefficient(law, u, p):
     if law == 3:
         falling = np.maximum(p[0] - p[1] * u, 0.0)
         return np.where(u < p[2], step(u, 0, 0, p[2], max(p[0] - p[1] * p[2], 0.0)), falling) if p[2] > 0 else falling
+    if law == 5:
+        return p[0] * (1.0 - np.exp(-u / p[1]))
     return np.maximum((p[0] + p[1] * u) * np.exp(-p[2] * u) + p[3], 0.0)
 
 
