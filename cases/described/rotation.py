@@ -25,6 +25,11 @@ the no-slip cage speed ω_c = ω_m (1 ∓ D cos α/d_m)/2 of the loaded contact 
 Kotzalas, *Essential Concepts*, ch. 8). The quasi-static model has neither friction nor the balls'
 centrifugal and gyroscopic forces: the deviation from it measures them.
 
+Friction torque: the moment about the bearing axis of what the elements, cages and spacers put on each
+ring (:func:`mbd_core.multibody.ring_torque.axial_torques`), its mean, ripple and spectrum over the run
+after its start-up share, and the residual of their balance with the rate of the rolling set's angular
+momentum (``balance_residual_Nm``; exact for explicit friction, approximate with implicit friction).
+
 Modal rings: the rings the file gives ``[rings.X]`` tables (unless ``bearing.rings = "rigid"``) are
 modal bodies (their reductions as for the quasi-static study, raceways sampled the same way): the
 moving one driven, its mass that of its finite-element model; the fixed one held at its frame.
@@ -47,6 +52,7 @@ import numpy as np
 from mbd_core.bearing import rolling_kinematics
 from mbd_core.multibody import StepTooLargeError, largest_load_step_error
 from mbd_core.multibody.bearings import _rotate, row_speed_rad_s
+from mbd_core.multibody.ring_torque import axial_angular_momentum, axial_torques, spectrum_peaks_Hz
 from mbd_core.quasistatic import Bearing, FourPointRow, solve_load_distribution
 
 from ..config import CaseError
@@ -178,6 +184,41 @@ def compare(sc: RotationScene, desc, run: dict, omega_rad_s: float) -> dict:
             "settled_from_s": float(t[settled][0]), "compared_samples": len(picks), "moving_ring": ring}
 
 
+#: samples the ring torque is evaluated at, at most (evenly picked from the record)
+TORQUE_SAMPLES = 4000
+
+
+def _ring_torque(sc: RotationScene, run: dict, out) -> None:
+    """The friction torque on both rings about the axis (:func:`mbd_core.multibody.ring_torque.axial_torques`):
+    mean, ripple and spectrum peaks over the settled part; ring_torque.csv and ring_torque.png."""
+    from ..torque_plots import plot_ring_torque
+
+    t, torque = axial_torques(sc.model, run, (sc.moving, sc.fixed), TORQUE_SAMPLES)
+    settled = t >= t[0] + START_UP_SHARE * (t[-1] - t[0])
+    figures = {}
+    for j, side in enumerate(("moving", "fixed")):
+        values = torque[settled, j]
+        figures[f"{side}_ring_Nm"] = float(values.mean())
+        figures[f"{side}_ring_ripple_Nm"] = float(values.std())
+        figures[f"{side}_ring_peaks_Hz"] = spectrum_peaks_Hz(values, t[1] - t[0])
+    between = [i for i in range(sc.model.n_bodies) if i not in (sc.moving, sc.fixed)]
+    if not np.any(sc.model.arrays.body_modal[between] >= 0):
+        # the rolling set gets all its forces from the rings: T_moving + T_fixed = −dL/dt
+        ts = np.asarray(run["t"])
+        keep = ts >= t[settled][0]
+        momentum = axial_angular_momentum(sc.model, {"q": run["q"][keep], "v": run["v"][keep]}, between)
+        rate = (momentum[-1] - momentum[0]) / (ts[keep][-1] - ts[keep][0])
+        figures["balance_residual_Nm"] = float(torque[settled].sum(axis=1).mean() + rate)
+    out.summary["ring_torque"] = figures
+    out.write_csv("ring_torque.csv", ("t_s", "moving_ring_torque_Nm", "fixed_ring_torque_Nm"),
+                  zip(t, torque[:, 0], torque[:, 1]))
+    out.save_figure(plot_ring_torque(t, {"moving ring": torque[:, 0], "fixed ring": torque[:, 1]}, settled,
+                                     "Torque of the rolling elements, cages and drag on the rings about the axis"),
+                    "ring_torque.png")
+    out.note(f"friction torque about the axis: moving ring {figures['moving_ring_Nm']:.4g} N·m, fixed ring "
+             f"{figures['fixed_ring_Nm']:.4g} N·m (ripple {figures['moving_ring_ripple_Nm']:.2g} N·m)")
+
+
 def run_rotation(case, desc, out, progress=None) -> None:
     """Build, start and run the scene; write the series, the comparison and a plot."""
     from .rotation_plots import plot_rotation
@@ -219,6 +260,7 @@ def run_rotation(case, desc, out, progress=None) -> None:
         out.write_csv(f"element_loads_{name}.csv", ["t_s"] + columns,
                       (np.concatenate([[ti], fi]) for ti, fi in zip(t, run["fn"][:, list(rb.moving_pairs)])))
     out.save_figure(plot_rotation(sc, desc, run, fig), "rotation.png")
+    _ring_torque(sc, run, out)
     for r in fig["rows"]:
         speed = r.get("cage_speed_rpm", r.get("ball_orbit_speed_rpm"))
         out.note(f"row {r['row']}: largest ball load {r['largest_load_N']:.0f} N (quasi-static "

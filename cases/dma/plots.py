@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..results import plt
+from ..torque_plots import amplitude_spectrum
 from .torque import TorqueRun
 
 __all__ = ["plot_torque", "plot_spectrum", "plot_models", "plot_speed"]
@@ -27,13 +28,6 @@ def plot_torque(run: TorqueRun, title: str):
     return fig
 
 
-def _spectrum(ax, signal, dt, label):
-    s = signal - signal.mean()
-    amp = np.abs(np.fft.rfft(s * np.hanning(s.size)))
-    f = np.fft.rfftfreq(s.size, dt)
-    ax.semilogy(f[1:] / 1e3, amp[1:] / amp[1:].max(), lw=0.8, label=label)
-
-
 def plot_spectrum(run: TorqueRun, title: str):
     """Amplitude spectra (settled part, Hann window) of ball 0's axial and radial position and of the
     inner race torque, with the linearised Hertz contact frequency marked."""
@@ -41,7 +35,7 @@ def plot_spectrum(run: TorqueRun, title: str):
     dt = run.t_s[1] - run.t_s[0]
     for sig, label in ((run.ball_axial_m, "ball 1, axial position"), (run.ball_radial_m, "ball 1, radial position"),
                        (run.inner_Nm, "inner race torque")):
-        _spectrum(ax, sig[run.settled], dt, label)
+        amplitude_spectrum(ax, sig[run.settled], dt, label)
     ax.axvline(run.contact_frequency_Hz / 1e3, color="k", ls="--", lw=1,
                label=f"Hertz contact frequency {run.contact_frequency_Hz / 1e3:.2f} kHz")
     ax.set_xlim(0.0, min(30.0, 0.5 / dt / 1e3))

@@ -8,7 +8,7 @@ ellipses, and a Stokes drag on every ball. The run starts at the static equilibr
 with the balls rolling without slip (:func:`mbd_core.multibody.bearings.set_rolling_velocities`).
 
 Torque of a race: the moment about the bearing axis of every force and moment the balls put on it,
-re-evaluated at each recorded sample from the recorded state (:func:`mbd_core.multibody.evaluate_forces`).
+re-evaluated at each recorded sample from the recorded state (:func:`mbd_core.multibody.ring_torque.axial_torques`).
 Its mean and ripple are taken over the run after ``analysis.settle_fraction`` of it; its spectrum
 and that of ball 0's radial and axial position over the same part (Hann window).
 
@@ -26,15 +26,15 @@ import numpy as np
 from foundation.lubricants import LUBRICANT_A
 from foundation.materials import ElasticMaterial
 from mbd_core.contact.hertz import ball_on_groove, sphere_on_sphere
-from mbd_core.multibody import (ContactLaw, Driven, Fixed, ModelBuilder, State, evaluate_forces, simulate,
-                                stable_timestep)
+from mbd_core.multibody import ContactLaw, Driven, Fixed, ModelBuilder, simulate, stable_timestep
 from mbd_core.multibody.bearings import add_ball_row, ball_mass_kg, set_rolling_velocities
+from mbd_core.multibody.ring_torque import axial_torques, spectrum_peaks_Hz
 from mbd_core.multibody.statics import static_equilibrium
 from mbd_core.quasistatic import BallRow
 
 from .case import DmaCase
 
-__all__ = ["TorqueRun", "ball_row", "build", "run_torque", "stokes_drag_N_s_m", "spectrum_peaks_Hz"]
+__all__ = ["TorqueRun", "ball_row", "build", "run_torque", "stokes_drag_N_s_m"]
 
 
 def ball_row(case: DmaCase) -> BallRow:
@@ -114,21 +114,6 @@ class TorqueRun:
         return out
 
 
-def spectrum_peaks_Hz(signal: np.ndarray, dt_s: float, n_peaks: int = 3) -> list[float]:
-    """Frequencies of the ``n_peaks`` highest local maxima of the Hann-windowed amplitude spectrum
-    (the mean removed), Hz, highest first; the lowest three bins (below three periods in the record)
-    are left out, where the window's leakage of a slow drift sits."""
-    s = np.asarray(signal, float)
-    if s.size < 8:
-        return []
-    amp = np.abs(np.fft.rfft((s - s.mean()) * np.hanning(s.size)))
-    f = np.fft.rfftfreq(s.size, dt_s)
-    local = np.flatnonzero((amp[1:-1] > amp[:-2]) & (amp[1:-1] >= amp[2:])) + 1
-    local = local[local >= 3]
-    top = local[np.argsort(amp[local])[::-1][:n_peaks]]
-    return [float(f[i]) for i in top]
-
-
 def _contact_frequency_Hz(case: DmaCase, row: BallRow, load_N: float) -> float:
     a0 = row.contact_angle_rad
     k = 0.0
@@ -148,13 +133,7 @@ def run_torque(case: DmaCase) -> TorqueRun:
     step = stable_timestep(model, start).timestep_s
     record_every = max(1, int(case.analysis.sample_interval_s / step))
     run = simulate(model, start, case.analysis.duration_s, timestep_s=step, record_every=record_every)
-    t = run["t"]
-    torque = np.empty((t.size, 2))
-    work = None
-    for k in range(t.size):
-        s = State(float(t[k]), run["q"][k].copy(), run["v"][k].copy(), np.zeros(0), np.zeros(0))
-        work = evaluate_forces(model, s, work)
-        torque[k] = work.body_t[inner, 2], work.body_t[outer, 2]
+    t, torque = axial_torques(model, run, (inner, outer))
     settled = t >= t[0] + case.analysis.settle_fraction * (t[-1] - t[0])
     e0 = rows.elements[0]
     x = run["q"][:, e0, :3]

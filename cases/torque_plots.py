@@ -1,0 +1,39 @@
+"""Figures of the torque on a bearing's rings: over time and its spectrum (any case family)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .results import plt
+
+__all__ = ["amplitude_spectrum", "plot_ring_torque"]
+
+
+def amplitude_spectrum(ax, signal, dt_s: float, label: str) -> None:
+    """The Hann-windowed amplitude spectrum of ``signal`` (mean removed), relative to its largest
+    line, on a log axis in kHz."""
+    s = np.asarray(signal, float) - np.mean(signal)
+    amp = np.abs(np.fft.rfft(s * np.hanning(s.size)))
+    f = np.fft.rfftfreq(s.size, dt_s)
+    top = amp[1:].max() if amp.size > 1 and amp[1:].max() > 0 else 1.0
+    ax.semilogy(f[1:] / 1e3, amp[1:] / top, lw=0.8, label=label)
+
+
+def plot_ring_torque(t_s, torques: dict, settled, title: str):
+    """Torque about the bearing axis on each ring over time (top, the settled part shaded) and the
+    spectrum of the settled part (bottom). ``torques``: name → (k,) N·m."""
+    fig, (ax, bx) = plt().subplots(2, 1, figsize=(9, 6.5), constrained_layout=True)
+    t = np.asarray(t_s)
+    for name, values in torques.items():
+        ax.plot(t, values, lw=0.8, label=f"{name}: mean {np.mean(np.asarray(values)[settled]):.4g} N·m")
+        amplitude_spectrum(bx, np.asarray(values)[settled], t[1] - t[0], name)
+    ax.axvspan(t[settled][0], t[-1], color="0.92", zorder=0, label="settled part (mean, spectrum)")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("torque about the axis (N·m)")
+    ax.set_title(title)
+    bx.set_xlabel("frequency (kHz)")
+    bx.set_ylabel("amplitude (relative)")
+    for a in (ax, bx):
+        a.grid(True, alpha=0.3)
+        a.legend(loc="best", fontsize=8)
+    return fig
