@@ -102,12 +102,19 @@ def test_with_friction_the_cage_runs_near_the_no_slip_speed_and_pockets_push_it(
     assert row["largest_load_N"] == pytest.approx(row["quasistatic_largest_load_N"], rel=0.02), row
 
 
-def test_the_rotation_case_writes_its_outputs(tmp_path, capsys):
+def _caged_case(tmp_path, name: str, rotation_keys: str):
+    """A rotation case file of the caged test bearing with these ``[rotation]`` keys."""
     bearing = tmp_path / "acbb.toml"
     bearing.write_text(f'[bearing]\nname = "acbb"\n{ROW}[rows.separator]\n{SEPARATORS["cage"]}\n{LOAD}')
-    case = tmp_path / "case.toml"
+    case = tmp_path / f"{name}.toml"
     case.write_text(f'family = "bearing"\nname = "acbb"\n[bearing]\nfile = "{bearing}"\n[study]\nkind = "rotation"\n'
-                    "[rotation]\nspeed_rpm = 300.0\nmoving_ring_mass_kg = 1.0\nduration_s = 0.01\nfriction = false\n")
+                    f"[rotation]\n{rotation_keys}")
+    return case
+
+
+def test_the_rotation_case_writes_its_outputs(tmp_path, capsys):
+    case = _caged_case(tmp_path, "case", "speed_rpm = 300.0\nmoving_ring_mass_kg = 1.0\nduration_s = 0.01\n"
+                                         "friction = false\n")
     assert main(["run", str(case), "--out", str(tmp_path / "run")]) in (0, None)
     capsys.readouterr()
     summary = json.loads((tmp_path / "run" / "summary.json").read_text())
@@ -129,11 +136,8 @@ def test_friction_torque_on_both_rings_balances_the_rolling_sets_momentum(tmp_pa
     (they get all their forces from the rings): the summary's residual within 2 % of the moving
     ring's torque (explicit friction, the torque at every step against the momentum's end points;
     measured 7e-5 N·m against 0.0133 N·m, 0.5 %)."""
-    bearing = tmp_path / "acbb.toml"
-    bearing.write_text(f'[bearing]\nname = "acbb"\n{ROW}[rows.separator]\n{SEPARATORS["cage"]}\n{LOAD}')
-    case = tmp_path / "torque.toml"
-    case.write_text(f'family = "bearing"\nname = "acbb"\n[bearing]\nfile = "{bearing}"\n[study]\nkind = "rotation"\n'
-                    "[rotation]\nspeed_rpm = 1000.0\nmoving_ring_mass_kg = 1.0\nduration_s = 0.01\nrecord_every = 1\n")
+    case = _caged_case(tmp_path, "torque", "speed_rpm = 1000.0\nmoving_ring_mass_kg = 1.0\nduration_s = 0.01\n"
+                                           "record_every = 1\n")
     assert main(["run", str(case), "--out", str(tmp_path / "torque")]) in (0, None)
     capsys.readouterr()
     torque = json.loads((tmp_path / "torque" / "summary.json").read_text())["ring_torque"]
@@ -142,13 +146,8 @@ def test_friction_torque_on_both_rings_balances_the_rolling_sets_momentum(tmp_pa
 
 
 def _rotation_case(tmp_path, name, rotation_keys):
-    bearing = tmp_path / "acbb.toml"
-    bearing.write_text(f'[bearing]\nname = "acbb"\n{ROW}[rows.separator]\n{SEPARATORS["cage"]}\n{LOAD}')
-    case = tmp_path / f"{name}.toml"
-    case.write_text(f'family = "bearing"\nname = "acbb"\n[bearing]\nfile = "{bearing}"\n[study]\nkind = "rotation"\n'
-                    "[rotation]\nspeed_rpm = 1000.0\nmoving_ring_mass_kg = 1.0\nduration_s = 0.01\nrecord_every = 10\n"
-                    f"implicit_friction = true\n{rotation_keys}")
-    return case
+    return _caged_case(tmp_path, name, "speed_rpm = 1000.0\nmoving_ring_mass_kg = 1.0\nduration_s = 0.01\n"
+                                       f"record_every = 10\nimplicit_friction = true\n{rotation_keys}")
 
 
 def test_the_implicit_integrator_agrees_with_the_explicit_run(tmp_path, capsys):

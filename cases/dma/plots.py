@@ -11,6 +11,15 @@ from .torque import TorqueRun
 __all__ = ["plot_torque", "plot_spectrum", "plot_models", "plot_speed"]
 
 
+def _finish(fig, ax, xlabel: str, ylabel: str, title: str):
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(True, alpha=0.3, which="both")
+    ax.legend(loc="best", fontsize=8)
+    ax.set_title(title)
+    return fig
+
+
 def plot_torque(run: TorqueRun, title: str):
     """Torque per ball on each race over time; the settled part shaded."""
     fig, ax = plt().subplots(figsize=(8, 4.5), constrained_layout=True)
@@ -20,12 +29,7 @@ def plot_torque(run: TorqueRun, title: str):
         ax.plot(t, y, lw=0.7, color=colour,
                 label=f"{which} race, mean {run.mean_per_ball(which):.3g} N·m (settled part)")
     ax.axvspan(t[run.settled][0], t[-1], color="0.9", zorder=0, label="settled part (means, spectra)")
-    ax.set_xlabel("time (ms)")
-    ax.set_ylabel("torque per ball about the axis (N·m)")
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    ax.set_title(title)
-    return fig
+    return _finish(fig, ax, "time (ms)", "torque per ball about the axis (N·m)", title)
 
 
 def plot_spectrum(run: TorqueRun, title: str):
@@ -39,12 +43,7 @@ def plot_spectrum(run: TorqueRun, title: str):
     ax.axvline(run.contact_frequency_Hz / 1e3, color="k", ls="--", lw=1,
                label=f"Hertz contact frequency {run.contact_frequency_Hz / 1e3:.2f} kHz")
     ax.set_xlim(0.0, min(30.0, 0.5 / dt / 1e3))
-    ax.set_xlabel("frequency (kHz)")
-    ax.set_ylabel("amplitude (relative)")
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    ax.set_title(title)
-    return fig
+    return _finish(fig, ax, "frequency (kHz)", "amplitude (relative)", title)
 
 
 def plot_models(labels, inner, outer, reference: dict, title: str):
@@ -61,11 +60,7 @@ def plot_models(labels, inner, outer, reference: dict, title: str):
                         label="DREB report" if (i, key) == (0, "inner") else None)
     ax.set_xticks(x, labels)
     ax.set_yscale("log")
-    ax.set_ylabel("|mean torque| per ball (N·m)")
-    ax.grid(True, alpha=0.3, which="both")
-    ax.legend(loc="best", fontsize=8)
-    ax.set_title(title)
-    return fig
+    return _finish(fig, ax, "", "|mean torque| per ball (N·m)", title)
 
 
 def plot_speed(speeds, torques: dict, title: str):
@@ -73,9 +68,4 @@ def plot_speed(speeds, torques: dict, title: str):
     fig, ax = plt().subplots(figsize=(8, 4.5), constrained_layout=True)
     for (load, which), values in torques.items():
         ax.plot(speeds, np.abs(values), "o-" if which == "inner" else "s--", label=f"{load:g} N, {which} race")
-    ax.set_xlabel("outer race speed (rev/min)")
-    ax.set_ylabel("|mean torque| of the bearing (N·m)")
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    ax.set_title(title)
-    return fig
+    return _finish(fig, ax, "outer race speed (rev/min)", "|mean torque| of the bearing (N·m)", title)
