@@ -2,8 +2,9 @@
 
 One roller of the 12 MW wind bearing's radial row (Ø55 × 55 mm on its inner raceway, 74 kN, a
 raceway tilt of 0.15 mrad) at 10, 20 and 40 slices: the coupled slices under the roller load
-(:func:`mbd_core.contact.line_halfspace.coupled_slices_under_load`: dense influence matrix, fixed point
-on the half-widths with the approach as an unknown) and the ISO slices under the same load (a scalar
+(:func:`mbd_core.contact.line_halfspace.coupled_slices_under_load`: dense influence matrix interpolated
+from its table over ln(b/w), built by the first call and not timed; fixed point on the half-widths
+with the approach as an unknown) and the ISO slices under the same load (a scalar
 root of Σ k_s·(δ + θx_k − g_k)^(10/9) = Q, scipy brentq). ``--quick``: fewer repeats.
 
 Run::

@@ -33,7 +33,8 @@ follows q_k by fixed-point iteration (A depends on b only through a logarithm; 1
 
 I(m, β) is integrated with t = sin φ (removing the square root at the strip's border) and
 Gauss–Legendre on intervals graded geometrically towards φ = 0, where the self term (m = 0) is
-log-singular and the near strips vary on the scale w/b.
+log-singular and the near strips vary on the scale w/b; once per slice count on a grid of ln β,
+which a cubic spline then interpolates for every pass of the fixed point (:func:`influence_table`).
 
 Units: SI (m, N, Pa).
 """
@@ -45,12 +46,14 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+from scipy.interpolate import CubicSpline
 
 from foundation.validation import check_positive
 
 __all__ = [
     "strip_influence",
     "influence_matrix",
+    "influence_table",
     "CoupledSlices",
     "coupled_slice_loads",
     "coupled_slices_under_load",
@@ -89,15 +92,30 @@ def strip_influence(m, beta):
     return 2.0 * np.sum(weight * np.cos(phi) ** 2 * f, axis=-1)
 
 
+#: range and points of the table of I(m, β) over ln β (cubic spline; :func:`influence_table`)
+_TABLE_BETA = (1e-4, 1e4)
+_TABLE_POINTS = 321
+
+
+@lru_cache(maxsize=16)
+def influence_table(n_slices: int) -> CubicSpline:
+    """I(m, β) for m = 0 … n−1 as a cubic spline in ln β over [1e-4, 1e4] (β clamped to it), so that
+    the fixed point rebuilds A by interpolation instead of quadrature (to 1e-7 relative, tests)."""
+    log_beta = np.linspace(math.log(_TABLE_BETA[0]), math.log(_TABLE_BETA[1]), _TABLE_POINTS)
+    values = np.stack([strip_influence(m, np.exp(log_beta)) for m in range(n_slices)])
+    return CubicSpline(log_beta, values, axis=1)
+
+
 def influence_matrix(n_slices: int, half_width_over_width, E_eff_Pa: float, width_m: float) -> np.ndarray:
     """A (n, n) m/N: the approach on slice i's centre line per newton on slice j.
 
     ``half_width_over_width`` (n,) is b_j / w of each loaded slice (column j).
     """
+    beta = np.clip(np.asarray(half_width_over_width, dtype=float), *_TABLE_BETA)
+    table = influence_table(n_slices)(np.log(beta))          # (m, j): I(m, β_j)
     idx = np.arange(n_slices)
     dist = np.abs(idx[:, None] - idx[None, :])
-    beta = np.broadcast_to(np.asarray(half_width_over_width, dtype=float)[None, :], dist.shape)
-    return 4.0 / (math.pi**2 * E_eff_Pa * width_m) * strip_influence(dist, beta)
+    return 4.0 / (math.pi**2 * E_eff_Pa * width_m) * table[dist, idx[None, :]]
 
 
 @dataclass(frozen=True)
