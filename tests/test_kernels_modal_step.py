@@ -58,6 +58,7 @@ from tests.reference import explicit_step as twin_step
 from tests.reference import modal as ref_modal
 from tests.reference import modal_step as twin
 from tests.reference import multibody as ref
+from tests.reference import multibody_flexible as flex
 
 RTOL = 1e-12
 ATOL_M = 1e-16
@@ -585,13 +586,13 @@ def test_flexible_groove_kernel_angle_is_the_nearest_point_up_to_its_tangent(whe
             g, a = m.pair_geom[c], m.pair_a[c]
             x = bodies.to_local(m.pair_b[c], bodies.r[a])
             th_ball = w.contact_theta[c]
-            eta_ring = st.eta[ref.raceway_tables(m, g)[-1]]
+            eta_ring = st.eta[flex.raceway_tables(m, g)[-1]]
             th_star = ref.nearest_groove_angle(m, g, eta_ring, x, th_ball)
             th_k = kernel_groove_angle(m, g, eta_ring, x, th_ball)
             predicted = _kernel_step(m, g, eta_ring, x, th_star)
             assert abs(th_k - predicted) <= 1e-3 * abs(th_ball - th_star) + 1e-15
             worst_rest = max(worst_rest, abs(th_k - predicted) / abs(th_ball - th_star))
-            centre, tangent, (_, W, _) = ref.deformed_groove_centre(m, g, eta_ring, th_star)
+            centre, tangent, (_, W, _) = flex.deformed_groove_centre(m, g, eta_ring, th_star)
             dist = np.linalg.norm(x - centre)
             # beyond the arc the sampled point p_s is held at the arc's end, so the lever c − p_s turns
             # with the groove: |∂(c − p_s)/∂θ| ≈ r there, not 2 F_D
@@ -661,7 +662,7 @@ def test_flexible_contact_force_and_modal_force_are_minus_the_gradient_of_its_en
 
     e = 1e-10
     grad_eta = np.array([(energy(e * u) - energy(-e * u)) / (2 * e) for u in np.eye(model.n_modal)])
-    tables = [ref.deformed_groove_centre(m, 0, base.eta, th)[2] for th in w.contact_theta]
+    tables = [flex.deformed_groove_centre(m, 0, base.eta, th)[2] for th in w.contact_theta]
     second_order = max(np.linalg.norm(D @ base.eta) + np.linalg.norm(W @ base.eta) * F_D for D, W, _ in tables) / F_D
     _close(w.modal_f, -grad_eta, rtol=0.0, atol=(second_order + 1e-6) * np.abs(w.modal_f).max())
     print(f"|Q + ∂E/∂η| / max|Q| = {np.abs(w.modal_f + grad_eta).max() / np.abs(w.modal_f).max():.2g} "
