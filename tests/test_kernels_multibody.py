@@ -12,8 +12,8 @@ difference or a sum of terms of both signs:
   touches has a penetration, hence a force, with few significant digits);
 * unit vectors and angles: 1e-15, 1e-14.
 
-A roller end nearly parallel to its rib is the exception: its rim point is computed to ρ ε/|u| only
-(test_roller_end_matches_twin_on_tilted_rollers); the roller model stays out of that range.
+(The roller end nearly parallel to its rib, computed to ρ ε/|u| only: tests/test_kernels_elements.py;
+the roller model here stays out of that range.)
 """
 
 import math
