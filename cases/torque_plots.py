@@ -4,17 +4,17 @@ from __future__ import annotations
 
 import numpy as np
 
+from mbd_core.multibody.ring_torque import hann_spectrum
+
 from .results import plt
 
 __all__ = ["amplitude_spectrum", "plot_ring_torque"]
 
 
 def amplitude_spectrum(ax, signal, dt_s: float, label: str) -> None:
-    """The Hann-windowed amplitude spectrum of ``signal`` (mean removed), relative to its largest
-    line, on a log axis in kHz."""
-    s = np.asarray(signal, float) - np.mean(signal)
-    amp = np.abs(np.fft.rfft(s * np.hanning(s.size)))
-    f = np.fft.rfftfreq(s.size, dt_s)
+    """:func:`mbd_core.multibody.ring_torque.hann_spectrum` of ``signal`` relative to its largest line,
+    on a log axis in kHz."""
+    f, amp = hann_spectrum(signal, dt_s)
     top = amp[1:].max() if amp.size > 1 and amp[1:].max() > 0 else 1.0
     ax.semilogy(f[1:] / 1e3, amp[1:] / top, lw=0.8, label=label)
 

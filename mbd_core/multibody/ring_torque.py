@@ -27,7 +27,7 @@ import numpy as np
 from .explicit import evaluate_forces
 from .model import Model, State
 
-__all__ = ["axial_torques", "axial_angular_momentum", "spectrum_peaks_Hz"]
+__all__ = ["axial_torques", "axial_angular_momentum", "hann_spectrum", "spectrum_peaks_Hz"]
 
 
 def _internal(model: Model) -> Model:
@@ -76,15 +76,20 @@ def axial_angular_momentum(model: Model, run: dict, bodies) -> np.ndarray:
     return np.sum(orbital + spin, axis=-1)
 
 
-def spectrum_peaks_Hz(signal, dt_s: float, n_peaks: int = 3) -> list[float]:
-    """Frequencies of the ``n_peaks`` highest local maxima of the Hann-windowed amplitude spectrum
-    (the mean removed), Hz, highest first; the lowest three bins (below three periods in the record)
-    are left out, where the window's leakage of a slow drift sits."""
+def hann_spectrum(signal, dt_s: float) -> tuple[np.ndarray, np.ndarray]:
+    """(f Hz, amplitude) of the Hann-windowed one-sided spectrum of ``signal`` sampled every ``dt_s``,
+    its mean removed."""
     s = np.asarray(signal, float)
-    if s.size < 8:
+    return np.fft.rfftfreq(s.size, dt_s), np.abs(np.fft.rfft((s - s.mean()) * np.hanning(s.size)))
+
+
+def spectrum_peaks_Hz(signal, dt_s: float, n_peaks: int = 3) -> list[float]:
+    """Frequencies of the ``n_peaks`` highest local maxima of :func:`hann_spectrum`, Hz, highest first;
+    the lowest three bins (below three periods in the record) are left out, where the window's
+    leakage of a slow drift sits."""
+    if np.size(signal) < 8:
         return []
-    amp = np.abs(np.fft.rfft((s - s.mean()) * np.hanning(s.size)))
-    f = np.fft.rfftfreq(s.size, dt_s)
+    f, amp = hann_spectrum(signal, dt_s)
     local = np.flatnonzero((amp[1:-1] > amp[:-2]) & (amp[1:-1] >= amp[2:])) + 1
     local = local[local >= 3]
     top = local[np.argsort(amp[local])[::-1][:n_peaks]]
