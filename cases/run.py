@@ -34,6 +34,9 @@ from .integrate import ResumeError, checkpoints
 from .overrides import check_case, reference_case
 from .outdir import OutputTargetError, atomic_folder, check_output_target, is_results_folder, marker_source
 from .results import RunOutput, output_units
+from .crb import presets as crb_presets
+from .crb import studies as crb_studies
+from .crb.case import CrbCase
 from .described import presets as described_presets
 from .described import studies as described_studies
 from .described.case import DescribedCase
@@ -53,7 +56,8 @@ log = logging.getLogger(__name__)
 
 #: the bearings with cases: case class → (presets module, studies module)
 _FAMILIES = {SlewingCase: (slewing_presets, slewing_studies), WindCase: (wind_presets, wind_studies),
-             DescribedCase: (described_presets, described_studies), DmaCase: (dma_presets, dma_studies)}
+             DescribedCase: (described_presets, described_studies), DmaCase: (dma_presets, dma_studies),
+             CrbCase: (crb_presets, crb_studies)}
 PRESETS = {name: c for presets, _ in _FAMILIES.values() for name, c in presets.PRESETS.items()}
 #: named cases: name → one-line description
 CASES = {name: c.description for name, c in PRESETS.items()}
@@ -62,7 +66,7 @@ CASES = {name: c.description for name, c in PRESETS.items()}
 #: tables that only one family's case files have (to read files written before ``family`` existed)
 _OWN_TABLES = {SlewingCase: {"geometry", "load", "undulation", "thermal", "top", "bottom"},
                WindCase: {"rollers", "bodies", "loads"}, DescribedCase: {"bearing", "life"},
-               DmaCase: {"operation", "traction"}}
+               DmaCase: {"operation", "traction"}, CrbCase: {"lubrication", "catalogue"}}
 
 
 def _case_class(data: dict, source: str) -> type:

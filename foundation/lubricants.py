@@ -11,7 +11,8 @@ temperatures in °C where the name says so).
 
 :data:`LUBRICANT_A` is the DMA bearing's oil (the DREB torque report, README Sources: Apiezon C with
 1.5 % antioxidant, data of Tyler et al. quoted there). :meth:`Lubricant.from_viscosities` builds an oil from the two
-viscosities of its data sheet (usually at 40 and 100 °C).
+viscosities of its data sheet (usually at 40 and 100 °C); :func:`iso_vg_mineral_oil` an ISO VG grade of
+mineral oil.
 """
 
 from __future__ import annotations
@@ -21,7 +22,8 @@ from dataclasses import dataclass
 
 from .validation import check_positive
 
-__all__ = ["Lubricant", "LUBRICANT_A", "ASTM_D341_C_MM2_S"]
+__all__ = ["Lubricant", "LUBRICANT_A", "ASTM_D341_C_MM2_S", "ISO_VG_MINERAL_100C_MM2_S", "iso_vg_mineral_oil",
+           "wooster_pressure_viscosity_Pa_inv"]
 
 #: the constant c of Walther's equation in ASTM D341, mm²/s
 ASTM_D341_C_MM2_S = 0.7
@@ -103,3 +105,33 @@ LUBRICANT_A = Lubricant("Lubricant A (Apiezon C + 1.5 % antioxidant)", walther_A
                         walther_c_mm2_s=0.60, density_ref_kg_m3=879.0, density_ref_temperature_C=15.6,
                         density_slope_kg_m3_K=0.70, alpha_K_Pa_inv=12.13e-8, alpha_C=0.471,
                         thermal_conductivity_W_mK=0.10)
+
+
+#: ν at 100 °C (mm²/s) of paraffinic mineral oils of viscosity index 95–100 per ISO VG grade (ISO 3448
+#: fixes only the 40 °C mid-point, the grade number; these are the 100 °C values that industrial
+#: mineral oils' data sheets list for that index). For another oil use :meth:`Lubricant.from_viscosities`.
+ISO_VG_MINERAL_100C_MM2_S = {32: 5.4, 46: 6.8, 68: 8.7, 100: 11.1, 150: 14.7, 220: 19.0, 320: 24.0, 460: 30.5,
+                             680: 38.0}
+
+
+def wooster_pressure_viscosity_Pa_inv(viscosity_Pa_s: float) -> float:
+    """α = (0.6 + 0.965·log10 η_cP)·10⁻⁸ m²/N: Wooster's correlation of mineral oils' pressure–viscosity
+    coefficient with their viscosity at ambient pressure (Stachowiak & Batchelor, Engineering Tribology,
+    ch. 2)."""
+    check_positive("Wooster's α", viscosity_Pa_s=viscosity_Pa_s)
+    return (0.6 + 0.965 * math.log10(viscosity_Pa_s * 1e3)) * 1e-8
+
+
+def iso_vg_mineral_oil(grade: int, alpha_temperature_C: float = 40.0) -> Lubricant:
+    """A mineral oil of ISO VG ``grade``: the Walther line through the grade at 40 °C (ISO 3448
+    mid-point) and :data:`ISO_VG_MINERAL_100C_MM2_S` at 100 °C; density 880 kg/m³ at 15 °C falling by
+    0.63 kg/m³ per K (thermal expansion 7·10⁻⁴/K); a constant α from Wooster's correlation at
+    ``alpha_temperature_C`` (use the operating temperature)."""
+    if grade not in ISO_VG_MINERAL_100C_MM2_S:
+        raise ValueError(f"ISO VG grade: one of {', '.join(map(str, ISO_VG_MINERAL_100C_MM2_S))}, got {grade!r}")
+    oil = Lubricant.from_viscosities(f"ISO VG {grade} mineral oil",
+                                     ((40.0, float(grade)), (100.0, ISO_VG_MINERAL_100C_MM2_S[grade])),
+                                     density_15C_kg_m3=880.0, alpha_Pa_inv=2e-8, density_slope_kg_m3_K=0.63)
+    alpha = wooster_pressure_viscosity_Pa_inv(oil.dynamic_viscosity_Pa_s(alpha_temperature_C))
+    return Lubricant(oil.name, oil.walther_A, oil.walther_B, oil.density_ref_kg_m3, oil.density_ref_temperature_C,
+                     oil.density_slope_kg_m3_K, alpha_K_Pa_inv=alpha, walther_c_mm2_s=oil.walther_c_mm2_s)

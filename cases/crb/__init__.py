@@ -1,0 +1,1 @@
+"""Cases of cylindrical roller bearings (``family = "crb"``): friction torque, contact by contact."""

@@ -1,0 +1,177 @@
+"""The friction torque of a cylindrical roller bearing with ribs (NJ type) under radial and axial
+load, quasi-static, contact by contact (:mod:`mbd_core.bearing.roller_friction`), beside the bearing
+maker's catalogue model (:mod:`mbd_core.bearing.catalogue_friction`).
+
+The inner ring turns at ``operation.speed_rpm``, the outer ring is held; the oil (an ISO VG grade of
+mineral oil, ``lubrication.iso_vg``) is at ``lubrication.temperature_C`` throughout.
+
+Studies:
+
+- ``point``: one operating point; the loads, films and losses of every roller;
+- ``speed-axial``: torque over ``study.speeds_rpm`` for each of ``study.axial_loads_N`` at the radial
+  load of ``operation`` (the MEGT study's Fig. 3 grid), both models.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import ClassVar, Literal
+
+from ..config import CaseTables
+
+__all__ = ["CrbBearing", "Lubrication", "Operation", "Catalogue", "Study", "CrbCase"]
+
+
+def _numbers(obj, low: float, *keys, high: float = math.inf) -> None:
+    for key in keys:
+        value = getattr(obj, key)
+        if not (isinstance(value, (int, float)) and math.isfinite(value) and low < value <= high):
+            raise ValueError(f"{key}: must be a number > {low:g}" + (f" and ≤ {high:g}" if high < math.inf else "")
+                             + f", got {value!r}")
+
+
+@dataclass(frozen=True)
+class CrbBearing:
+    """``[bearing]``: boundary dimensions and inner geometry (m); radial clearance in operation
+    (after fits); the roller end's contact on the ribs: its height e above the roller's axis and
+    the end's sphere radius."""
+
+    bore_m: float = 0.080
+    outside_diameter_m: float = 0.140
+    n_rollers: int = 18
+    roller_diameter_m: float = 0.015
+    roller_length_m: float = 0.020
+    pitch_diameter_m: float = 0.110
+    radial_clearance_m: float = 40e-6
+    rib_contact_height_m: float = 0.00525
+    roller_end_radius_m: float = 0.06
+
+    def __post_init__(self) -> None:
+        _numbers(self, 0.0, "bore_m", "outside_diameter_m", "roller_diameter_m", "roller_length_m",
+                 "pitch_diameter_m", "roller_end_radius_m")
+        if not (isinstance(self.n_rollers, int) and 4 <= self.n_rollers <= 200):
+            raise ValueError(f"n_rollers: must be an integer in 4 … 200, got {self.n_rollers!r}")
+        if not self.bore_m < self.pitch_diameter_m - self.roller_diameter_m:
+            raise ValueError(f"bore_m: the inner raceway (Ø{self.pitch_diameter_m - self.roller_diameter_m:g} m) "
+                             f"must lie outside the bore ({self.bore_m!r} m)")
+        if not self.outside_diameter_m > self.pitch_diameter_m + self.roller_diameter_m:
+            raise ValueError(f"outside_diameter_m: the outer raceway (Ø{self.pitch_diameter_m + self.roller_diameter_m:g}"
+                             f" m) must lie inside it, got {self.outside_diameter_m!r}")
+        if self.n_rollers * self.roller_diameter_m >= math.pi * self.pitch_diameter_m:
+            raise ValueError(f"n_rollers: {self.n_rollers} rollers of {self.roller_diameter_m} m do not fit on the "
+                             f"pitch circle of {self.pitch_diameter_m} m")
+        if not (isinstance(self.radial_clearance_m, (int, float)) and 0.0 <= self.radial_clearance_m <= 1e-3):
+            raise ValueError(f"radial_clearance_m: must lie in 0 … 0.001 m, got {self.radial_clearance_m!r}")
+        _numbers(self, 0.0, "rib_contact_height_m", high=self.roller_diameter_m / 2 * 0.999)
+
+    def model(self):
+        from mbd_core.bearing.roller_friction import CylindricalRollerBearing
+
+        return CylindricalRollerBearing(self.n_rollers, self.roller_diameter_m, self.roller_length_m,
+                                        self.pitch_diameter_m, self.radial_clearance_m, self.rib_contact_height_m,
+                                        self.roller_end_radius_m)
+
+
+@dataclass(frozen=True)
+class Lubrication:
+    """``[lubrication]``: the oil (ISO VG grade of mineral oil) and its temperature (°C); composite RMS
+    roughness of the raceway and rib contacts (m); Zhou & Hoeprich's B and C; boundary friction and the
+    oil's limiting shear coefficient τ_L/p."""
+
+    iso_vg: int = 100
+    temperature_C: float = 50.0
+    raceway_roughness_m: float = 0.13e-6
+    rib_roughness_m: float = 0.34e-6
+    B: float = 1.8
+    C: float = 1.2
+    mu_boundary: float = 0.1
+    limiting_shear_coefficient: float = 0.05
+
+    def __post_init__(self) -> None:
+        from foundation.lubricants import ISO_VG_MINERAL_100C_MM2_S
+
+        if self.iso_vg not in ISO_VG_MINERAL_100C_MM2_S:
+            raise ValueError(f"iso_vg: one of {', '.join(map(str, ISO_VG_MINERAL_100C_MM2_S))}, got {self.iso_vg!r}")
+        if not (isinstance(self.temperature_C, (int, float)) and -20.0 <= self.temperature_C <= 150.0):
+            raise ValueError(f"temperature_C: must lie in −20 … 150, got {self.temperature_C!r}")
+        _numbers(self, 0.0, "raceway_roughness_m", "rib_roughness_m", "B", "C")
+        _numbers(self, 0.0, "mu_boundary", "limiting_shear_coefficient", high=0.5)
+
+    def oil(self):
+        from foundation.lubricants import iso_vg_mineral_oil
+
+        return iso_vg_mineral_oil(self.iso_vg, self.temperature_C)
+
+    def surfaces(self):
+        from mbd_core.bearing.roller_friction import MixedLubrication
+
+        return MixedLubrication(self.raceway_roughness_m, self.rib_roughness_m, self.B, self.C, self.mu_boundary,
+                                self.limiting_shear_coefficient)
+
+
+@dataclass(frozen=True)
+class Operation:
+    """``[operation]``: radial and axial load (N) and the inner ring's speed (rev/min)."""
+
+    radial_load_N: float = 20e3
+    axial_load_N: float = 0.0
+    speed_rpm: float = 1500.0
+
+    def __post_init__(self) -> None:
+        _numbers(self, 0.0, "radial_load_N", "speed_rpm")
+        if not (isinstance(self.axial_load_N, (int, float)) and 0.0 <= self.axial_load_N < math.inf):
+            raise ValueError(f"axial_load_N: must be a number ≥ 0, got {self.axial_load_N!r}")
+
+
+@dataclass(frozen=True)
+class Catalogue:
+    """``[catalogue]``: the constants of the catalogue model set beside ours
+    (:mod:`mbd_core.bearing.catalogue_friction`; cylindrical roller bearings with a cage, series 2)."""
+
+    R1: float = 1.09e-6
+    S1: float = 0.16
+    S2: float = 0.0015
+    mu_bl: float = 0.15
+    mu_ehl: float = 0.02
+    K_rs: float = 3e-8
+    K_Z: float = 5.1
+
+    def __post_init__(self) -> None:
+        _numbers(self, 0.0, "R1", "S1", "S2", "mu_bl", "mu_ehl", "K_rs", "K_Z")
+
+    def constants(self):
+        from mbd_core.bearing.catalogue_friction import CatalogueConstants
+
+        return CatalogueConstants(self.R1, self.S1, self.S2, self.mu_bl, self.mu_ehl, self.K_rs, self.K_Z)
+
+
+@dataclass(frozen=True)
+class Study:
+    """``[study]``: ``kind``; the ``speed-axial`` study's inner ring speeds (rev/min) and axial loads (N)."""
+
+    kind: Literal["point", "speed-axial"] = "point"
+    speeds_rpm: tuple[float, ...] = (100.0, 250.0, 500.0, 750.0, 1000.0, 1500.0, 2000.0, 3000.0, 4000.0)
+    axial_loads_N: tuple[float, ...] = (0.0, 1000.0, 2000.0, 4000.0)
+
+    def __post_init__(self) -> None:
+        for key, zero_ok in (("speeds_rpm", False), ("axial_loads_N", True)):
+            values = getattr(self, key)
+            if not values or len(values) > 50 or not all(
+                    isinstance(v, (int, float)) and math.isfinite(v) and (v > 0.0 or zero_ok and v == 0.0)
+                    for v in values):
+                raise ValueError(f"{key}: must hold 1 … 50 numbers {'≥' if zero_ok else '>'} 0, got {values!r}")
+
+
+@dataclass(frozen=True)
+class CrbCase(CaseTables):
+    """A friction-torque case of a cylindrical roller bearing (module docstring)."""
+
+    FAMILY: ClassVar[str] = "crb"  # the ``family`` key of its case files
+    name: str = "crb"
+    description: str = ""
+    bearing: CrbBearing = field(default_factory=CrbBearing)
+    lubrication: Lubrication = field(default_factory=Lubrication)
+    operation: Operation = field(default_factory=Operation)
+    catalogue: Catalogue = field(default_factory=Catalogue)
+    study: Study = field(default_factory=Study)
