@@ -43,7 +43,7 @@ from mbd_core.contact.ehl_inlet import grubin_line_contact
 from mbd_core.contact.friction import LimitingShear, asperity_load_share
 from mbd_core.contact.line import LINE_EXPONENT, iso16281_stiffness
 
-__all__ = ["CylindricalRollerBearing", "MixedLubrication", "RollerFriction", "radial_roller_loads",
+__all__ = ["CylindricalRollerBearing", "MixedLubrication", "RollerFriction", "radial_roller_loads", "rib_speeds_m_s",
            "roller_bearing_friction"]
 
 _KELVIN = 273.15
@@ -176,6 +176,15 @@ def radial_roller_loads(bearing: CylindricalRollerBearing, radial_load_N: float)
     return loads(brentq(residual, half_play, hi, xtol=1e-15, rtol=1e-13))
 
 
+def rib_speeds_m_s(bearing: CylindricalRollerBearing, speed_rpm: float) -> tuple[tuple[float, float], ...]:
+    """(sliding, entraining) speed of the inner and the outer rib contact (module docstring, step 2)."""
+    u = speed_rpm * math.pi / 30.0 * bearing.pitch_diameter_m * (1.0 - bearing.gamma**2) / 4.0
+    e, dm = bearing.rib_contact_height_m, bearing.pitch_diameter_m
+    roller_end = u * 2.0 * e / bearing.roller_diameter_m
+    rings = (u * (dm / 2 - e) / bearing.inner_raceway_radius_m, u * (dm / 2 + e) / bearing.outer_raceway_radius_m)
+    return tuple((abs(ring - roller_end), (ring + roller_end) / 2) for ring in rings)
+
+
 def _rib_contact(load_N: float, entrain_m_s: float, slide_m_s: float, bearing: CylindricalRollerBearing,
                  oil: Lubricant, temperature_C: float, surfaces: MixedLubrication):
     """(Λ, φ, μ) of one roller end on its rib (module docstring, step 4)."""
@@ -205,17 +214,14 @@ def roller_bearing_friction(bearing: CylindricalRollerBearing, oil: Lubricant, t
     Q = radial_roller_loads(bearing, radial_load_N)
     rib_load = axial_load_N * Q / Q.sum()
     omega = speed_rpm * math.pi / 30.0
-    D, dm = bearing.roller_diameter_m, bearing.pitch_diameter_m
-    r_i, r_o = bearing.inner_raceway_radius_m, bearing.outer_raceway_radius_m
-    u = omega * dm * (1.0 - bearing.gamma**2) / 4.0
+    D, r_i, r_o = bearing.roller_diameter_m, bearing.inner_raceway_radius_m, bearing.outer_raceway_radius_m
+    u = omega * bearing.pitch_diameter_m * (1.0 - bearing.gamma**2) / 4.0
     eta0 = oil.dynamic_viscosity_Pa_s(temperature_C)
     alpha = oil.pressure_viscosity_Pa_inv(temperature_C)
     beta_T = oil.temperature_viscosity_K(temperature_C) / (temperature_C + _KELVIN) ** 2
     phi_T = thermal_reduction_factor(thermal_loading(beta_T, eta0, u, oil.thermal_conductivity_W_mK))
     radii = (D / 2 * r_i / (D / 2 + r_i), D / 2 * r_o / (r_o - D / 2))  # inner, outer contact R_x
-    e = bearing.rib_contact_height_m
-    roller_end = u * 2.0 * e / D
-    ribs = ((u * (dm / 2 - e) / r_i, roller_end), (u * (dm / 2 + e) / r_o, roller_end))  # inner, outer
+    ribs = rib_speeds_m_s(bearing, speed_rpm)  # inner, outer
 
     n = bearing.n_rollers
     lam_race, rolling = np.zeros(n), np.zeros(n)
@@ -227,8 +233,7 @@ def roller_bearing_friction(bearing: CylindricalRollerBearing, oil: Lubricant, t
         lam_race[j] = film_parameter(phi_T * films[0].central_film_m, surfaces.raceway_roughness_m, 0.0)
         if rib_load[j] <= 0.0:
             continue
-        for k, (v_ring, v_roller) in enumerate(ribs):
-            slide, entrain = abs(v_ring - v_roller), (v_ring + v_roller) / 2
+        for k, (slide, entrain) in enumerate(ribs):
             lam, phi, m = _rib_contact(rib_load[j], entrain, slide, bearing, oil, temperature_C, surfaces)
             rib_power[j] += m * rib_load[j] * slide
             if k == 0:
