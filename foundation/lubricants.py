@@ -116,8 +116,8 @@ ISO_VG_MINERAL_100C_MM2_S = {32: 5.4, 46: 6.8, 68: 8.7, 100: 11.1, 150: 14.7, 22
 
 def wooster_pressure_viscosity_Pa_inv(viscosity_Pa_s: float) -> float:
     """α = (0.6 + 0.965·log10 η_cP)·10⁻⁸ m²/N: Wooster's correlation of mineral oils' pressure–viscosity
-    coefficient with their viscosity at ambient pressure (Stachowiak & Batchelor, Engineering Tribology,
-    ch. 2)."""
+    coefficient with their viscosity at ambient pressure (Stachowiak & Batchelor, Engineering
+    Tribology)."""
     check_positive("Wooster's α", viscosity_Pa_s=viscosity_Pa_s)
     return (0.6 + 0.965 * math.log10(viscosity_Pa_s * 1e3)) * 1e-8
 

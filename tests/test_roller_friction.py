@@ -3,7 +3,7 @@ its inlet film and rolling loss (mbd_core.contact.ehl_inlet).
 
 References:
 - Grubin's closed form of the inlet film of a line contact, H_c = 1.95·(G·U)^(8/11)·W^(−1/11) (Grubin 1949;
-  Hamrock, Fundamentals of Fluid Film Lubrication, ch. 18 on Ertel–Grubin), fitted by Grubin to the same
+  Hamrock, Fundamentals of Fluid Film Lubrication, on Ertel–Grubin), fitted by Grubin to the same
   inlet integral that the module solves exactly; Pan & Hamrock's central film (J. Tribol. 111 (1989)).
 - The rolling loss from its definition: Reynolds' inlet pressure integrated as an ODE here (scipy
   solve_ivp in x, not the module's reduced-pressure quadrature), then P/l = ∫ h³/(12η)·(dp/dx)² dx.
