@@ -24,7 +24,7 @@ from numba import njit
 TWO_PI = 2.0 * math.pi
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def periodic_lookup(table, theta):
     """Linear interpolation of a uniform periodic table over [0, 2π) at θ ∈ [0, 2π)."""
     n = table.shape[0]
@@ -38,7 +38,7 @@ def periodic_lookup(table, theta):
     return (1.0 - w) * table[i0] + w * table[i1]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def periodic_lookup_range(table, start, stop, theta):
     """:func:`periodic_lookup` on the table ``table[start:stop]`` (no view is made)."""
     n = stop - start
@@ -52,14 +52,14 @@ def periodic_lookup_range(table, start, stop, theta):
     return (1.0 - w) * table[start + i0] + w * table[start + i1]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def groove_point(x0, x1, x2, r_c, z_c, clearance_radius, h_table, dr_table):
     """(θ, δ, n_x, n_y, n_z) of one ball centred at (x0, x1, x2) in the ring frame (see module doc)."""
     return groove_point_in(x0, x1, x2, r_c, z_c, clearance_radius, h_table, 0, h_table.shape[0],
                            dr_table, 0, dr_table.shape[0])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def groove_point_in(x0, x1, x2, r_c, z_c, clearance_radius, h_all, h0, h1, dr_all, dr0, dr1):
     """:func:`groove_point` with the tables given as ranges [h0, h1), [dr0, dr1) of larger arrays."""
     th = math.atan2(x1, x0)
@@ -77,7 +77,7 @@ def groove_point_in(x0, x1, x2, r_c, z_c, clearance_radius, h_all, h0, h1, dr_al
     return th, d - clearance_radius, 0.0, 0.0, 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def ball_groove_contacts(x, r_c, z_c, clearance_radius, h_table, dr_table, out_theta, out_delta, out_normal):
     """Penetration and normal of balls in a groove.
 

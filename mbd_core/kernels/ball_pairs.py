@@ -28,7 +28,7 @@ from .point_contact import contact_force, point_force, _store
 from .strip_traction import strip_traction_forces
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fric, n_strips, a_coef, curvature,
                    delta, mx, my, mz, px, py, pz, ex, ey, ez):
     """Normal force and strip traction of a ball contact (module docstring); (ex, ey, ez) the rolling
@@ -74,7 +74,7 @@ def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fri
     return fn, math.sqrt(sx * sx + sy * sy), math.sqrt(tx * tx + ty * ty), elastic * delta / (n_exp + 1.0)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
@@ -150,7 +150,7 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
     return e_sum
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _ball_ball_pairs(m, q, v, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p

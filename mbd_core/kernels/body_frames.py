@@ -9,7 +9,7 @@ from numba import njit
 
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def rotate(q, i, x, y, z):
     """R(q_i) (x, y, z): body frame → world."""
     w, a, b, c = q[i, 3], q[i, 4], q[i, 5], q[i, 6]
@@ -19,7 +19,7 @@ def rotate(q, i, x, y, z):
     return x + w * tx + (b * tz - c * ty), y + w * ty + (c * tx - a * tz), z + w * tz + (a * ty - b * tx)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def rotate_back(q, i, x, y, z):
     """R(q_i)ᵀ (x, y, z): world → body frame."""
     w, a, b, c = q[i, 3], -q[i, 4], -q[i, 5], -q[i, 6]
@@ -29,7 +29,7 @@ def rotate_back(q, i, x, y, z):
     return x + w * tx + (b * tz - c * ty), y + w * ty + (c * tx - a * tz), z + w * tz + (a * ty - b * tx)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def point_velocity(q, v, i, px, py, pz):
     """World velocity of body i's material point at world position p."""
     ox, oy, oz = rotate(q, i, v[i, 3], v[i, 4], v[i, 5])
@@ -37,7 +37,7 @@ def point_velocity(q, v, i, px, py, pz):
     return v[i, 0] + oy * rz - oz * ry, v[i, 1] + oz * rx - ox * rz, v[i, 2] + ox * ry - oy * rx
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _add_force(q, bf, bt, i, fx, fy, fz, px, py, pz):
     """Add force (fx, fy, fz) at world point p to body i's force and moment about its centre."""
     rx, ry, rz = px - q[i, 0], py - q[i, 1], pz - q[i, 2]
@@ -49,20 +49,20 @@ def _add_force(q, bf, bt, i, fx, fy, fz, px, py, pz):
     bt[i, 2] += rx * fy - ry * fx
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _to_world(q, b, lx, ly, lz):
     """World position of a point given in body b's frame."""
     x, y, z = rotate(q, b, lx, ly, lz)
     return q[b, 0] + x, q[b, 1] + y, q[b, 2] + z
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _in_frame(q, b, x, y, z):
     """Coordinates in body b's frame of the world point (x, y, z)."""
     return rotate_back(q, b, x - q[b, 0], y - q[b, 1], z - q[b, 2])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _contact_angle(q, b, nx, ny, nz, px, py, pz):
     """atan2(|n_axial|, |n_radial|) of a world normal n at world point p, in body b's cylindrical frame."""
     lx, ly, lz = rotate_back(q, b, nx, ny, nz)
@@ -73,7 +73,7 @@ def _contact_angle(q, b, nx, ny, nz, px, py, pz):
     return math.atan2(abs(lz), abs((lx * ex + ly * ey) / r))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _roller_axis(q, a, b):
     """Roller a's axis (its body z) in ring b's frame."""
     x, y, z = rotate(q, a, 0.0, 0.0, 1.0)

@@ -1,4 +1,4 @@
-"""What numba's disk cache holds for a kernel (``@njit(cache=True)``), and keeping it current.
+"""What numba's disk cache holds for a kernel (``@njit(cache=True, …)``), and keeping it current.
 
 numba keys a kernel's cached machine code on the modification stamp of the kernel's own source
 file only. A kernel that calls kernels of other files (the force stage calls the contact families,

@@ -36,7 +36,7 @@ POCKET_CYLINDER = 0
 POCKET_SLOT = 1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def ball_ball(xa, xb, ra, rb):
     """(δ, m_x, m_y, m_z, p_x, p_y, p_z) of two spheres; m on sphere a, from b towards a."""
     dx, dy, dz = xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2]
@@ -47,7 +47,7 @@ def ball_ball(xa, xb, ra, rb):
     return ra + rb - d, mx, my, mz, xa[0] - ra * mx, xa[1] - ra * my, xa[2] - ra * mz
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _into_surface(kind, x, y):
     """Unit direction into a rib/raceway surface of the given kind at (x, y, ·)."""
     if kind == RACEWAY_INNER_CYLINDER or kind == RACEWAY_OUTER_CYLINDER:
@@ -59,7 +59,7 @@ def _into_surface(kind, x, y):
     return 0.0, 0.0, (-1.0 if kind == RACEWAY_PLANE_UP else 1.0)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _depth(kind, value, q):
     """Depth (m) of point q behind a surface of the given kind and radius/height ``value``."""
     if kind == RACEWAY_INNER_CYLINDER:
@@ -71,7 +71,7 @@ def _depth(kind, value, q):
     return q[2] - value
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def roller_end(center, axis, radius, length, end_sign, edge_radius, kind, value, out_point):
     """(δ, m_x, m_y, m_z) of a roller end against a rib; the contact point goes to ``out_point`` (3,)."""
     h = end_sign * (0.5 * length - edge_radius)
@@ -92,7 +92,7 @@ def roller_end(center, axis, radius, length, end_sign, edge_radius, kind, value,
     return _depth(kind, value, out_point), -dx, -dy, -dz
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def pocket_cylinder(x, radius, angle, r_p, z_p, clearance):
     """(δ, m_x, m_y, m_z, p_x, p_y, p_z) of a ball centred at x (cage frame) in a cylindrical pocket."""
     c, s = math.cos(angle), math.sin(angle)
@@ -107,7 +107,7 @@ def pocket_cylinder(x, radius, angle, r_p, z_p, clearance):
     return d - clearance, mx, my, mz, x[0] - radius * mx, x[1] - radius * my, x[2] - radius * mz
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def pocket_slot(xs, radius, angle, r_p, z_p, clearance):
     """(δ, m_x, m_y, m_z, p_x, p_y, p_z) of a roller end point xs (cage frame) in a slot pocket."""
     c, s = math.cos(angle), math.sin(angle)

@@ -60,7 +60,7 @@ from .modal_step import cholesky_in_place, cholesky_solve, modal_drift, modal_en
 from .rigid import free_rotation_step, turn_quaternion
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _kick_body(q, v, i, body_f, body_t, body_mass, body_inertia, body_free, hh):
     """The explicit kick of body i's free components (module docstring)."""
     free = body_free[i]
@@ -83,7 +83,7 @@ def _kick_body(q, v, i, body_f, body_t, body_mass, body_inertia, body_free, hh):
         v[i, 5] += hh * tz / inertia[2]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _minus_gyroscopic(v, i, inertia, tx, ty, tz):
     """Body-frame torque τ − ω × Iω of a body whose rotation is only partly free (module docstring)."""
     wx, wy, wz = v[i, 3], v[i, 4], v[i, 5]
@@ -91,14 +91,14 @@ def _minus_gyroscopic(v, i, inertia, tx, ty, tz):
     return tx - (wy * lz - wz * ly), ty - (wz * lx - wx * lz), tz - (wx * ly - wy * lx)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _kick(q, v, body_f, body_t, body_mass, body_inertia, body_free, implicit, hh):
     for i in range(body_mass.shape[0]):
         if implicit[i] == 0:  # the others: _friction_kick
             _kick_body(q, v, i, body_f, body_t, body_mass, body_inertia, body_free, hh)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _friction_kick(q, v, w, body_mass, body_inertia, body_free, implicit, hh):
     """Kick of the bodies with implicit friction (module docstring): the linear system in the
     coordinates the velocities are stored in, u = (v world, ω body frame), where the mass matrix is
@@ -163,7 +163,7 @@ def _friction_kick(q, v, w, body_mass, body_inertia, body_free, implicit, hh):
             v[i, free_idx[a]] += g[a]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _spin(q, i, wx, wy, wz, h):
     """q_i ← q_i ⊗ exp(h ω / 2) for a constant body-frame ω."""
     if wx == 0.0 and wy == 0.0 and wz == 0.0:
@@ -171,7 +171,7 @@ def _spin(q, i, wx, wy, wz, h):
     q[i, 3], q[i, 4], q[i, 5], q[i, 6] = turn_quaternion(q[i, 3], q[i, 4], q[i, 5], q[i, 6], h * wx, h * wy, h * wz)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _drift(q, v, body_inertia, body_free, body_modal, pi, h):
     for i in range(body_inertia.shape[0]):
         if body_modal[i] >= 0:  # drifted by modal_drift
@@ -191,7 +191,7 @@ def _drift(q, v, body_inertia, body_free, body_modal, pi, h):
             _spin(q, i, v[i, 3], v[i, 4], v[i, 5], h)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def kinetic_energy(body_mass, body_inertia, v):
     """Σ ½ m |v|² + ½ ωᵀ I ω over all bodies, J."""
     e = 0.0
@@ -202,32 +202,48 @@ def kinetic_energy(body_mass, body_inertia, v):
     return e
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", _nrt=False)
+def _store_row(dst, k, src):
+    """dst[k] = src for a 1-D src (element by element: the kernels run without numba's runtime,
+    whose array assignment would allocate)."""
+    for i in range(src.shape[0]):
+        dst[k, i] = src[i]
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _store_rows(dst, k, src):
+    """dst[k] = src for a 2-D src."""
+    for i in range(src.shape[0]):
+        for j in range(src.shape[1]):
+            dst[k, i, j] = src[i, j]
+
+
+@njit(cache=True, _nrt=False)
 def _record(m, q, v, eta, eta_dot, w, t, k, rec):
     rec.t[k] = t
-    rec.q[k] = q
-    rec.v[k] = v
-    rec.eta[k] = eta
-    rec.eta_dot[k] = eta_dot
-    rec.fn[k] = w.contact_fn
-    rec.delta[k] = w.contact_delta
-    rec.slip[k] = w.contact_slip
-    rec.ft[k] = w.contact_ft
-    rec.angle[k] = w.contact_angle
-    rec.theta[k] = w.contact_theta
+    _store_rows(rec.q, k, q)
+    _store_rows(rec.v, k, v)
+    _store_row(rec.eta, k, eta)
+    _store_row(rec.eta_dot, k, eta_dot)
+    _store_row(rec.fn, k, w.contact_fn)
+    _store_row(rec.delta, k, w.contact_delta)
+    _store_row(rec.slip, k, w.contact_slip)
+    _store_row(rec.ft, k, w.contact_ft)
+    _store_row(rec.angle, k, w.contact_angle)
+    _store_row(rec.theta, k, w.contact_theta)
     for c in range(w.contact_point.shape[0]):
         for j in range(3):
             rec.point[k, c, j] = w.contact_point[c, j]
             rec.normal[k, c, j] = w.contact_normal[c, j]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def record_now(m, q, v, eta, eta_dot, w, t, k, rec):
     """Store the current state and contact outputs as sample k of the record buffers."""
     _record(m, q, v, eta, eta_dot, w, t, k, rec)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def total_kinetic_energy(m, q, v, eta, eta_dot, w):
     """Kinetic energy of the rigid bodies plus ½uᵀM(η)u of the modal bodies, J."""
     e = kinetic_energy(m.body_mass, m.body_inertia, v)
@@ -241,7 +257,7 @@ def total_kinetic_energy(m, q, v, eta, eta_dot, w):
     return e + modal_energy(m, q, v, eta, eta_dot, w)[0]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def run_explicit(m, q, v, eta, eta_dot, w, t_origin, step0, n_steps, h, every, rec, energy_limit):
     """Advance n_steps steps from global step ``step0`` (t = t_origin + step·h), in place.
 

@@ -16,7 +16,7 @@ from .raceway import interp_index
 from .roller_slices import circle_index, surface_coordinate
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _table_slope(table, start, stop, th):
     """Value and dθ-slope of a uniform periodic table over [0, 2π) at θ (linear interpolation)."""
     n = stop - start
@@ -30,7 +30,7 @@ def _table_slope(table, start, stop, th):
     return (1.0 - w) * table[start + i0] + w * table[start + i1], (table[start + i1] - table[start + i0]) * n / TWO_PI
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _section_velocity(disp, rot, i0, i1, w0, w1, ed, bx, by, bz):
     """Velocity (Dη̇) + (Ωη̇) × b of the raceway section's point at lever b from the sampled point,
     interpolated between samples i0, i1 (ring frame)."""
@@ -46,7 +46,7 @@ def _section_velocity(disp, rot, i0, i1, w0, w1, ed, bx, by, bz):
     return vx + sy * bz - sz * by, vy + sz * bx - sx * bz, vz + sx * by - sy * bx
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _add_section_force(disp, rot, i0, i1, w0, w1, fx, fy, fz, tx, ty, tz, qf):
     """qf += Dᵀf + Ωᵀt at the interpolated section: the modal force of a force f and moment t (ring
     frame) on the raceway section — the transpose of :func:`_section_velocity`."""
@@ -57,7 +57,7 @@ def _add_section_force(disp, rot, i0, i1, w0, w1, fx, fy, fz, tx, ty, tz, qf):
                           + rot[i1, 0, k] * tx + rot[i1, 1, k] * ty + rot[i1, 2, k] * tz))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _groove_rows(disp, rot, i0, i1, e_j, out):
     """out (4, 3) = D_i0 η, D_i1 η, Ω_i0 η, Ω_i1 η: the two samples around a contact, whose linear
     interpolation and difference quotient give the raceway's displacement, rotation and their slopes."""
@@ -73,7 +73,7 @@ def _groove_rows(disp, rot, i0, i1, e_j, out):
             out[3, c] += rot[i1, c, k] * ek
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _deformed_groove_centre(theta, periodic, pts, rows, rc, zc, h_all, h0, h1, dr_all, dr0, dr1, th, i0, i1, w0, w1):
     """Deformed curvature centre c'(θ) = c(θ) + u + ψ × (c − p_s) of a groove at angle θ ∈ [0, 2π) (ring
     frame) between samples i0, i1 (weights w0, w1; ``rows`` from :func:`_groove_rows`), and its
@@ -105,7 +105,7 @@ def _deformed_groove_centre(theta, periodic, pts, rows, rc, zc, h_all, h0, h1, d
     return cx + ux + ry * az - rz * ay, cy + uy + rz * ax - rx * az, cz + uz + rx * ay - ry * ax, tx, ty, tz
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _nearest_deformed_centre(theta, periodic, disp, rot, pts, e_j, rows, rc, zc, h_all, h0, h1, dr_all, dr0, dr1,
                              th, lx, ly, lz):
     """Ball–groove contact on a modal ring (:mod:`.raceway`): the groove section at θ moves with the
@@ -133,7 +133,7 @@ def _nearest_deformed_centre(theta, periodic, disp, rot, pts, e_j, rows, rc, zc,
     return cx, cy, cz, i0, i1, w0, w1
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _cached_row(rows, field, n, row, disp, rot, e_j, ed_j):
     """Slot of sample row ``row`` in the row cache (``n`` slots in use); a new row gets its fields
     D η, Ω η, D η̇, Ω η̇ (``field[:, 0:12]``) and an empty load (``field[:, 12:18]``). Returns (slot, n)."""
@@ -165,7 +165,7 @@ def _cached_row(rows, field, n, row, disp, rot, e_j, ed_j):
     return n, n + 1
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _flush_rows(rows, field, n, disp, rot, qf):
     """Modal force of the loads gathered on the ``n`` cached rows: qf += D_rowᵀ f + Ω_rowᵀ μ."""
     for k in range(n):
@@ -178,7 +178,7 @@ def _flush_rows(rows, field, n, disp, rot, qf):
                       + rot[row, 0, i] * m0 + rot[row, 1, i] * m1 + rot[row, 2, i] * m2)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _grid_corners(theta, periodic, circ, kind, s0, lx, ly, lz, corner, weight):
     """Sample rows and weights (4 corners) of the ring-frame point l on a (θ, s) grid whose circles (at
     ``circ``, each with the angles ``theta``) start at row s0 of samp_*."""
@@ -193,7 +193,7 @@ def _grid_corners(theta, periodic, circ, kind, s0, lx, ly, lz, corner, weight):
     weight[0], weight[1], weight[2], weight[3] = v0 * w0, v0 * w1, v1 * w0, v1 * w1
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _wall_corners(pts, row, lx, ly, lz, corner, weight):
     """Rows and weights of the ring-frame point l between the leading (``row``) and trailing (``row + 1``)
     wall samples of a pocket: its projection on the segment between them, clamped to it."""
@@ -206,7 +206,7 @@ def _wall_corners(pts, row, lx, ly, lz, corner, weight):
 
 
 # (at most 30 arguments: a call with more compiles to CALL_FUNCTION_EX, which numba cannot inline)
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _flexible_contact(q, v, bf, bt, disp, rot, pts, e_j, ed_j, rows, field, corner, weight, n, a, b, law, k_c,
                       n_exp, damping, d_max, fric, fp_c, sd, sp, sn, k):
     """Contact point l = sp[k] (ring frame) of a pair on a sampled surface of modal body b, normal n = sn[k]
@@ -263,7 +263,7 @@ def _flexible_contact(q, v, bf, bt, disp, rot, pts, e_j, ed_j, rows, field, corn
     return n, fn, delta, u, ft, e, px, py, pz, mx, my, mz
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta, lx, ly, lz, nx, ny, nz, imp, fpts, fcnt):
     """:func:`_flexible_contact` of one point of pair c (a roller end, a pocket wall; corners set, at most
     two points per pair, so the cache has room) through slot 0 of the slice scratch; returns (n, F_n,
@@ -278,7 +278,7 @@ def _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta, lx, ly,
     return n, fn, delta, u, ft, e, px, py, pz, mx, my, mz
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns, imp, fpts, fcnt):
     """The slices of roller pair c (rigid geometry in ``w.slice_*``) on the (θ, s)-sampled surface g of
     modal ring b. Returns (ΣF_n, largest δ, slip at the most loaded slice, Σ|F_t|, its contact angle,

@@ -69,7 +69,7 @@ __all__ = ["compute_forces", "contact_force", "point_velocity", "rotate", "rotat
            "STATUS_OK", "STATUS_PENETRATION"]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _external_loads(m, q, w, t):
     for i in range(m.body_mass.shape[0]):
         for j in range(3):
@@ -83,7 +83,7 @@ def _external_loads(m, q, w, t):
             w.body_t[i, j] += w.load[3 + j]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _drag(m, v, w):
     """Fluid drag at the centres of the bodies that have one: F = −(c₁ + c₂|v|) v (world)."""
     for j in range(m.drag_body.shape[0]):
@@ -95,7 +95,7 @@ def _drag(m, v, w):
         w.body_f[i, 2] -= c * v[i, 2]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _small_rotation(qa, qb, qr):
     """Rotation vector (≈ small angles, rad) of q_a⁻¹ q_b relative to the reference q_r, in a's frame."""
     # e = (q_a⁻¹ q_b) q_r⁻¹ = q_a⁻¹ (q_b q_b,rest⁻¹) q_a: b's turn from its rest pose q_a q_r, in a's axes
@@ -115,7 +115,7 @@ def _small_rotation(qa, qb, qr):
     return s * ex, s * ey, s * ez
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _bushings(m, q, v, w):
     """Penalty bushings: diagonal stiffness/damping in body a's frame (translations, small rotations)."""
     energy = 0.0
@@ -150,7 +150,7 @@ def _bushings(m, q, v, w):
     return energy
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def compute_forces(m, t, q, v, eta, eta_dot, w):
     """Fill ``w.body_f``, ``w.body_t``, ``w.modal_f`` and the contact outputs at (t, q, v, η, η̇);
     returns (status, index)."""

@@ -17,7 +17,7 @@ from .body_frames import point_velocity
 from .laws import friction_slope
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _lever_outer(q, g, i, coef, dx, dy, dz, px, py, pz, fc):
     """Add coef · (Jᵀd)(Jᵀd)ᵀ to body i's friction damping fc[i] (world (v, ω), 6 × 6), with
     Jᵀd = (d, r × d) for the direction d at world point p (r = p − centre, J = [I, −[r]×] the
@@ -31,7 +31,7 @@ def _lever_outer(q, g, i, coef, dx, dy, dz, px, py, pz, fc):
             fc[i, j, k] += cg * g[k]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _friction_damping(q, fc, g, i, c, mx, my, mz, px, py, pz):
     """Add c Jᵀ(I − m mᵀ)J to body i's friction damping fc[i] (world (v, ω), 6 × 6): the friction
     c v_t of a contact at world point p with unit normal m (J as in :func:`_lever_outer`), as
@@ -65,7 +65,7 @@ def _friction_damping(q, fc, g, i, c, mx, my, mz, px, py, pz):
     fc[i, 4, 2] -= c * rx
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _note_friction(imp, pts, cnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz):
     """Note one contact point of pair c (normal force fn, slip speed u, friction force ft, normal m,
     world point p) for the damping matrices (:func:`_friction_damping_matrices`) when body a or b
@@ -82,7 +82,7 @@ def _note_friction(imp, pts, cnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz):
     cnt[0] = k + 1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _friction_damping_matrices(m, q, v, w):
     """w.fric_c of every body with implicit friction from the noted points, w.fric_v = v. (A stage of
     its own: accumulating in the contact loops slows them down even where no friction acts.)"""

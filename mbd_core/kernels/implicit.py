@@ -42,7 +42,7 @@ from .rigid import turn_quaternion
 SQRT_EPS = 1.4901161193847656e-08
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _rigid_accelerations(m, q, v, w, out):
     """Newton–Euler v̇ (n_b, 6) of the free components from the forces in ``w``; held components 0."""
     for i in range(m.body_mass.shape[0]):
@@ -58,7 +58,7 @@ def _rigid_accelerations(m, q, v, w, out):
         out[i, 5] = (tz - (wx * ly - wy * lx)) / inertia[2] if free[5] else 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def accelerations(m, t, q, v, w, out):
     """v̇ (n_b, 6) of the free components of a rigid model at (t, q, v) into ``out``; held components 0.
 
@@ -70,7 +70,7 @@ def accelerations(m, t, q, v, w, out):
     return status, index
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def modal_accelerations(m, q, v, eta, eta_dot, w, out, out_eta):
     """Accelerations of the modal bodies from the forces in ``w`` (module docstring).
 
@@ -118,7 +118,7 @@ def modal_accelerations(m, q, v, eta, eta_dot, w, out, out_eta):
     return -1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def step_accelerations(m, t, q, v, eta, eta_dot, w, out, out_eta):
     """Accelerations of every integrated component at (t, q, v, η, η̇): rigid bodies into ``out``
     (n_b, 6) as :func:`accelerations`, modal bodies as :func:`modal_accelerations`.
@@ -134,7 +134,7 @@ def step_accelerations(m, t, q, v, eta, eta_dot, w, out, out_eta):
     return status, index
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def compose(q, dq, h, out):
     """out = q ∘ exp(h dq): r + h dq_r and q ⊗ (cos(φ/2), sin(φ/2) e), φ e = h dq_ω (body frame).
 
@@ -148,7 +148,7 @@ def compose(q, dq, h, out):
             q[i, 3], q[i, 4], q[i, 5], q[i, 6], h * dq[i, 3], h * dq[i, 4], h * dq[i, 5])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def residual(m, t1, h, c, s, w, x, out):
     """Residual of one generalized-α step for the free accelerations x = v̇_{n+1}[free] into ``out``.
 
@@ -183,7 +183,7 @@ def residual(m, t1, h, c, s, w, x, out):
     return status, index
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def fd_jacobian(m, t1, h, c, s, w, x, eps_floor, jac):
     """Forward-difference Jacobian ∂residual/∂x (n_free, n_free) at x into ``jac``.
 

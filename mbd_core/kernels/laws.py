@@ -48,7 +48,7 @@ FRICTION_KRAGELSKII = 4
 FRICTION_LIMITING_SHEAR = 5
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def step(x, x0, h0, x1, h1):
     """Adams STEP: cubic blend from h0 at x ≤ x0 to h1 at x ≥ x1, zero slope at both ends."""
     if x <= x0:
@@ -59,7 +59,7 @@ def step(x, x0, h0, x1, h1):
     return h0 + (h1 - h0) * d * d * (3.0 - 2.0 * d)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def normal_force(law, delta, delta_dot, k, n, c, d_max):
     """Penalty normal force ≥ 0 (N) for penetration delta (m) and its rate delta_dot (m/s)."""
     if delta <= 0.0:
@@ -67,7 +67,7 @@ def normal_force(law, delta, delta_dot, k, n, c, d_max):
     return normal_force_elastic(law, k * delta**n, delta, delta_dot, c, d_max)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def normal_force_elastic(law, elastic, delta, delta_dot, c, d_max):
     """:func:`normal_force` from its elastic part k δⁿ (N), computed once by the caller (δ > 0)."""
     if law == NORMAL_IMPACT:
@@ -77,7 +77,7 @@ def normal_force_elastic(law, elastic, delta, delta_dot, c, d_max):
     return f if f > 0.0 else 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def friction_coefficient(law, u, p0, p1, p2, p3):
     """Friction (traction) coefficient μ ≥ 0 at slip speed u ≥ 0 (m/s)."""
     if law == FRICTION_COULOMB:
@@ -102,7 +102,7 @@ def friction_coefficient(law, u, p0, p1, p2, p3):
     return mu if mu > 0.0 else 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def step_slope(x, x0, h0, x1, h1):
     """d/dx of :func:`step`."""
     if x <= x0 or x >= x1:
@@ -111,7 +111,7 @@ def step_slope(x, x0, h0, x1, h1):
     return (h1 - h0) * 6.0 * d * (1.0 - d) / (x1 - x0)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def friction_slope(law, u, p0, p1, p2, p3):
     """dμ/du of :func:`friction_coefficient` at slip speed u > 0, s/m (0 where μ is clipped at 0)."""
     if law == FRICTION_COULOMB:
@@ -137,7 +137,7 @@ def friction_slope(law, u, p0, p1, p2, p3):
     return (p1 - p2 * (p0 + p1 * u)) * math.exp(-p2 * u)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def friction_force(law, params, fn, v_slip, out):
     """Friction force (3,) N on body 1 into ``out`` for normal force fn and slip velocity (3,)."""
     u = math.sqrt(v_slip[0] ** 2 + v_slip[1] ** 2 + v_slip[2] ** 2)

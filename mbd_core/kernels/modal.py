@@ -26,7 +26,7 @@ from __future__ import annotations
 from numba import njit
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _inertia_entry(I7, I8, I9, eta, i, j):
     """J(η)[i, j] = I7_ij + Σ_k (I8_ijk + I8_jik) η_k + Σ_kl I9_ijkl η_k η_l."""
     m = eta.shape[0]
@@ -39,7 +39,7 @@ def _inertia_entry(I7, I8, I9, eta, i, j):
     return s
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _times3(A, x):
     """A x for A (3, m) and x (m,), as a tuple."""
     y0 = y1 = y2 = 0.0
@@ -50,14 +50,14 @@ def _times3(A, x):
     return y0, y1, y2
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _first_moment(I2, I3, eta):
     """S = I2 + I3 η, the first moment of the deformed body, as a tuple."""
     y0, y1, y2 = _times3(I3, eta)
     return I2[0] + y0, I2[1] + y1, I2[2] + y2
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def modal_mass_matrix(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, out):
     """Generalized mass matrix M(η) of a modal body into ``out`` (module docstring for the blocks).
 
@@ -121,7 +121,7 @@ def modal_mass_matrix(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, out):
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def modal_velocity_terms(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, v, omega, eta_dot, out):
     """Quadratic-velocity vector h = (h_v, h_ω, h_η) of a modal body into ``out`` (module docstring).
 

@@ -54,7 +54,7 @@ from .modal import modal_mass_matrix, modal_velocity_terms
 from .rigid import turn_quaternion
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _turn_back(px, py, pz, ox, oy, oz):
     """Exp(θ)ᵀ p for the rotation vector θ = (ox, oy, oz): a fixed world vector seen from axes turned by θ."""
     phi = math.sqrt(ox * ox + oy * oy + oz * oz)
@@ -67,7 +67,7 @@ def _turn_back(px, py, pz, ox, oy, oz):
             c * pz + s * (ex * py - ey * px) + d * ez)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def cholesky_in_place(A, n):
     """Lower Cholesky factor of the leading n × n block of the symmetric positive definite A, in place.
 
@@ -89,7 +89,7 @@ def cholesky_in_place(A, n):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def cholesky_solve(L, n, b):
     """Solve (L Lᵀ) x = b in place on b[:n] with the factor from :func:`cholesky_in_place`."""
     for i in range(n):
@@ -104,7 +104,7 @@ def cholesky_solve(L, n, b):
         b[i] = s / L[i, i]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def inertia_force(I5, I8, I9, eta, omega, eta_dot, out):
     """∂T/∂η at fixed velocities into out (m,): ωᵀG_kω + Σ_l ω·I5[:, k, l] η̇_l, √kg·m/s² (module doc)."""
     m = eta.shape[0]
@@ -121,7 +121,7 @@ def inertia_force(I5, I8, I9, eta, omega, eta_dot, out):
         out[k] = s
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _reduced_block(Mfull, n, sel, A):
     """A[:k, :k] = Mfull[sel, sel] for the k = n selected rows (sel (≥ n,) int indices)."""
     for i in range(n):
@@ -129,7 +129,7 @@ def _reduced_block(Mfull, n, sel, A):
             A[i, j] = Mfull[sel[i], sel[j]]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, eta_dot, v_b, omega, f_b, n_b, g_b,
                     modal_f, omega2, damp, elastic, moving, hvec, rhs):
     """Right-hand side (F, N, Q − Kη − Dη̇ + gravity) − h of a modal body into rhs (6 + m,).
@@ -163,20 +163,20 @@ def constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, eta_dot, v_b, ome
         rhs[6 + k] = r
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _invariants(m, j):
     return (m.modal_mass[j], m.modal_I2[j], m.modal_I3[j], m.modal_I4[j], m.modal_I5[j], m.modal_I6[j],
             m.modal_I7[j], m.modal_I8[j], m.modal_I9[j])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _frame_free(m, j):
     """True when all six frame velocities of modal body j are integrated (momentum form)."""
     f = m.modal_frame_free[j]
     return f[0] + f[1] + f[2] + f[3] + f[4] + f[5] == 6
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _select(m, j, mj, sel):
     """Indices of the integrated components of u = (v, ω, η̇) of modal body j into sel; returns their count."""
     n = 0
@@ -190,7 +190,7 @@ def _select(m, j, mj, sel):
     return n
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _body_vectors(m, q, v, w, i):
     """Body-frame velocity, force, moment and gravity of body i into w.modal_vec rows 0…3."""
     vec = w.modal_vec
@@ -200,7 +200,7 @@ def _body_vectors(m, q, v, w, i):
     vec[3, 0], vec[3, 1], vec[3, 2] = rotate_back(q, i, m.gravity[0], m.gravity[1], m.gravity[2])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _constrained_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
     i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
     mj = o1 - o0
@@ -250,7 +250,7 @@ def _constrained_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
     return True
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _momenta(m, j, e, w, n, sel):
     """Factor M_r(η) into w.modal_L and return False if it is not positive definite."""
     mass, I2, I3, I4, I5, I6, I7, I8, I9 = _invariants(m, j)
@@ -259,7 +259,7 @@ def _momenta(m, j, e, w, n, sel):
     return cholesky_in_place(w.modal_L, n)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _rotational_momenta(m, j, v, eta_dot, w, i, o0, mj, e, p):
     """(π, p_η) = M_r(η)(ω, η̇) of free modal body j into p, with u = (ω, η̇) in w.modal_u, the selection
     of the (ω, η) block in w.modal_sel and M_r(η) factored in w.modal_L; False if not positive definite."""
@@ -282,7 +282,7 @@ def _rotational_momenta(m, j, v, eta_dot, w, i, o0, mj, e, p):
     return True
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _free_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
     i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
     mj = o1 - o0
@@ -315,7 +315,7 @@ def _free_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def modal_kick(m, q, v, eta, eta_dot, w, hh, correct):
     """Half-step velocity kick (h/2 = hh) of every modal body from the forces in w; False on a
     mass matrix that is not positive definite. ``correct``: the second kick of a step (module doc)."""
@@ -327,7 +327,7 @@ def modal_kick(m, q, v, eta, eta_dot, w, hh, correct):
     return True
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _free_drift(m, q, v, eta, eta_dot, w, j, h):
     i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
     mj = o1 - o0
@@ -361,7 +361,7 @@ def _free_drift(m, q, v, eta, eta_dot, w, j, h):
     return True
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _constrained_drift(m, q, v, eta, eta_dot, j, h):
     i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
     wx, wy, wz = v[i, 3], v[i, 4], v[i, 5]
@@ -384,7 +384,7 @@ def _constrained_drift(m, q, v, eta, eta_dot, j, h):
         eta[k] = r1 + hh * ed
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def modal_drift(m, q, v, eta, eta_dot, w, h):
     """Drift of every modal body over h (frame pose and η); False on a singular mass matrix."""
     for j in range(m.modal_body.shape[0]):
@@ -399,7 +399,7 @@ def modal_drift(m, q, v, eta, eta_dot, w, h):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def modal_energy(m, q, v, eta, eta_dot, w):
     """Kinetic energy ½uᵀM(η)u and elastic energy ½Σω_k²η_k² of all modal bodies, J (a tuple)."""
     kin = 0.0

@@ -15,7 +15,7 @@ from .pair_types import ELEMENT_POCKET
 from .point_contact import contact_force, _store
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _element_pocket_pairs(m, q, v, eta, eta_dot, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p

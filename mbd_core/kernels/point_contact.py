@@ -16,7 +16,7 @@ from .laws import friction_coefficient, normal_force_elastic
 # reading a field of m or w inside an inlined per-contact function (hoist such reads out of the
 # loops); every array argument of a call costs reference counting (~10 ns), so the small helpers
 # that take arrays are inlined by numba (inline="always").
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def point_force(law, k, n_exp, damping, d_max, fric, p0, p1, p2, p3, delta, mx, my, mz, rx, ry, rz):
     """Force on body a of one contact point with penetration δ > 0, unit normal m (on a) and
     relative velocity r = v_a(p) − v_b(p) of the two surfaces there.
@@ -39,7 +39,7 @@ def point_force(law, k, n_exp, damping, d_max, fric, p0, p1, p2, p3, delta, mx, 
     return fn, u, ft, elastic * delta / (n_exp + 1.0), fx, fy, fz
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def contact_force(q, v, bf, bt, fric_p, c, a, b, law, k, n_exp, damping, d_max, fric, delta,
                   mx, my, mz, px, py, pz):
     """Normal and friction force of contact point p of pair c between bodies a and b.
@@ -59,7 +59,7 @@ def contact_force(q, v, bf, bt, fric_p, c, a, b, law, k, n_exp, damping, d_max, 
     return fn, u, ft, e
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _store(w, c, fn, delta, u, ft, px, py, pz, mx, my, mz):
     """The outputs of pair c: F_n N, penetration m, slip m/s, |F_t| N, contact point p (world, m) and
     unit normal m of the force on the element (world)."""

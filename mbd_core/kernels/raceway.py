@@ -22,7 +22,7 @@ from numba import njit
 TWO_PI = 2.0 * math.pi
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def interp_index(theta_grid, theta, periodic):
     """Neighbouring sample indices and weights (i0, i1, w0, w1) of angle θ (rad) on a sample grid.
 
@@ -49,7 +49,7 @@ def interp_index(theta_grid, theta, periodic):
     return lo, lo + 1, 1.0 - w1, w1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def raceway_field(table, i0, i1, w0, w1, eta):
     """(u_x, u_y, u_z) = (w0 T_i0 + w1 T_i1) η for a table T (n, 3, m) and coordinates η (m,)."""
     ux = uy = uz = 0.0
@@ -61,7 +61,7 @@ def raceway_field(table, i0, i1, w0, w1, eta):
     return ux, uy, uz
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def add_modal_force(table, i0, i1, w0, w1, fx, fy, fz, out):
     """out (m,) += (w0 T_i0 + w1 T_i1)ᵀ f: the modal force of a force (or moment) f at the angle."""
     for k in range(out.shape[0]):

@@ -22,7 +22,7 @@ import math
 from numba import njit
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def quat_rotate(q, v, out):
     """out = R(q) v for a unit quaternion q (4,) and a vector v (3,)."""
     w, x, y, z = q[0], q[1], q[2], q[3]
@@ -35,7 +35,7 @@ def quat_rotate(q, v, out):
     out[2] = v[2] + w * tz + (x * ty - y * tx)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _axis_rotation(q, pi, axis, phi):
     """Turn the body by phi about its own principal axis, in place on q and pi."""
     c, s = math.cos(0.5 * phi), math.sin(0.5 * phi)
@@ -54,7 +54,7 @@ def _axis_rotation(q, pi, axis, phi):
     pi[k] = -sp * a + cp * b
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def free_rotation_step(q, pi, inertia, h):
     """Advance orientation q (4,) and body angular momentum pi (3,) of a torque-free body by h, in place."""
     _axis_rotation(q, pi, 0, 0.5 * h * pi[0] / inertia[0])
@@ -69,7 +69,7 @@ def free_rotation_step(q, pi, inertia, h):
     q[3] /= n
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def turn_quaternion(qw, qx, qy, qz, ox, oy, oz):
     """q ⊗ (cos(φ/2), sin(φ/2) e) for the body-frame rotation vector φ e = (ox, oy, oz), renormalised."""
     phi = math.sqrt(ox * ox + oy * oy + oz * oz)

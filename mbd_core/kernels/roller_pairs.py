@@ -15,7 +15,7 @@ from .point_contact import contact_force, point_force, _store
 from .roller_slices import roller_slices
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p
@@ -100,7 +100,7 @@ def _roller_raceway_pairs(m, q, v, eta, eta_dot, w):
     return e_sum
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _roller_rib_pairs(m, q, v, eta, eta_dot, w):
     e_sum = 0.0
     bf, bt, fp = w.body_f, w.body_t, m.pair_fric_p

@@ -32,7 +32,7 @@ RACEWAY_PLANE_UP = 2
 RACEWAY_PLANE_DOWN = 3
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def roller_slices(center, axis, length, radius, drop, raceway, value, out_delta, out_point, out_normal):
     """Penetration (n_s,) m, deepest points (n_s, 3) m and normals (n_s, 3) of the slices of one roller.
 
@@ -84,7 +84,7 @@ def roller_slices(center, axis, length, radius, drop, raceway, value, out_delta,
 # section's small rotation on, so a rigid tilt of the section is still followed there).
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def surface_coordinate(raceway, x, y, z):
     """s of a ring-frame point on a surface of the given kind: z on a cylinder, r on a plane (m)."""
     if raceway <= RACEWAY_OUTER_CYLINDER:
@@ -92,7 +92,7 @@ def surface_coordinate(raceway, x, y, z):
     return math.sqrt(x * x + y * y)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def circle_index(circle_s, s):
     """Neighbouring circles (j0, j1) and linear weights (v0, v1) of coordinate s on the ascending circle
     coordinates ``circle_s`` (n_c,) m; the end circle alone (j0 = j1, v1 = 0) beyond the ends."""

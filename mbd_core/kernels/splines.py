@@ -15,7 +15,7 @@ from __future__ import annotations
 from numba import njit
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def spline_value(knot_t, coef, start, stop, t, out):
     """Write f(t) (6,) of the load whose knots are knot_t[start:stop] into ``out``."""
     last = stop - 1

@@ -41,13 +41,13 @@ from .laws import friction_coefficient
 __all__ = ["strip_traction", "strip_traction_forces", "strip_load_share"]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def strip_load_share(s):
     """Share of the contact load on the part y < s·a of the ellipse (−1 ≤ s ≤ 1)."""
     return 0.75 * (s - s * s * s / 3.0) + 0.5
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def strip_traction_forces(load_N, a_m, slip_x, slip_y, omega_x, omega_y, omega_z, curvature_per_m, law, p0, p1, p2,
                           p3, n_strips):
     """(F_x, F_y N, M_x, M_y, M_z N·m) on body 1 from ``n_strips`` strips over a curved contact surface
@@ -81,7 +81,7 @@ def strip_traction_forces(load_N, a_m, slip_x, slip_y, omega_x, omega_y, omega_z
     return fx, fy, mx, my, mz
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def strip_traction(load_N, a_m, slip_x, slip_y, spin_rad_s, law, p0, p1, p2, p3, n_strips, out):
     """F_x, F_y (N) and M_z (N·m) on body 1 into ``out`` (3,) over a flat contact with spin only."""
     fx, fy, _, _, mz = strip_traction_forces(load_N, a_m, slip_x, slip_y, 0.0, 0.0, spin_rad_s, 0.0, law, p0, p1,
