@@ -30,23 +30,31 @@ def _table_slope(table, start, stop, th):
     return (1.0 - w) * table[start + i0] + w * table[start + i1], (table[start + i1] - table[start + i0]) * n / TWO_PI
 
 
-@njit(cache=True, inline="always", _nrt=False)
+# The modal sums below run over the modes innermost, along the tables' contiguous axis, and may
+# reassociate: LLVM then vectorises them (they differ from sequential sums by round-off only). They
+# are not inlined into the force kernel, so that the flag stays theirs.
+_SUMS = {"reassoc", "contract"}
+
+
+@njit(cache=True, fastmath=_SUMS, _nrt=False)
 def _section_velocity(disp, rot, i0, i1, w0, w1, ed, bx, by, bz):
     """Velocity (Dη̇) + (Ωη̇) × b of the raceway section's point at lever b from the sampled point,
     interpolated between samples i0, i1 (ring frame)."""
+    m = ed.shape[0]
     vx = vy = vz = sx = sy = sz = 0.0
-    for k in range(ed.shape[0]):
-        e = ed[k]
-        vx += (w0 * disp[i0, 0, k] + w1 * disp[i1, 0, k]) * e
-        vy += (w0 * disp[i0, 1, k] + w1 * disp[i1, 1, k]) * e
-        vz += (w0 * disp[i0, 2, k] + w1 * disp[i1, 2, k]) * e
-        sx += (w0 * rot[i0, 0, k] + w1 * rot[i1, 0, k]) * e
-        sy += (w0 * rot[i0, 1, k] + w1 * rot[i1, 1, k]) * e
-        sz += (w0 * rot[i0, 2, k] + w1 * rot[i1, 2, k]) * e
+    for k in range(m):
+        vx += (w0 * disp[i0, 0, k] + w1 * disp[i1, 0, k]) * ed[k]
+        sx += (w0 * rot[i0, 0, k] + w1 * rot[i1, 0, k]) * ed[k]
+    for k in range(m):
+        vy += (w0 * disp[i0, 1, k] + w1 * disp[i1, 1, k]) * ed[k]
+        sy += (w0 * rot[i0, 1, k] + w1 * rot[i1, 1, k]) * ed[k]
+    for k in range(m):
+        vz += (w0 * disp[i0, 2, k] + w1 * disp[i1, 2, k]) * ed[k]
+        sz += (w0 * rot[i0, 2, k] + w1 * rot[i1, 2, k]) * ed[k]
     return vx + sy * bz - sz * by, vy + sz * bx - sx * bz, vz + sx * by - sy * bx
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, fastmath=_SUMS, _nrt=False)
 def _add_section_force(disp, rot, i0, i1, w0, w1, fx, fy, fz, tx, ty, tz, qf):
     """qf += Dᵀf + Ωᵀt at the interpolated section: the modal force of a force f and moment t (ring
     frame) on the raceway section — the transpose of :func:`_section_velocity`."""
@@ -57,20 +65,20 @@ def _add_section_force(disp, rot, i0, i1, w0, w1, fx, fy, fz, tx, ty, tz, qf):
                           + rot[i1, 0, k] * tx + rot[i1, 1, k] * ty + rot[i1, 2, k] * tz))
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, fastmath=_SUMS, _nrt=False)
 def _groove_rows(disp, rot, i0, i1, e_j, out):
     """out (4, 3) = D_i0 η, D_i1 η, Ω_i0 η, Ω_i1 η: the two samples around a contact, whose linear
     interpolation and difference quotient give the raceway's displacement, rotation and their slopes."""
-    for r in range(4):
-        for c in range(3):
-            out[r, c] = 0.0
-    for k in range(e_j.shape[0]):
-        ek = e_j[k]
-        for c in range(3):
-            out[0, c] += disp[i0, c, k] * ek
-            out[1, c] += disp[i1, c, k] * ek
-            out[2, c] += rot[i0, c, k] * ek
-            out[3, c] += rot[i1, c, k] * ek
+    m = e_j.shape[0]
+    for c in range(3):
+        a0 = a1 = b0 = b1 = 0.0
+        for k in range(m):
+            ek = e_j[k]
+            a0 += disp[i0, c, k] * ek
+            a1 += disp[i1, c, k] * ek
+            b0 += rot[i0, c, k] * ek
+            b1 += rot[i1, c, k] * ek
+        out[0, c], out[1, c], out[2, c], out[3, c] = a0, a1, b0, b1
 
 
 @njit(cache=True, inline="always", _nrt=False)
