@@ -3,9 +3,12 @@
 ``_nrt=False`` compiles them without numba's runtime (reference counting and allocation). They
 allocate nothing (the model and its work arrays come in preallocated), and the runtime's reference
 counting of the model's ~85 arrays at every inlined helper with branches cost more than the physics:
-the rigid 32-ball step took 22 µs with it and 9 µs without (benchmarks/bench_modal.py). A kernel that
-needs a temporary array must take it from the work arrays (``make_work``); numba refuses to compile an
-allocation here, so it cannot slip in unnoticed.
+the rigid 32-ball step took 22 µs with it and 8.8 µs without, the same balls on a 20-mode ring 45 µs
+and 18.5 µs (benchmarks/bench_modal.py). A kernel that needs a temporary array must take it from the
+work arrays (``make_work``); numba refuses to compile an allocation here, so it cannot slip in
+unnoticed. Call the kernels from Python or from functions compiled the same way: an ``@njit``
+function *with* the runtime that calls them corrupted the heap in a trial (glibc's malloc
+consistency check fired), so wrappers in tests and benchmarks take ``_nrt=False`` too.
 
 Only this package imports numba. Each kernel has a plain-numpy twin under ``tests/reference``
 and a test comparing the two on seeded random and corner inputs (STYLE.md). Kernels dispatch on
