@@ -66,7 +66,7 @@ CASES = {name: c.description for name, c in PRESETS.items()}
 #: tables that only one family's case files have (to read files written before ``family`` existed)
 _OWN_TABLES = {SlewingCase: {"geometry", "load", "undulation", "thermal", "top", "bottom"},
                WindCase: {"rollers", "bodies", "loads"}, DescribedCase: {"bearing", "life"},
-               DmaCase: {"operation", "traction"}, CrbCase: {"lubrication", "catalogue"}}
+               DmaCase: {"operation", "traction"}, CrbCase: {"lubrication", "surfaces", "catalogue"}}
 
 
 def _case_class(data: dict, source: str) -> type:

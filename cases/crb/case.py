@@ -18,9 +18,12 @@ import math
 from dataclasses import dataclass, field
 from typing import ClassVar, Literal
 
+from mbd_core.bearing.catalogue_friction import CatalogueConstants
+from mbd_core.bearing.roller_friction import MixedLubrication
+
 from ..config import CaseTables
 
-__all__ = ["CrbBearing", "Lubrication", "Operation", "Catalogue", "Study", "CrbCase"]
+__all__ = ["CrbBearing", "Lubrication", "Operation", "Study", "CrbCase"]
 
 
 def _numbers(obj, low: float, *keys, high: float = math.inf) -> None:
@@ -75,18 +78,13 @@ class CrbBearing:
 
 @dataclass(frozen=True)
 class Lubrication:
-    """``[lubrication]``: the oil (ISO VG grade of mineral oil) and its temperature (°C); composite RMS
-    roughness of the raceway and rib contacts (m); Zhou & Hoeprich's B and C; boundary friction and the
-    oil's limiting shear coefficient τ_L/p."""
+    """``[lubrication]``: the oil (ISO VG grade of mineral oil) and its temperature (°C). The surfaces
+    are ``[surfaces]`` (:class:`mbd_core.bearing.roller_friction.MixedLubrication`: composite RMS
+    roughness of the raceway and rib contacts in m, Zhou & Hoeprich's B and C, boundary friction, the
+    oil's limiting shear coefficient τ_L/p)."""
 
     iso_vg: int = 100
     temperature_C: float = 50.0
-    raceway_roughness_m: float = 0.13e-6
-    rib_roughness_m: float = 0.34e-6
-    B: float = 1.8
-    C: float = 1.2
-    mu_boundary: float = 0.1
-    limiting_shear_coefficient: float = 0.05
 
     def __post_init__(self) -> None:
         from foundation.lubricants import ISO_VG_MINERAL_100C_MM2_S
@@ -95,19 +93,11 @@ class Lubrication:
             raise ValueError(f"iso_vg: one of {', '.join(map(str, ISO_VG_MINERAL_100C_MM2_S))}, got {self.iso_vg!r}")
         if not (isinstance(self.temperature_C, (int, float)) and -20.0 <= self.temperature_C <= 150.0):
             raise ValueError(f"temperature_C: must lie in −20 … 150, got {self.temperature_C!r}")
-        _numbers(self, 0.0, "raceway_roughness_m", "rib_roughness_m", "B", "C")
-        _numbers(self, 0.0, "mu_boundary", "limiting_shear_coefficient", high=0.5)
 
     def oil(self):
         from foundation.lubricants import iso_vg_mineral_oil
 
         return iso_vg_mineral_oil(self.iso_vg, self.temperature_C)
-
-    def surfaces(self):
-        from mbd_core.bearing.roller_friction import MixedLubrication
-
-        return MixedLubrication(self.raceway_roughness_m, self.rib_roughness_m, self.B, self.C, self.mu_boundary,
-                                self.limiting_shear_coefficient)
 
 
 @dataclass(frozen=True)
@@ -122,28 +112,6 @@ class Operation:
         _numbers(self, 0.0, "radial_load_N", "speed_rpm")
         if not (isinstance(self.axial_load_N, (int, float)) and 0.0 <= self.axial_load_N < math.inf):
             raise ValueError(f"axial_load_N: must be a number ≥ 0, got {self.axial_load_N!r}")
-
-
-@dataclass(frozen=True)
-class Catalogue:
-    """``[catalogue]``: the constants of the catalogue model set beside ours
-    (:mod:`mbd_core.bearing.catalogue_friction`; cylindrical roller bearings with a cage, series 2)."""
-
-    R1: float = 1.09e-6
-    S1: float = 0.16
-    S2: float = 0.0015
-    mu_bl: float = 0.15
-    mu_ehl: float = 0.02
-    K_rs: float = 3e-8
-    K_Z: float = 5.1
-
-    def __post_init__(self) -> None:
-        _numbers(self, 0.0, "R1", "S1", "S2", "mu_bl", "mu_ehl", "K_rs", "K_Z")
-
-    def constants(self):
-        from mbd_core.bearing.catalogue_friction import CatalogueConstants
-
-        return CatalogueConstants(self.R1, self.S1, self.S2, self.mu_bl, self.mu_ehl, self.K_rs, self.K_Z)
 
 
 @dataclass(frozen=True)
@@ -172,6 +140,7 @@ class CrbCase(CaseTables):
     description: str = ""
     bearing: CrbBearing = field(default_factory=CrbBearing)
     lubrication: Lubrication = field(default_factory=Lubrication)
+    surfaces: MixedLubrication = field(default_factory=MixedLubrication)
     operation: Operation = field(default_factory=Operation)
-    catalogue: Catalogue = field(default_factory=Catalogue)
+    catalogue: CatalogueConstants = field(default_factory=CatalogueConstants)
     study: Study = field(default_factory=Study)

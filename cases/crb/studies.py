@@ -26,11 +26,11 @@ def operating_point(case: CrbCase, speed_rpm: float, axial_load_N: float) -> tup
     lub, op = case.lubrication, case.operation
     oil = lub.oil()
     ours = roller_bearing_friction(case.bearing.model(), oil, lub.temperature_C, speed_rpm, op.radial_load_N,
-                                   axial_load_N, lub.surfaces())
+                                   axial_load_N, case.surfaces)
     catalogue = catalogue_cylindrical_roller_moment(case.bearing.bore_m, case.bearing.outside_diameter_m,
                                                     op.radial_load_N, axial_load_N, speed_rpm,
                                                     oil.kinematic_viscosity_m2_s(lub.temperature_C),
-                                                    case.catalogue.constants())
+                                                    case.catalogue)
     return ours, catalogue
 
 

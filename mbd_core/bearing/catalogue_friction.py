@@ -40,6 +40,12 @@ class CatalogueConstants:
     K_rs: float = 3e-8
     K_Z: float = 5.1
 
+    def __post_init__(self) -> None:
+        for key in ("R1", "S1", "S2", "mu_bl", "mu_ehl", "K_rs", "K_Z"):
+            value = getattr(self, key)
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0.0):
+                raise ValueError(f"{key}: must be a number > 0, got {value!r}")
+
 
 def catalogue_cylindrical_roller_moment(bore_m: float, outside_diameter_m: float, radial_load_N: float,
                                         axial_load_N: float, speed_rpm: float, viscosity_m2_s: float,

@@ -104,6 +104,14 @@ class MixedLubrication:
     mu_boundary: float = 0.1
     limiting_shear_coefficient: float = 0.05
 
+    def __post_init__(self) -> None:
+        for key, high in (("raceway_roughness_m", math.inf), ("rib_roughness_m", math.inf), ("B", math.inf),
+                          ("C", math.inf), ("mu_boundary", 0.5), ("limiting_shear_coefficient", 0.5)):
+            value = getattr(self, key)
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and 0.0 < value <= high):
+                raise ValueError(f"{key}: must be a number > 0" + (f" and ≤ {high:g}" if high < math.inf else "")
+                                 + f", got {value!r}")
+
 
 @dataclass(frozen=True)
 class RollerFriction:
