@@ -52,11 +52,11 @@ import numpy as np
 from mbd_core.bearing import rolling_kinematics
 from mbd_core.multibody import StepTooLargeError, largest_load_step_error
 from mbd_core.multibody.bearings import _rotate, row_speed_rad_s
-from mbd_core.multibody.ring_torque import axial_angular_momentum, axial_torques, spectrum_peaks_Hz
 from mbd_core.quasistatic import Bearing, FourPointRow, solve_load_distribution
 
 from ..config import CaseError
 from ..integrate import integrate, integrate_implicit
+from ..ring_torque_report import write_ring_torque
 from .rotation_scene import RotationScene, build_scene, check_rotation, modal_mass_kg, modal_rings, start_state
 
 __all__ = ["RotationScene", "check_rotation", "modal_rings", "build_scene", "start_state", "reference_loads",
@@ -184,39 +184,11 @@ def compare(sc: RotationScene, desc, run: dict, omega_rad_s: float) -> dict:
             "settled_from_s": float(t[settled][0]), "compared_samples": len(picks), "moving_ring": ring}
 
 
-#: samples the ring torque is evaluated at, at most (evenly picked from the record)
-TORQUE_SAMPLES = 4000
-
-
 def _ring_torque(sc: RotationScene, run: dict, out) -> None:
-    """The friction torque on both rings about the axis (:func:`mbd_core.multibody.ring_torque.axial_torques`):
-    mean, ripple and spectrum peaks over the settled part; ring_torque.csv and ring_torque.png."""
-    from ..torque_plots import plot_ring_torque
-
-    t, torque = axial_torques(sc.model, run, (sc.moving, sc.fixed), TORQUE_SAMPLES)
-    settled = t >= t[0] + START_UP_SHARE * (t[-1] - t[0])
-    figures = {}
-    for j, side in enumerate(("moving", "fixed")):
-        values = torque[settled, j]
-        figures[f"{side}_ring_Nm"] = float(values.mean())
-        figures[f"{side}_ring_ripple_Nm"] = float(values.std())
-        figures[f"{side}_ring_peaks_Hz"] = spectrum_peaks_Hz(values, t[1] - t[0])
-    between = [i for i in range(sc.model.n_bodies) if i not in (sc.moving, sc.fixed)]
-    if not np.any(sc.model.arrays.body_modal[between] >= 0):
-        # the rolling set gets all its forces from the rings: T_moving + T_fixed = −dL/dt
-        ts = np.asarray(run["t"])
-        keep = ts >= t[settled][0]
-        momentum = axial_angular_momentum(sc.model, {"q": run["q"][keep], "v": run["v"][keep]}, between)
-        rate = (momentum[-1] - momentum[0]) / (ts[keep][-1] - ts[keep][0])
-        figures["balance_residual_Nm"] = float(torque[settled].sum(axis=1).mean() + rate)
-    out.summary["ring_torque"] = figures
-    out.write_csv("ring_torque.csv", ("t_s", "moving_ring_torque_Nm", "fixed_ring_torque_Nm"),
-                  zip(t, torque[:, 0], torque[:, 1]))
-    out.save_figure(plot_ring_torque(t, {"moving ring": torque[:, 0], "fixed ring": torque[:, 1]}, settled,
-                                     "Torque of the rolling elements, cages and drag on the rings about the axis"),
-                    "ring_torque.png")
-    out.note(f"friction torque about the axis: moving ring {figures['moving_ring_Nm']:.4g} N·m, fixed ring "
-             f"{figures['fixed_ring_Nm']:.4g} N·m (ripple {figures['moving_ring_ripple_Nm']:.2g} N·m)")
+    """The friction torque on both rings about the axis over the settled part (:mod:`cases.ring_torque_report`)."""
+    t = np.asarray(run["t"])
+    write_ring_torque(sc.model, run, {"moving": sc.moving, "fixed": sc.fixed}, t[0] + START_UP_SHARE * (t[-1] - t[0]),
+                      out, "Torque of the rolling elements, cages and drag on the rings about the axis")
 
 
 def run_rotation(case, desc, out, progress=None) -> None:

@@ -37,6 +37,7 @@ from mbd_core.multibody.statics import static_equilibrium
 
 from ..config import CaseError
 from ..integrate import IMPLICIT_STEP_FACTOR, integrate, integrate_implicit
+from ..ring_torque_report import write_ring_torque
 from . import scene
 from .case import THESIS_CONTACT_DAMPING_N_S_PER_M, THESIS_CONTACT_STIFFNESS_N_PER_M1P5, SlewingCase
 from .quasistatic import analytic_ball_load_N
@@ -56,8 +57,8 @@ D_MAX_M = 1e-6
 class DynamicScene:
     """The model and the indices a run reads back: bodies and contact pairs."""
 
-    def __init__(self, model, state, top, balls, spacers, ball_pairs_top, ball_pairs_bottom, spacer_pairs):
-        self.model, self.state, self.top = model, state, top
+    def __init__(self, model, state, top, bottom, balls, spacers, ball_pairs_top, ball_pairs_bottom, spacer_pairs):
+        self.model, self.state, self.top, self.bottom = model, state, top, bottom
         self.balls, self.spacers = balls, spacers
         self.ball_pairs_top, self.ball_pairs_bottom, self.spacer_pairs = ball_pairs_top, ball_pairs_bottom, spacer_pairs
 
@@ -112,7 +113,7 @@ def build_scene(case: SlewingCase, bodies: scene.Bodies) -> DynamicScene:
         spacers, spacer_pairs = _add_spacers(b, case, row, bottom, rb.elements, fixed_tab,
                                              "groove" if bodies.bottom is not None else None, c, friction)
     model, state = b.finalize()
-    return DynamicScene(model, state, top, rb.elements, spacers, rb.moving_pairs, rb.fixed_pairs, spacer_pairs)
+    return DynamicScene(model, state, top, bottom, rb.elements, spacers, rb.moving_pairs, rb.fixed_pairs, spacer_pairs)
 
 
 def _bottom_groove_centre_rz(case: SlewingCase) -> np.ndarray:
@@ -342,6 +343,9 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
                                                                        cmp["run_load_N"], cmp["quasistatic_load_N"])
                        for j, (g, w) in enumerate(zip(gs, ws))))
         out.save_figure(plot_comparison(cmp, case), "quasistatic_comparison.png")
+    write_ring_torque(sc.model, run, {"top": sc.top, "bottom": sc.bottom}, settled_from_s, out,
+                      f"{case.name}: torque of the balls{' and spacers' if sc.spacer_pairs else ''} on the races "
+                      "about the axis", friction=case.contact.friction_law())
     out.write_timeseries(sc.model, run, case=case.name, study=case.study.kind)
     out.write_csv("ball_loads_time.csv", ["t_s"] + ball_columns(q.shape[1]),
                   (np.concatenate([[ti], qi]) for ti, qi in zip(t, q)))

@@ -1,0 +1,74 @@
+"""The friction torque of a dynamic run on its two rings, written into a run folder: mean, ripple and
+spectrum peaks over the settled part (summary ``ring_torque``), ``ring_torque.csv`` and
+``ring_torque.png`` (:func:`mbd_core.multibody.ring_torque.axial_torques`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mbd_core.multibody.ring_torque import axial_angular_momentum, axial_torques, spectrum_peaks_Hz
+
+__all__ = ["TORQUE_SAMPLES", "write_ring_torque"]
+
+#: samples at which the forces are re-evaluated for the torque (evenly picked from the record)
+TORQUE_SAMPLES = 4000
+
+
+def write_ring_torque(model, run: dict, rings: dict, settled_from_s: float, out, title: str,
+                      friction=None) -> dict:
+    """``rings``: key (``moving``, ``fixed``) → body index. The torque the rolling elements, cages and
+    drag put on each ring about the axis at up to :data:`TORQUE_SAMPLES` recorded samples; means and
+    ripple over t ≥ ``settled_from_s``. When the bodies between the rings are rigid, their angular
+    momentum balance is checked too: T_moving + T_fixed = −dL/dt (``balance_residual_Nm``).
+
+    ``friction``: the contacts' friction law (None: frictionless). A regularised Coulomb law is its
+    own model only above its transition speed; when the loaded contacts slip slower (median), the
+    torque is that of the regularisation, and the run says so in its warnings."""
+    from .torque_plots import plot_ring_torque
+
+    keys, bodies = list(rings), list(rings.values())
+    t, torque = axial_torques(model, run, bodies, TORQUE_SAMPLES)
+    settled = t >= settled_from_s
+    if settled.sum() < 2:
+        settled = np.ones_like(t, dtype=bool)
+    figures = {}
+    for j, key in enumerate(keys):
+        values = torque[settled, j]
+        figures[f"{key}_ring_Nm"] = float(values.mean())
+        figures[f"{key}_ring_ripple_Nm"] = float(values.std())
+        figures[f"{key}_ring_peaks_Hz"] = spectrum_peaks_Hz(values, t[1] - t[0]) if values.size > 8 else []
+    between = [i for i in range(model.n_bodies) if i not in bodies]
+    if not np.any(model.arrays.body_modal[between] >= 0):
+        ts = np.asarray(run["t"])
+        keep = ts >= t[settled][0]
+        momentum = axial_angular_momentum(model, {"q": run["q"][keep], "v": run["v"][keep]}, between)
+        rate = (momentum[-1] - momentum[0]) / (ts[keep][-1] - ts[keep][0])
+        figures["balance_residual_Nm"] = float(torque[settled].sum(axis=1).mean() + rate)
+    out.summary["ring_torque"] = figures
+    _validity(run, settled_from_s, friction, out)
+    out.write_csv("ring_torque.csv", ["t_s"] + [f"{k}_ring_torque_Nm" for k in keys],
+                  (np.concatenate([[ti], row]) for ti, row in zip(t, torque)))
+    out.save_figure(plot_ring_torque(t, {f"{k} ring": torque[:, j] for j, k in enumerate(keys)}, settled, title),
+                    "ring_torque.png")
+    out.note("friction torque about the axis: " + ", ".join(
+        f"{k} ring {figures[f'{k}_ring_Nm']:.4g} N·m (ripple {figures[f'{k}_ring_ripple_Nm']:.2g})" for k in keys))
+    return figures
+
+
+def _validity(run: dict, settled_from_s: float, friction, out) -> None:
+    if friction is None:
+        out.warn(["friction torque: the contacts are frictionless; the torque holds only damping and drag"])
+        return
+    v_static = getattr(friction, "v_static_m_s", None)
+    if v_static is None:
+        return
+    keep = np.asarray(run["t"]) >= settled_from_s
+    fn, slip = np.asarray(run["fn"])[keep], np.asarray(run["slip"])[keep]
+    loaded = fn > 0.0
+    if not loaded.any():
+        return
+    median = float(np.median(slip[loaded]))
+    if median < v_static:
+        out.warn([f"friction torque: the loaded contacts slip at {1e3 * median:.3g} mm/s (median), below the "
+                  f"friction law's transition speed {1e3 * v_static:.3g} mm/s; the torque is that of the law's "
+                  "regularisation there, not of Coulomb friction"])
