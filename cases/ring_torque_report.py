@@ -15,14 +15,14 @@ TORQUE_SAMPLES = 4000
 
 
 def write_ring_torque(model, run: dict, rings: dict, settled_from_s: float, out, title: str,
-                      friction=None) -> dict:
+                      friction: str | object = "not checked") -> dict:
     """``rings``: key (``moving``, ``fixed``) → body index. The torque the rolling elements, cages and
     drag put on each ring about the axis at up to :data:`TORQUE_SAMPLES` recorded samples; means and
     ripple over t ≥ ``settled_from_s``. When the bodies between the rings are rigid, their angular
     momentum balance is checked too: T_moving + T_fixed = −dL/dt (``balance_residual_Nm``).
 
-    ``friction``: the contacts' friction law (None: frictionless). A regularised Coulomb law is its
-    own model only above its transition speed; when the loaded contacts slip slower (median), the
+    ``friction``: the contacts' friction law, None for frictionless contacts, or "not checked". A
+    regularised Coulomb law is its own model only above its transition speed; when the loaded contacts slip slower (median), the
     torque is that of the regularisation, and the run says so in its warnings."""
     from .torque_plots import plot_ring_torque
 
@@ -56,6 +56,8 @@ def write_ring_torque(model, run: dict, rings: dict, settled_from_s: float, out,
 
 
 def _validity(run: dict, settled_from_s: float, friction, out) -> None:
+    if isinstance(friction, str):
+        return
     if friction is None:
         out.warn(["friction torque: the contacts are frictionless; the torque holds only damping and drag"])
         return
