@@ -6,6 +6,11 @@ process at once, leaving temporary folders behind. :func:`install` makes them ra
 cleanup runs (:func:`cases.outdir.atomic_folder`, :func:`fem_rings.cache.atomic_path`). When
 nothing catches it, the process prints one line and ends by the same signal, so its exit status
 (128 + signal number in a shell) still says how it was stopped.
+
+A signal that arrives while Python runs a finaliser or weakref callback (an import's module-lock
+clean-up, a garbage-collected object's ``__del__``) raises :class:`Terminated` where Python cannot
+let it propagate: it would print "Exception ignored … Traceback" and lose the stop. The hook on
+such exceptions raises it again from a short timer (SIGALRM), once the finaliser is done.
 """
 
 from __future__ import annotations
@@ -46,6 +51,17 @@ def _excepthook(kind, value, tb, _previous=sys.excepthook):
     os.kill(os.getpid(), value.signum)
 
 
+def _unraisable(info, _previous=sys.unraisablehook):
+    if isinstance(info.exc_value, Terminated) and hasattr(signal, "setitimer"):
+        # raised again by a timer 5 ms on, once the finaliser is done (a signal sent from here would
+        # be handled inside this hook, again where it cannot propagate)
+        signum = info.exc_value.signum
+        signal.signal(signal.SIGALRM, lambda _s, _f: _raise(signum, None))
+        signal.setitimer(signal.ITIMER_REAL, 0.005)
+        return
+    _previous(info)
+
+
 @contextmanager
 def held():
     """Hold back SIGINT, SIGTERM and SIGHUP in the block; one that arrived is acted on at its end.
@@ -84,3 +100,4 @@ def install() -> None:
         if hasattr(signal, name):
             signal.signal(getattr(signal, name), _raise)
     sys.excepthook = _excepthook
+    sys.unraisablehook = _unraisable

@@ -189,6 +189,37 @@ def test_recovery_leaves_running_runs_and_foreign_names_alone(tmp_path):
     assert not (tmp_path / "results").exists()
 
 
+def test_a_stop_signal_inside_a_finaliser_still_stops_the_run(tmp_path):
+    """SIGTERM handled while Python runs a finaliser (here a __del__; in a run, an import's module-lock
+    clean-up) cannot propagate from there: Python would print "Exception ignored … Traceback" and go
+    on. The run must still be stopped, with its one line, the temporary folder removed and the old
+    result kept."""
+    _write(tmp_path / "results", "old")
+    code = (
+        "import gc, os, signal, sys, time\n"
+        "from cases import signals\n"
+        "from cases.outdir import atomic_folder\n"
+        "signals.install()\n"
+        "class Dying:\n"
+        "    def __del__(self):\n"
+        "        os.kill(os.getpid(), signal.SIGTERM)\n"
+        "        sum(range(1000))\n"  # bytecodes: the handler runs here, inside the finaliser
+        "with atomic_folder(sys.argv[1]) as tmp:\n"
+        "    (tmp / 'summary.json').write_text('{}')\n"
+        "    Dying()\n"
+        "    time.sleep(30)\n"
+        "    print('not stopped')\n"
+    )
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]))
+    proc = subprocess.run([sys.executable, "-c", code, str(tmp_path / "results")], env=env, capture_output=True,
+                          text=True, timeout=60)
+    assert proc.returncode == -signal.SIGTERM, proc.stderr
+    assert "Traceback" not in proc.stderr and "stopped by SIGTERM" in proc.stderr
+    assert "not stopped" not in proc.stdout
+    assert _value(tmp_path / "results") == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["results"]
+
+
 @pytest.mark.parametrize("name", ["SIGTERM", "SIGHUP", "SIGINT"])
 def test_stop_signals_unwind_like_ctrl_c(tmp_path, name):
     """A stop signal in the middle of writing: the temporary folder is removed, the old result
