@@ -17,6 +17,7 @@ mineral oil.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -133,5 +134,4 @@ def iso_vg_mineral_oil(grade: int, alpha_temperature_C: float = 40.0) -> Lubrica
                                      ((40.0, float(grade)), (100.0, ISO_VG_MINERAL_100C_MM2_S[grade])),
                                      density_15C_kg_m3=880.0, alpha_Pa_inv=2e-8, density_slope_kg_m3_K=0.63)
     alpha = wooster_pressure_viscosity_Pa_inv(oil.dynamic_viscosity_Pa_s(alpha_temperature_C))
-    return Lubricant(oil.name, oil.walther_A, oil.walther_B, oil.density_ref_kg_m3, oil.density_ref_temperature_C,
-                     oil.density_slope_kg_m3_K, alpha_K_Pa_inv=alpha, walther_c_mm2_s=oil.walther_c_mm2_s)
+    return dataclasses.replace(oil, alpha_K_Pa_inv=alpha)

@@ -18,20 +18,13 @@ import math
 from dataclasses import dataclass, field
 from typing import ClassVar, Literal
 
+from foundation.validation import check_positive
 from mbd_core.bearing.catalogue_friction import CatalogueConstants
 from mbd_core.bearing.roller_friction import MixedLubrication
 
 from ..config import CaseTables
 
 __all__ = ["CrbBearing", "Lubrication", "Operation", "Study", "CrbCase"]
-
-
-def _numbers(obj, low: float, *keys, high: float = math.inf) -> None:
-    for key in keys:
-        value = getattr(obj, key)
-        if not (isinstance(value, (int, float)) and math.isfinite(value) and low < value <= high):
-            raise ValueError(f"{key}: must be a number > {low:g}" + (f" and ≤ {high:g}" if high < math.inf else "")
-                             + f", got {value!r}")
 
 
 @dataclass(frozen=True)
@@ -51,8 +44,9 @@ class CrbBearing:
     roller_end_radius_m: float = 0.06
 
     def __post_init__(self) -> None:
-        _numbers(self, 0.0, "bore_m", "outside_diameter_m", "roller_diameter_m", "roller_length_m",
-                 "pitch_diameter_m", "roller_end_radius_m")
+        check_positive(bore_m=self.bore_m, outside_diameter_m=self.outside_diameter_m,
+                       roller_diameter_m=self.roller_diameter_m, roller_length_m=self.roller_length_m,
+                       pitch_diameter_m=self.pitch_diameter_m, roller_end_radius_m=self.roller_end_radius_m)
         if not (isinstance(self.n_rollers, int) and 4 <= self.n_rollers <= 200):
             raise ValueError(f"n_rollers: must be an integer in 4 … 200, got {self.n_rollers!r}")
         if not self.bore_m < self.pitch_diameter_m - self.roller_diameter_m:
@@ -66,7 +60,10 @@ class CrbBearing:
                              f"pitch circle of {self.pitch_diameter_m} m")
         if not (isinstance(self.radial_clearance_m, (int, float)) and 0.0 <= self.radial_clearance_m <= 1e-3):
             raise ValueError(f"radial_clearance_m: must lie in 0 … 0.001 m, got {self.radial_clearance_m!r}")
-        _numbers(self, 0.0, "rib_contact_height_m", high=self.roller_diameter_m / 2 * 0.999)
+        check_positive(rib_contact_height_m=self.rib_contact_height_m)
+        if not self.rib_contact_height_m < self.roller_diameter_m / 2:
+            raise ValueError(f"rib_contact_height_m: must lie below the roller's radius {self.roller_diameter_m / 2:g} m, "
+                             f"got {self.rib_contact_height_m!r}")
 
     def model(self):
         from mbd_core.bearing.roller_friction import CylindricalRollerBearing
@@ -109,7 +106,7 @@ class Operation:
     speed_rpm: float = 1500.0
 
     def __post_init__(self) -> None:
-        _numbers(self, 0.0, "radial_load_N", "speed_rpm")
+        check_positive(radial_load_N=self.radial_load_N, speed_rpm=self.speed_rpm)
         if not (isinstance(self.axial_load_N, (int, float)) and 0.0 <= self.axial_load_N < math.inf):
             raise ValueError(f"axial_load_N: must be a number ≥ 0, got {self.axial_load_N!r}")
 

@@ -41,10 +41,8 @@ class CatalogueConstants:
     K_Z: float = 5.1
 
     def __post_init__(self) -> None:
-        for key in ("R1", "S1", "S2", "mu_bl", "mu_ehl", "K_rs", "K_Z"):
-            value = getattr(self, key)
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0.0):
-                raise ValueError(f"{key}: must be a number > 0, got {value!r}")
+        check_positive(R1=self.R1, S1=self.S1, S2=self.S2, mu_bl=self.mu_bl, mu_ehl=self.mu_ehl, K_rs=self.K_rs,
+                       K_Z=self.K_Z)
 
 
 def catalogue_cylindrical_roller_moment(bore_m: float, outside_diameter_m: float, radial_load_N: float,

@@ -43,8 +43,10 @@ from mbd_core.contact.ehl_inlet import grubin_line_contact
 from mbd_core.contact.friction import LimitingShear, asperity_load_share
 from mbd_core.contact.line import LINE_EXPONENT, iso16281_stiffness
 
+from .kinematics import element_speed_magnitude_rad_s, rpm_to_rad_s
+
 __all__ = ["CylindricalRollerBearing", "MixedLubrication", "RollerFriction", "radial_roller_loads", "rib_speeds_m_s",
-           "roller_bearing_friction"]
+           "roller_bearing_friction", "rolling_speed_m_s"]
 
 _KELVIN = 273.15
 
@@ -105,12 +107,11 @@ class MixedLubrication:
     limiting_shear_coefficient: float = 0.05
 
     def __post_init__(self) -> None:
-        for key, high in (("raceway_roughness_m", math.inf), ("rib_roughness_m", math.inf), ("B", math.inf),
-                          ("C", math.inf), ("mu_boundary", 0.5), ("limiting_shear_coefficient", 0.5)):
-            value = getattr(self, key)
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and 0.0 < value <= high):
-                raise ValueError(f"{key}: must be a number > 0" + (f" and ≤ {high:g}" if high < math.inf else "")
-                                 + f", got {value!r}")
+        check_positive(raceway_roughness_m=self.raceway_roughness_m, rib_roughness_m=self.rib_roughness_m, B=self.B,
+                       C=self.C, mu_boundary=self.mu_boundary, limiting_shear_coefficient=self.limiting_shear_coefficient)
+        for key in ("mu_boundary", "limiting_shear_coefficient"):
+            if getattr(self, key) > 0.5:
+                raise ValueError(f"{key} must be ≤ 0.5, got {getattr(self, key)!r}")
 
 
 @dataclass(frozen=True)
@@ -184,9 +185,24 @@ def radial_roller_loads(bearing: CylindricalRollerBearing, radial_load_N: float)
     return loads(brentq(residual, half_play, hi, xtol=1e-15, rtol=1e-13))
 
 
+def rolling_speed_m_s(bearing: CylindricalRollerBearing, speed_rpm: float) -> float:
+    """u = ω·d_m(1 − γ²)/4: the speed at which both raceway contacts' surfaces pass the contact
+    (the roller's spin relative to the cage times D/2, :mod:`mbd_core.bearing.kinematics`)."""
+    spin = element_speed_magnitude_rad_s(bearing.roller_diameter_m, bearing.pitch_diameter_m, 0.0,
+                                         inner_speed_rad_s=rpm_to_rad_s(speed_rpm))
+    return spin * bearing.roller_diameter_m / 2.0
+
+
+def _inlet_heating(oil: Lubricant, temperature_C: float, entrain_m_s: float) -> float:
+    """Murch & Wilson's film reduction factor at the oil's temperature and the entraining speed."""
+    beta_T = oil.temperature_viscosity_K(temperature_C) / (temperature_C + _KELVIN) ** 2
+    return thermal_reduction_factor(thermal_loading(beta_T, oil.dynamic_viscosity_Pa_s(temperature_C), entrain_m_s,
+                                                    oil.thermal_conductivity_W_mK))
+
+
 def rib_speeds_m_s(bearing: CylindricalRollerBearing, speed_rpm: float) -> tuple[tuple[float, float], ...]:
     """(sliding, entraining) speed of the inner and the outer rib contact (module docstring, step 2)."""
-    u = speed_rpm * math.pi / 30.0 * bearing.pitch_diameter_m * (1.0 - bearing.gamma**2) / 4.0
+    u = rolling_speed_m_s(bearing, speed_rpm)
     e, dm = bearing.rib_contact_height_m, bearing.pitch_diameter_m
     roller_end = u * 2.0 * e / bearing.roller_diameter_m
     rings = (u * (dm / 2 - e) / bearing.inner_raceway_radius_m, u * (dm / 2 + e) / bearing.outer_raceway_radius_m)
@@ -200,8 +216,7 @@ def _rib_contact(load_N: float, entrain_m_s: float, slide_m_s: float, bearing: C
     alpha = oil.pressure_viscosity_Pa_inv(temperature_C)
     R = bearing.roller_end_radius_m
     film = point_contact_film(load_N, entrain_m_s, R, R, bearing.E_eff_Pa, eta0, alpha)
-    beta_T = oil.temperature_viscosity_K(temperature_C) / (temperature_C + _KELVIN) ** 2
-    phi_T = thermal_reduction_factor(thermal_loading(beta_T, eta0, entrain_m_s, oil.thermal_conductivity_W_mK))
+    phi_T = _inlet_heating(oil, temperature_C, entrain_m_s)
     lam = film_parameter(phi_T * film.minimum_m, surfaces.rib_roughness_m, 0.0)
     share = asperity_load_share(lam, surfaces.B, surfaces.C)
     a = (3.0 * load_N * R / (2.0 * bearing.E_eff_Pa)) ** (1.0 / 3.0)
@@ -221,13 +236,11 @@ def roller_bearing_friction(bearing: CylindricalRollerBearing, oil: Lubricant, t
         raise ValueError(f"axial_load_N: must be ≥ 0, got {axial_load_N!r}")
     Q = radial_roller_loads(bearing, radial_load_N)
     rib_load = axial_load_N * Q / Q.sum()
-    omega = speed_rpm * math.pi / 30.0
     D, r_i, r_o = bearing.roller_diameter_m, bearing.inner_raceway_radius_m, bearing.outer_raceway_radius_m
-    u = omega * bearing.pitch_diameter_m * (1.0 - bearing.gamma**2) / 4.0
+    u = rolling_speed_m_s(bearing, speed_rpm)
     eta0 = oil.dynamic_viscosity_Pa_s(temperature_C)
     alpha = oil.pressure_viscosity_Pa_inv(temperature_C)
-    beta_T = oil.temperature_viscosity_K(temperature_C) / (temperature_C + _KELVIN) ** 2
-    phi_T = thermal_reduction_factor(thermal_loading(beta_T, eta0, u, oil.thermal_conductivity_W_mK))
+    phi_T = _inlet_heating(oil, temperature_C, u)
     radii = (D / 2 * r_i / (D / 2 + r_i), D / 2 * r_o / (r_o - D / 2))  # inner, outer contact R_x
     ribs = rib_speeds_m_s(bearing, speed_rpm)  # inner, outer
 
