@@ -34,6 +34,8 @@ from mbd_core.kernels.roller_slices import (
 from mbd_core.multibody import ContactLaw, Fixed, ModelBuilder, quat_from_axis_angle, quat_z_to
 from mbd_core.multibody.parts import StripTraction
 from mbd_core.multibody.model import make_work
+from mbd_core.squeeze_film import SqueezeFilmDamper
+from mbd_core.squeeze_film.force_table import tabulate
 from tests.kernel_checks import (ATOL_M, NORMAL_ATOL, POINT_ATOL_M, RTOL, SEED, close as _close,
                                  close_scaled as _close_scaled, random_quat as _random_quat)
 from tests.reference import multibody as ref
@@ -43,6 +45,9 @@ from tests.reference import multibody as ref
 R_PITCH, R_BALL, CONFORMITY = 0.03, 0.0075, 0.52
 ALPHA = math.radians(15)
 DELTA_0 = 3e-5                    # nominal ball–groove penetration, m
+
+
+SFD_TABLE = tabulate(SqueezeFilmDamper(0.04, 0.01, 5e-5, 0.01), "short", n_eps=9, n_psi=24)
 
 
 def _ball_bearing(external=True, strips=None):
@@ -89,6 +94,8 @@ def _ball_bearing(external=True, strips=None):
         mb.add_element_pocket(b, "cage", pocket, R_BALL, kragelskii if i % 2 else falling)
     mb.add_bushing("outer", "inner", (0.0, 0.001, 0.01), (2e7, 2e7, 5e7, 3e3, 3e3, 50.0),
                    (1e3, 1e3, 2e3, 0.5, 0.5, 0.1))
+    # a squeeze film between the rings: the bore 20 µm off the inner ring's centre (ε ≈ 0.4), axis tilted
+    mb.add_squeeze_film("inner", "outer", SFD_TABLE, bore_center_m=(2e-5, 0.0, 1e-3), axis=(0.05, 0.0, 1.0))
     if external:
         mb.add_force("inner", (30.0, -200.0, 500.0), (1.0, -2.0, 0.5))
         mb.add_drag(balls[0], 0.05, 0.3)                          # fluid drag, linear and quadratic

@@ -8,7 +8,8 @@ work ``w`` one of preallocated scratch arrays (:class:`mbd_core.multibody.model.
 State: ``q`` (n_b, 7) = position r (world, m) and unit quaternion (w, x, y, z) body → world;
 ``v`` (n_b, 6) = velocity (world, m/s) and angular velocity ω (body frame, rad/s).
 
-Stages: external loads (constant + cubic-spline histories) → bushings → fluid drag → contacts. Each
+Stages: external loads (constant + cubic-spline histories) → bushings → fluid drag → squeeze-film
+dampers (:mod:`.squeeze_film`) → contacts. Each
 contact gives a penetration δ, the unit normal m of the force on its element (body a), and a
 contact point p; then
 
@@ -21,7 +22,8 @@ F_n m + F_t at p, body b the opposite. Results: ``w.body_f`` (n_b, 3) N and ``w.
 
 Returns (status, index): 0 ok; ``STATUS_NONFINITE`` (non-finite force at contact ``index``, or at
 body ``index`` − n_contacts when ``index`` ≥ n_contacts; messages in :mod:`mbd_core.multibody.explicit`);
-``STATUS_PENETRATION`` (penetration beyond the pair's bound at contact ``index``).
+``STATUS_PENETRATION`` (penetration beyond the pair's bound at contact ``index``);
+``STATUS_SQUEEZE_FILM`` (the journal of damper ``index`` beyond its table's eccentricity).
 ``STATUS_ENERGY`` is set by the step loop (:mod:`.explicit`) on a kinetic-energy runaway,
 ``STATUS_MODAL`` when the mass matrix of a modal body is no longer positive definite.
 
@@ -57,16 +59,17 @@ from .ball_pairs import _ball_ball_pairs, _ball_groove_pairs
 from .body_frames import _add_force, _to_world, point_velocity, rotate, rotate_back
 from .friction_damping import _friction_damping_matrices
 from .pair_types import (BALL_BALL, BALL_GROOVE, ELEMENT_POCKET, ROLLER_RACEWAY, ROLLER_RIB, STATUS_ENERGY,
-                         STATUS_MODAL, STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION)
+                         STATUS_MODAL, STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION, STATUS_SQUEEZE_FILM)
 from .pocket_pairs import _element_pocket_pairs
 from .point_contact import contact_force
 from .roller_pairs import _roller_raceway_pairs, _roller_rib_pairs
 from .splines import spline_value
+from .squeeze_film import _squeeze_films
 
 # the stages and helpers the callers (and their tests) reach through this module
 __all__ = ["compute_forces", "contact_force", "point_velocity", "rotate", "rotate_back", "BALL_BALL", "BALL_GROOVE",
            "ELEMENT_POCKET", "ROLLER_RACEWAY", "ROLLER_RIB", "STATUS_ENERGY", "STATUS_MODAL", "STATUS_NONFINITE",
-           "STATUS_OK", "STATUS_PENETRATION"]
+           "STATUS_OK", "STATUS_PENETRATION", "STATUS_SQUEEZE_FILM"]
 
 
 @njit(cache=True, _nrt=False)
@@ -161,6 +164,10 @@ def compute_forces(m, t, q, v, eta, eta_dot, w):
     w.energy[1] = _bushings(m, q, v, w) if m.bush_a.shape[0] > 0 else 0.0
     if m.drag_body.shape[0] > 0:
         _drag(m, v, w)
+    if m.sfd_a.shape[0] > 0:
+        j = _squeeze_films(m, q, v, w)
+        if j >= 0:
+            return STATUS_SQUEEZE_FILM, j
     e = 0.0
     n_of = w.type_count
     if n_of[BALL_GROOVE] > 0:

@@ -16,7 +16,9 @@ from ..kernels.forces import BALL_BALL, BALL_GROOVE, ELEMENT_POCKET, ROLLER_RACE
 from ..kernels.laws import NORMAL_HUNT_CROSSLEY, NORMAL_IMPACT
 from foundation.validation import check_positive
 from . import warmup
-from .builder_arrays import _f64, _i64, _quat_conj, _quat_mul, _rotate, _rotate_back, _skew, modal_arrays
+from .builder_arrays import (_f64, _i64, _quat_conj, _quat_mul, _rotate, _rotate_back, _skew, modal_arrays,
+                             squeeze_film_arrays)
+from ..squeeze_film.force_table import FilmForceTable
 from .builder_geometry import POCKET_KINDS, GeometryMixin, _Body, _vec
 from .model import Model, ModelArrays, State
 from .parts import ContactLaw, Driven, Fixed, Free, StripTraction, quat_from_axis_angle, quat_z_to
@@ -49,6 +51,7 @@ class ModelBuilder(GeometryMixin):
         self._pockets: list[dict] = []
         self._bushings: list[dict] = []
         self._drags: list[tuple[int, float, float]] = []
+        self._dampers: list[dict] = []
         self._loads: list[tuple[int, np.ndarray, np.ndarray]] = []
 
     # -- bodies ---------------------------------------------------------------------------------
@@ -194,6 +197,39 @@ class ModelBuilder(GeometryMixin):
             if not (math.isfinite(value) and value >= 0.0):
                 raise ValueError(f"drag: {name} must be a number ≥ 0, got {value!r}")
         self._drags.append((i, float(linear_N_s_m), float(quadratic_N_s2_m2)))
+
+    def add_squeeze_film(self, journal, housing, table, bore_center_m=(0, 0, 0),
+                         axis=(0, 0, 1), name: str | None = None) -> int:
+        """A squeeze-film damper between a journal (a bearing's outer race) and its housing; returns
+        its index.
+
+        ``table`` is the damper's :class:`mbd_core.squeeze_film.force_table.FilmForceTable`
+        (:func:`~mbd_core.squeeze_film.force_table.tabulate` of a
+        :class:`~mbd_core.squeeze_film.SqueezeFilmDamper`); ``bore_center_m`` the bore's centre and
+        ``axis`` its axis, world, at the start. The journal's centre is its body's reference point; it
+        gets the film force there (no moment). A journal beyond the table's eccentricity ends the run
+        with an error naming the damper.
+        """
+        a, b = self._body_index(journal, "squeeze film"), self._body_index(housing, "squeeze film")
+        if a == b:
+            raise ValueError("squeeze film: journal and housing must differ")
+        if not isinstance(table, FilmForceTable):
+            raise TypeError("squeeze film: table must be a FilmForceTable (mbd_core.squeeze_film.force_table.tabulate)")
+        n = _vec("squeeze film", "axis", axis, 3)
+        if not np.linalg.norm(n) > 0.0:
+            raise ValueError("squeeze film: axis must be a non-zero vector")
+        n = n / np.linalg.norm(n)
+        center = _vec("squeeze film", "bore_center_m", bore_center_m, 3)
+        name = name or f"{self._bodies[a].name}–{self._bodies[b].name} film"
+        if any(d["name"] == name for d in self._dampers):
+            raise ValueError(f"squeeze film: the name {name!r} is used twice")
+        d = self._bodies[a].q[:3] - center
+        eps = float(np.linalg.norm(d - (d @ n) * n)) / table.clearance_m
+        if eps > table.max_eccentricity_ratio:
+            raise ValueError(f"squeeze film {name!r}: the journal starts at ε = {eps:.3g} of the clearance "
+                             f"{table.clearance_m:g} m, beyond the table's {table.max_eccentricity_ratio:g}")
+        self._dampers.append(dict(a=a, b=b, table=table, center=center, axis=n, name=name))
+        return len(self._dampers) - 1
 
     # -- joints ---------------------------------------------------------------------------------
     def add_bushing(self, body_a, body_b, point_m, stiffness, damping=(0, 0, 0, 0, 0, 0)) -> None:
@@ -367,6 +403,7 @@ class ModelBuilder(GeometryMixin):
             bush_p_a=_f64(p_a, (-1, 3)), bush_p_b=_f64(p_b, (-1, 3)), bush_q_ref=_f64(bq, (-1, 4)),
             bush_k=_f64([b["k"] for b in self._bushings], (-1, 6)), bush_c=_f64([b["c"] for b in self._bushings], (-1, 6)),
             drag_body=_i64([d[0] for d in self._drags]), drag_c=_f64([d[1:] for d in self._drags], (-1, 2)),
+            **squeeze_film_arrays(self._dampers, q0),
             pair_type=_i64([p["kind"] for p in pairs]), pair_a=_i64([p["a"] for p in pairs]),
             pair_b=_i64([p["b"] for p in pairs]), pair_geom=_i64([p["geom"] for p in pairs]),
             pair_law=_i64([NORMAL_IMPACT if l.model == "impact" else NORMAL_HUNT_CROSSLEY for l in laws]),
@@ -396,7 +433,8 @@ class ModelBuilder(GeometryMixin):
             gravity=self.gravity_m_s2.copy(), **modal_arrays_,
         )
         model = Model(arrays, tuple(b.name for b in bodies), tuple(p["name"] for p in pairs),
-                      tuple(PAIR_KIND_NAMES[p["kind"]] for p in pairs), self.gravity_m_s2.copy())
+                      tuple(PAIR_KIND_NAMES[p["kind"]] for p in pairs), self.gravity_m_s2.copy(),
+                      tuple(d["name"] for d in self._dampers))
         modal = [b.modal for b in bodies if b.modal is not None]
         state = State(0.0, q0.copy(), np.array([b.v for b in bodies]).reshape(nb, 6),
                       np.concatenate([d["eta"] for d in modal] or [np.zeros(0)]),

@@ -34,7 +34,7 @@ import scipy.linalg
 
 from ..kernels.explicit import record_now, run_explicit, total_kinetic_energy
 from ..kernels.forces import (STATUS_ENERGY, STATUS_MODAL, STATUS_NONFINITE, STATUS_OK, STATUS_PENETRATION,
-                              compute_forces)
+                              STATUS_SQUEEZE_FILM, compute_forces)
 from ..kernels.laws import friction_coefficient, friction_slope
 from ..kernels.modal import modal_mass_matrix
 from .model import RECORDED_CONTACT_FIELDS, Model, State, make_record_buffers, make_work
@@ -157,6 +157,16 @@ def stable_timestep(model: Model, state: State, load_factor: float = 3.0, safety
                          f"{f_ref:.3g} N on a tangential effective mass {1.0 / inv_mt:.3g} kg)")
     for j, i in enumerate(a.drag_body):     # drag damps the centre's motion (its linear part)
         c_sum[i] += a.drag_c[j, 0] * inv_m[i]
+    for j in range(a.sfd_a.shape[0]):
+        # a film is a damper: explicit damping is stable for h < 2/(c·(1/m_a + 1/m_b)), c its largest
+        # coefficient |F|/|V| (at the table's end, where it is stiffest)
+        o0, o1 = a.sfd_table_off[j], a.sfd_table_off[j + 1]
+        n_psi = a.sfd_table_size[j, 1]
+        c_film = float(np.linalg.norm(a.sfd_table[o1 - n_psi:o1], axis=1).max()) / (1.0 - a.sfd_eps_max[j] ** 2) ** 2
+        w_inv = inv_m[a.sfd_a[j]] + inv_m[a.sfd_b[j]]
+        if c_film * w_inv > 0.0 and 2.0 / (c_film * w_inv) < best[0]:
+            best = (2.0 / (c_film * w_inv), f"squeeze-film damper {model.damper_names[j]!r} (damping up to "
+                                            f"{c_film:.3g} N·s/m at ε = {a.sfd_eps_max[j]:g})")
     for i in np.flatnonzero(k_sum > 0):
         omega = math.sqrt(k_sum[i])
         zeta = c_sum[i] / (2.0 * omega)
@@ -259,6 +269,10 @@ def _failure_text(model: Model, status: int, index: int, t: float, work) -> str:
         return f"non-finite force on body {model.body_names[index - model.n_pairs]!r} at t = {t:.6g} s"
     if status == STATUS_ENERGY:
         return f"kinetic energy ran away (beyond the limit) at t ≈ {t:.6g} s: the run is unstable"
+    if status == STATUS_SQUEEZE_FILM:
+        return (f"the journal of squeeze-film damper {model.damper_names[index]!r} reached the end of its force "
+                f"table (ε = {model.arrays.sfd_eps_max[index]:g} of the clearance) at t = {t:.6g} s: the race rides "
+                "on the housing; raise the clearance or the damper length, or lower the load")
     if status == STATUS_MODAL:
         return (f"the mass matrix of a modal body is no longer positive definite at t ≈ {t:.6g} s (modal "
                 "coordinates beyond the small-deformation range): the run is unstable")

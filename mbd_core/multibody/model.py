@@ -19,6 +19,11 @@ Bushings (:func:`mbd_core.kernels.forces._bushings`)
     relative orientation q_a⁻¹ q_b at rest; bush_k (n_u, 6) N/m, N·m/rad; bush_c (n_u, 6).
 Drag of the surrounding fluid (:func:`mbd_core.kernels.forces._drag`)
     drag_body (n_d,) int64; drag_c (n_d, 2): c₁ N·s/m and c₂ N·s²/m² of F = −(c₁ + c₂|v|) v.
+Squeeze-film dampers (:mod:`mbd_core.kernels.squeeze_film`; n_f of them)
+    sfd_a (journal), sfd_b (housing) (n_f,) int64; sfd_p_a, sfd_p_b (n_f, 3) m the journal and bore
+    centres in their bodies' frames; sfd_axis (n_f, 3) the bore axis, housing frame; sfd_clearance
+    (n_f,) m; sfd_eps_max (n_f,) the tables' end; sfd_table_off (n_f + 1,) int64 into sfd_table
+    (Σ n_ε n_ψ, 2) N·s/m; sfd_table_size (n_f, 2) int64 (n_ε, n_ψ).
 Contact pairs (body a: the rolling element; b: the ring, cage or other ball)
     pair_type, pair_a, pair_b, pair_geom (index into the geometry of its type) (n_c,) int64;
     pair_law (n_c,) int64, pair_k (n_c,) N/m^n (per slice for rollers), pair_n, pair_c N·s/m,
@@ -74,6 +79,7 @@ MODEL_FIELDS = (
     "body_mass body_inertia body_free body_force body_fric_implicit "
     "load_body load_off knot_t knot_coef "
     "bush_a bush_b bush_p_a bush_p_b bush_q_ref bush_k bush_c drag_body drag_c "
+    "sfd_a sfd_b sfd_p_a sfd_p_b sfd_axis sfd_clearance sfd_eps_max sfd_table_off sfd_table_size sfd_table "
     "pair_type pair_a pair_b pair_geom pair_law pair_k pair_n pair_c pair_dmax pair_fric pair_fric_p "
     "pair_radius pair_radius_b pair_length pair_aux pair_slice_off slice_drop pair_delta_max pair_strips pair_semi_major pair_strip_curv "
     "groove_rc groove_zc groove_r groove_h_off groove_h groove_dr_off groove_dr "
@@ -141,6 +147,8 @@ class Model:
     pair_kinds : tuple of str
         "ball_groove", "ball_ball", "roller_raceway", "roller_rib" or "element_pocket".
     gravity_m_s2 : (3,) float
+    damper_names : tuple of str
+        The squeeze-film dampers, in the order of the ``sfd_*`` arrays.
     """
 
     arrays: ModelArrays
@@ -148,6 +156,7 @@ class Model:
     pair_names: tuple[str, ...]
     pair_kinds: tuple[str, ...]
     gravity_m_s2: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    damper_names: tuple[str, ...] = ()
 
     @property
     def n_bodies(self) -> int:

@@ -36,11 +36,14 @@ class FilmForceTable:
 
     scaled_N_s_m : (n_eps, n_psi, 2) float64
     max_eccentricity_ratio : ε_max, the table's end (the journal is then (1 − ε_max)·c from the housing)
+    method : how the entries were computed (:data:`TABLE_METHODS`)
+    clearance_m : the damper's radial clearance c, m (ε = e/c)
     """
 
     scaled_N_s_m: np.ndarray
     max_eccentricity_ratio: float
     method: str
+    clearance_m: float
 
     @property
     def n_eps(self) -> int:
@@ -106,4 +109,4 @@ def tabulate(damper: SqueezeFilmDamper, method: str = "grid", n_eps: int = 41, n
             T[i] = [limit_force_N(damper, method, float(e), math.cos(p), math.sin(p)) for p in psi]
         T[i] *= (1.0 - e**2) ** 2
     T.setflags(write=False)
-    return FilmForceTable(T, float(max_eccentricity_ratio), method)
+    return FilmForceTable(T, float(max_eccentricity_ratio), method, damper.clearance_m)

@@ -18,6 +18,8 @@ import numpy as np
 from scipy.interpolate import CubicSpline, PPoly
 from scipy.spatial.transform import Rotation
 
+from mbd_core.squeeze_film.force_table import FilmForceTable
+
 from . import contact_laws as laws
 from . import strip_traction as strips
 from .roller_slices import roller_slices
@@ -346,6 +348,30 @@ def _bushings(m, q, bodies):
     return energy
 
 
+def _squeeze_films(m, bodies):
+    """Film forces on the journals (at their centres) and the housings, from each damper's table read
+    by :meth:`mbd_core.squeeze_film.force_table.FilmForceTable.force_N`."""
+    for j in range(len(m.sfd_a)):
+        a, b = m.sfd_a[j], m.sfd_b[j]
+        o0, o1 = m.sfd_table_off[j], m.sfd_table_off[j + 1]
+        n_eps, n_psi = m.sfd_table_size[j]
+        table = FilmForceTable(m.sfd_table[o0:o1].reshape(n_eps, n_psi, 2), m.sfd_eps_max[j], "grid", m.sfd_clearance[j])
+        n = bodies.R[b] @ m.sfd_axis[j]
+        p = bodies.to_world(a, m.sfd_p_a[j])
+        d = p - bodies.to_world(b, m.sfd_p_b[j])
+        d -= (d @ n) * n
+        u = bodies.velocity(a, p) - bodies.velocity(b, p)
+        u -= (u @ n) * n
+        e = np.linalg.norm(d)
+        if not np.any(u):
+            continue
+        e_r = d / e if e > 1e-12 * table.clearance_m else u / np.linalg.norm(u)
+        e_t = np.cross(n, e_r)
+        fr, ft = table.force_N(e / table.clearance_m, u @ e_r, u @ e_t)
+        bodies.add(a, fr * e_r + ft * e_t, p)
+        bodies.add(b, -(fr * e_r + ft * e_t), p)
+
+
 def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
     """Twin of mbd_core.kernels.forces.compute_forces on the model arrays ``m`` at state (t, q, v, η, η̇).
 
@@ -372,6 +398,7 @@ def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
     e_bushing = _bushings(m, q, bodies)
     for j, i in enumerate(m.drag_body):        # fluid drag at the centre, F = −(c₁ + c₂|v|) v
         bodies.add(i, -(m.drag_c[j, 0] + m.drag_c[j, 1] * np.linalg.norm(bodies.v[i])) * bodies.v[i], bodies.r[i])
+    _squeeze_films(m, bodies)
     out = {k: np.zeros(nc) for k in ("fn", "delta", "slip", "ft", "angle", "theta")}
     point, normal_out = np.zeros((nc, 3)), np.zeros((nc, 3))
     e_contact = 0.0
