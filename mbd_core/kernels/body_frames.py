@@ -38,6 +38,17 @@ def point_velocity(q, v, i, px, py, pz):
 
 
 @njit(cache=True, inline="always", _nrt=False)
+def relative_velocity_across(q, v, a, b, px, py, pz, nx, ny, nz):
+    """Velocity of body a's material point at world p relative to body b's, without its part along
+    the unit vector n: (u_x, u_y, u_z, u·n before the projection)."""
+    vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
+    vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
+    rx, ry, rz = vax - vbx, vay - vby, vaz - vbz
+    vn = rx * nx + ry * ny + rz * nz
+    return rx - vn * nx, ry - vn * ny, rz - vn * nz, vn
+
+
+@njit(cache=True, inline="always", _nrt=False)
 def _add_force(q, bf, bt, i, fx, fy, fz, px, py, pz):
     """Add force (fx, fy, fz) at world point p to body i's force and moment about its centre."""
     rx, ry, rz = px - q[i, 0], py - q[i, 1], pz - q[i, 2]

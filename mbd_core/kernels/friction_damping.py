@@ -13,7 +13,7 @@ import math
 
 from numba import njit
 
-from .body_frames import point_velocity
+from .body_frames import relative_velocity_across
 from .laws import friction_slope
 
 
@@ -109,11 +109,7 @@ def _friction_damping_matrices(m, q, v, w):
             continue
         # the tangent where the law is steeper than its secant (the start of a regularised step):
         # along the slip the damper is then dF_t/du, which keeps a settling slip from overshooting
-        vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
-        vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
-        rx, ry, rz = vax - vbx, vay - vby, vaz - vbz
-        vn = rx * mx + ry * my + rz * mz
-        tx, ty, tz = rx - vn * mx, ry - vn * my, rz - vn * mz
+        tx, ty, tz, _ = relative_velocity_across(q, v, a, b, px, py, pz, mx, my, mz)
         ut = math.sqrt(tx * tx + ty * ty + tz * tz)
         if not ut > 0.0:
             continue

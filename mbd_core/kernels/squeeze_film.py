@@ -18,7 +18,7 @@ import math
 
 from numba import njit
 
-from .body_frames import _add_force, _to_world, point_velocity, rotate
+from .body_frames import _add_force, _to_world, relative_velocity_across, rotate
 
 
 @njit(cache=True, _nrt=False)
@@ -58,11 +58,7 @@ def _squeeze_films(m, q, v, w):
         dx, dy, dz = pax - pbx, pay - pby, paz - pbz
         s = dx * nx + dy * ny + dz * nz
         dx, dy, dz = dx - s * nx, dy - s * ny, dz - s * nz
-        vax, vay, vaz = point_velocity(q, v, a, pax, pay, paz)
-        vbx, vby, vbz = point_velocity(q, v, b, pax, pay, paz)
-        ux, uy, uz = vax - vbx, vay - vby, vaz - vbz
-        s = ux * nx + uy * ny + uz * nz
-        ux, uy, uz = ux - s * nx, uy - s * ny, uz - s * nz
+        ux, uy, uz, _ = relative_velocity_across(q, v, a, b, pax, pay, paz, nx, ny, nz)
         e = math.sqrt(dx * dx + dy * dy + dz * dz)
         eps = e / m.sfd_clearance[j]
         if eps > m.sfd_eps_max[j]:
