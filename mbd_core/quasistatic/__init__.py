@@ -1,5 +1,6 @@
 """Quasi-static load distribution of bearings with rigid or flexible (modal) rings (Newton, analytic Jacobian)."""
 
+from .high_speed import HighSpeedRow, solve_high_speed_row
 from .flexible import FlexibleBearingModel, FlexibleRing, GrooveOffset, build_flexible_model
 from .flexible_solve import FlexibleLoadDistribution, RacewayDeflection, solve_flexible_load_distribution
 from .rows import BallRow, Bearing, FourPointRow, RollerRow
@@ -22,4 +23,6 @@ __all__ = [
     "RacewayDeflection",
     "FlexibleLoadDistribution",
     "solve_flexible_load_distribution",
+    "HighSpeedRow",
+    "solve_high_speed_row",
 ]

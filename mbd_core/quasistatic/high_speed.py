@@ -44,6 +44,11 @@ cage (:func:`_kinematics`). The iteration
 starts from the static load distribution (:func:`.solver.solve_load_distribution`), so a load the
 row cannot carry at rest is refused with that solver's message.
 
+Checks (``tests/test_high_speed_rows.py``): at rest, the static distribution; under thrust, a
+Jones/Harris solution in its classical form; and the multibody dynamics of the same bearing (friction at
+both contacts) settles between the inner- and outer-control solutions, which fixes the sign of the
+friction couple independently.
+
 Left out: the balls' drag and the friction of spin and sliding beyond the gyroscopic couple
 (Harris' "Q-S" refinements), the rings' hoop growth and their own centrifugal expansion, cage forces.
 """
