@@ -177,3 +177,17 @@ def test_dynamics_lies_between_the_race_control_limits():
     lo, hi = (solve_high_speed_row(ROW, RingLoad(Fz_N=THRUST_N), omega, control=c) for c in ("inner", "outer"))
     assert lo.inner_load_N[0] < q_i < hi.inner_load_N[0]
     assert lo.outer_load_N[0] < q_o < hi.outer_load_N[0]
+
+
+def test_stiffness_at_rest_is_the_static_one_and_softens_axially_at_speed():
+    # at rest the operating-point stiffness (central differences, balls settled) equals the static
+    # solver's analytic tangent stiffness within 1e-4 of its largest entry; at speed the centrifugal
+    # force unloads the inner contacts and the axial stiffness falls (Harris & Kotzalas, Advanced
+    # Concepts, ch. 3: high-speed angular-contact bearings lose axial stiffness)
+    load = RingLoad(Fx_N=3000.0, Fz_N=THRUST_N)
+    static = solve_load_distribution(Bearing("b", (ROW,)), load)
+    K0 = solve_high_speed_row(ROW, load, 0.0).stiffness
+    scale = np.abs(static.stiffness).max(axis=0)
+    assert np.all(np.abs(K0 - static.stiffness) <= 1e-4 * scale[None, :])
+    K = solve_high_speed_row(ROW, load, 15000 * math.pi / 30).stiffness
+    assert K[2, 2] < 0.95 * K0[2, 2]

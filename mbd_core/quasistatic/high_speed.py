@@ -96,7 +96,10 @@ class HighSpeedRow:
     azimuth_rad; inner_load_N, outer_load_N : Q_i, Q_o; inner_angle_rad, outer_angle_rad : α_i, α_o
     (atan2 of the axial component, on the loaded side, and the radial one of each contact normal);
     orbit_speed_rad_s : ω_m; spin_rad_s : (Z, 2) Ω_r, Ω_z (inertial); centrifugal_N : F_c;
-    gyroscopic_moment_Nm : M; iterations : of the ring's Newton iteration
+    gyroscopic_moment_Nm : M; iterations : of the ring's Newton iterations (all speed steps)
+    stiffness : (5, 5) the row's tangent stiffness at the operating point, K[i, j] = dF_i/dq_j with F
+    the load on the inner ring that holds it at q (N/m, N/rad, N·m/m, N·m/rad, as
+    :func:`.solver.stiffness_matrix`), by central differences with every ball settled again
     """
 
     displacement: np.ndarray
@@ -110,6 +113,7 @@ class HighSpeedRow:
     centrifugal_N: np.ndarray
     gyroscopic_moment_Nm: np.ndarray
     iterations: int
+    stiffness: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -408,5 +412,20 @@ def solve_high_speed_row(row: BallRow, load: RingLoad, inner_speed_rad_s: float,
     it = iterations
     _, Q_i, Q_o, n_i, n_o, kin, F_c, M, _, _ = state
     sa = g.axial_sign
+    K = _stiffness(g, row, q, b_rz, inner_speed_rad_s, control, scale_N, S)
     return HighSpeedRow(q, g.psi, Q_i, Q_o, np.arctan2(-sa * n_i[:, 1], -n_i[:, 0]), np.arctan2(sa * n_o[:, 1], n_o[:, 0]),
-                        kin[:, 0], kin[:, 1:], F_c, M, it)
+                        kin[:, 0], kin[:, 1:], F_c, M, it, K)
+
+
+def _stiffness(g: _Geometry, row: BallRow, q, b_rz, omega_i: float, control: str, scale_N: float, S) -> np.ndarray:
+    """K = −∂(ball forces on the ring)/∂q at q, central differences (steps 1e-7·D, 1e-7·D/R), balls settled."""
+    K = np.zeros((5, 5))
+    zero = np.zeros(5)
+    for k in range(5):
+        h = 1e-7 * g.D / (1.0 if k < 3 else S[k])
+        dq = np.zeros(5)
+        dq[k] = h
+        plus = _ring_residual(g, q + dq, b_rz, zero, omega_i, control, scale_N)[0]
+        minus = _ring_residual(g, q - dq, b_rz, zero, omega_i, control, scale_N)[0]
+        K[:, k] = -(plus - minus) / (2.0 * h)
+    return K
