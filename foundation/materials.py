@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["ElasticMaterial", "BEARING_STEEL", "effective_modulus_Pa"]
+__all__ = ["ElasticMaterial", "BEARING_STEEL", "SILICON_NITRIDE", "effective_modulus_Pa"]
 
 
 @dataclass(frozen=True)
@@ -42,6 +42,9 @@ class ElasticMaterial:
 #: Through-hardened ball steel against AISI 4140 races, as in the slewing-ring thesis (Table 7):
 #: E = 207 GPa, nu = 0.29.
 BEARING_STEEL = ElasticMaterial("bearing steel (AISI 52100 / 4140)", 207e9, 0.29, 7850.0)
+#: hybrid bearings' ceramic balls: hot isostatically pressed silicon nitride, the typical properties of
+#: ASTM F2094 grades (E 310 GPa, ν 0.27, ρ 3200 kg/m³)
+SILICON_NITRIDE = ElasticMaterial("silicon nitride (Si3N4, ASTM F2094)", 310e9, 0.27, 3200.0)
 
 
 def effective_modulus_Pa(m1: ElasticMaterial, m2: ElasticMaterial) -> float:

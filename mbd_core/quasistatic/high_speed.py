@@ -97,6 +97,8 @@ class HighSpeedRow:
     (atan2 of the axial component, on the loaded side, and the radial one of each contact normal);
     orbit_speed_rad_s : ω_m; spin_rad_s : (Z, 2) Ω_r, Ω_z (inertial); centrifugal_N : F_c;
     gyroscopic_moment_Nm : M; iterations : of the ring's Newton iterations (all speed steps)
+    ball_centre_rz_m : (Z, 2) each ball centre's radius and height (the row's frame), m — with
+    ``displacement`` a start for a dynamic run without start-up shock
     stiffness : (5, 5) the row's tangent stiffness at the operating point, K[i, j] = dF_i/dq_j with F
     the load on the inner ring that holds it at q (N/m, N/rad, N·m/m, N·m/rad, as
     :func:`.solver.stiffness_matrix`), by central differences with every ball settled again
@@ -113,6 +115,7 @@ class HighSpeedRow:
     centrifugal_N: np.ndarray
     gyroscopic_moment_Nm: np.ndarray
     iterations: int
+    ball_centre_rz_m: np.ndarray
     stiffness: np.ndarray
 
 
@@ -414,7 +417,7 @@ def solve_high_speed_row(row: BallRow, load: RingLoad, inner_speed_rad_s: float,
     sa = g.axial_sign
     K = _stiffness(g, row, q, b_rz, inner_speed_rad_s, control, scale_N, S)
     return HighSpeedRow(q, g.psi, Q_i, Q_o, np.arctan2(-sa * n_i[:, 1], -n_i[:, 0]), np.arctan2(sa * n_o[:, 1], n_o[:, 0]),
-                        kin[:, 0], kin[:, 1:], F_c, M, it, K)
+                        kin[:, 0], kin[:, 1:], F_c, M, it, b_rz, K)
 
 
 def _stiffness(g: _Geometry, row: BallRow, q, b_rz, omega_i: float, control: str, scale_N: float, S) -> np.ndarray:
