@@ -37,12 +37,13 @@ holds it all). The ball's equilibrium
 
     −Q_o n_o − Q_i n_i + F_c e_r + friction = 0
 
-is solved per ball (2 unknowns, Newton), inside a Newton iteration on the ring's equilibrium
-f_ext + Σ (forces of the balls on the inner ring) = 0 (5 unknowns, finite-difference Jacobian). A
+is solved per ball (2 unknowns, pseudo-transient continuation, :func:`_settle_balls`) inside a Newton
+iteration on the ring's equilibrium f_ext + Σ (forces of the balls on the inner ring) = 0 (5 unknowns,
+finite-difference Jacobian), and the speed is raised from rest in steps (halved where one fails). A
 ball that loses its inner contact sits at the bottom of the outer groove under F_c, carried by the
-cage (:func:`_kinematics`). The iteration
-starts from the static load distribution (:func:`.solver.solve_load_distribution`), so a load the
-row cannot carry at rest is refused with that solver's message.
+cage (:func:`_kinematics`). The first step is the static load distribution
+(:func:`.solver.solve_load_distribution`), so a load the row cannot carry at rest is refused with that
+solver's message.
 
 Checks (``tests/test_high_speed_rows.py``): at rest, the static distribution; under thrust, a
 Jones/Harris solution in its classical form; and the multibody dynamics of the same bearing (friction at
