@@ -26,7 +26,7 @@ import numpy as np  # noqa: E402
 from foundation.materials import SILICON_NITRIDE  # noqa: E402
 from mbd_core.contact.friction import Coulomb  # noqa: E402
 from mbd_core.multibody import Driven, Fixed, ModelBuilder, simulate  # noqa: E402
-from mbd_core.multibody.bearings import add_ball_row, set_rolling_velocities  # noqa: E402
+from mbd_core.multibody.bearings import add_ball_row, orbit_rad_s, set_rolling_velocities  # noqa: E402
 from mbd_core.multibody.explicit import DivergenceError, stable_timestep  # noqa: E402
 from mbd_core.quasistatic import BallRow, RingLoad, solve_high_speed_row  # noqa: E402
 
@@ -56,8 +56,8 @@ def run_at(speed_rpm: float) -> dict:
         r, z = quasi.ball_centre_rz_m[j]
         state.q[ball, :3] = (r * math.cos(quasi.azimuth_rad[j]), r * math.sin(quasi.azimuth_rad[j]), z)
     set_rolling_velocities(model, state, balls.elements, inner, other_ring=outer)
-    x, v = state.q[list(balls.elements), :2], state.v[list(balls.elements), :2]
-    state.v[balls.cage, 5] = float(np.mean((x[:, 0] * v[:, 1] - x[:, 1] * v[:, 0]) / np.sum(x * x, axis=1)))
+    elements = list(balls.elements)
+    state.v[balls.cage, 5] = float(np.mean(orbit_rad_s(state.q[elements, :3], state.v[elements, :3])))
     limit = stable_timestep(model, state)
     out = {"speed_rpm": speed_rpm, "timestep_s": float(limit.timestep_s), "step_set_by": limit.reason,
            "quasi_static_outer_N": float(quasi.outer_load_N.mean()),

@@ -32,6 +32,7 @@ import numpy as np
 from ..contact.hertz import ball_on_groove
 from foundation.materials import effective_modulus_Pa
 from ..kernels.ball_groove import groove_point
+from ..quasistatic.row_common import ball_mass_kg
 from ..quasistatic.rows import BallRow, RollerRow
 from ..quasistatic.rows_four_point import FourPointRow
 from .builder import ContactLaw, ModelBuilder, quat_z_to
@@ -57,10 +58,6 @@ class RowBodies:
     pocket_pairs: tuple[int, ...] = ()
     other_pairs: tuple[int, ...] = ()
     grooves: tuple[int, ...] = ()
-
-
-def ball_mass_kg(diameter_m: float, density_kg_m3: float) -> float:
-    return density_kg_m3 * math.pi * diameter_m**3 / 6.0
 
 
 def roller_mass_kg(diameter_m: float, length_m: float, density_kg_m3: float) -> float:

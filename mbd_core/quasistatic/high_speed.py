@@ -62,9 +62,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from foundation.validation import check_positive
-from ..contact.hertz import ball_on_groove
-from .elements import displacement_matrix
+from .elements import build_groups, displacement_matrix
 from .results import LoadDistributionError, RingLoad
+from .row_common import ball_contact_stiffnesses, ball_mass_kg
 from .rows import BallRow, Bearing
 from .solver import solve_load_distribution
 
@@ -141,26 +141,25 @@ class _Geometry:
 
 
 def _geometry(row: BallRow) -> _Geometry:
+    """The row's grooves as the static solver has them (:mod:`.elements`: the moving groove's centre
+    p and the unloaded vector s0 from the fixed groove's centre to it, clearance included), in each
+    ball's (r, z) plane."""
     Z, D = row.n_balls, row.ball_diameter_m
-    psi = row.first_azimuth_rad + 2.0 * np.pi * np.arange(Z) / Z
-    e_r = np.stack([np.cos(psi), np.sin(psi), np.zeros(Z)], axis=1)
-    a0, sa = row.contact_angle_rad, float(row.axial_sign)
-    d_hat = np.array([math.cos(a0), sa * math.sin(a0)])                 # (r, z), outer → inner centre
+    balls = build_groups(Bearing(row.name, (row,)))[0]
+    e_r = balls.e_r
+
+    def rz(v):
+        return np.stack([np.sum(v * e_r, axis=1), v[:, 2]], axis=1)
+
+    p_inner = balls.p_m
     centre = np.array([0.5 * row.pitch_diameter_m, row.axial_position_m])
-    inner_rz = centre + (row.conformity_moving - 0.5) * D * d_hat
-    # the clearance moves the grooves apart radially (as :mod:`.elements`): the outer centre by +P_d/2
-    outer_rz = centre - (row.conformity_fixed - 0.5) * D * d_hat + np.array([row.radial_clearance_m, 0.0])
-    p_inner = inner_rz[0] * e_r + np.array([0.0, 0.0, inner_rz[1]])
-    mass = math.pi / 6.0 * D**3 * row.ball_material.density_kg_m3
-    common = (D,)
-    K_i = ball_on_groove(*common, row.conformity_moving, row.pitch_diameter_m, a0, "inner", row.ball_material,
-                         row.race_material).stiffness_N_per_m1p5
-    K_o = ball_on_groove(*common, row.conformity_fixed, row.pitch_diameter_m, a0, "outer", row.ball_material,
-                         row.race_material).stiffness_N_per_m1p5
-    return _Geometry(psi, e_r, p_inner, displacement_matrix(p_inner), np.tile(outer_rz, (Z, 1)), np.tile(centre, (Z, 1)),
+    mass = ball_mass_kg(D, row.ball_material.density_kg_m3)
+    K_i, K_o = ball_contact_stiffnesses(row)
+    return _Geometry(row.first_azimuth_rad + 2.0 * np.pi * np.arange(Z) / Z, e_r, p_inner,
+                     displacement_matrix(p_inner), rz(p_inner - balls.s0_m), np.tile(centre, (Z, 1)),
                      (row.conformity_moving - 0.5) * D, (row.conformity_fixed - 0.5) * D, K_i, K_o, mass,
-                     0.1 * mass * D * D, 0.5 * (1.0 - D * math.cos(a0) / row.pitch_diameter_m),
-                     BLEND_LOAD_FRACTION * row.contact_stiffness() * (1e-3 * D) ** 1.5, D, sa)
+                     0.1 * mass * D * D, 0.5 * (1.0 - D * math.cos(row.contact_angle_rad) / row.pitch_diameter_m),
+                     BLEND_LOAD_FRACTION * row.contact_stiffness() * (1e-3 * D) ** 1.5, D, float(row.axial_sign))
 
 
 def _inner_centres_rz(g: _Geometry, q: np.ndarray) -> np.ndarray:

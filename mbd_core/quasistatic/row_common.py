@@ -84,17 +84,28 @@ def settled_clearance(who: str, diametral_m: float | None, radial_m: float | Non
     return float(d), float(r)
 
 
-def ball_pair_stiffness(row) -> float:
-    """K of Q = K·δ^1.5 of a ball between the moving and the fixed groove of ``row`` (contacts in
-    series, Hertz constants at the nominal contact angle; Harris & Kotzalas, *Rolling Bearing
-    Analysis*, 5th ed., ch. 7), N/m^1.5. ``row`` has the fields of :class:`.rows.BallRow`."""
+def ball_mass_kg(diameter_m: float, density_kg_m3: float) -> float:
+    """Mass of a ball, kg."""
+    return density_kg_m3 * math.pi * diameter_m**3 / 6.0
+
+
+def ball_contact_stiffnesses(row) -> tuple[float, float]:
+    """(K_moving, K_fixed) of Q = K·δ^1.5 at the moving and the fixed groove of ``row`` (Hertz
+    constants at the nominal contact angle; Harris & Kotzalas, *Rolling Bearing Analysis*, 5th ed.,
+    ch. 7), N/m^1.5. ``row`` has the fields of :class:`.rows.BallRow`."""
     fixed = "outer" if row.moving_raceway == "inner" else "inner"
     common = (row.ball_diameter_m,)
     k_m = ball_on_groove(*common, row.conformity_moving, row.pitch_diameter_m, row.contact_angle_rad,
                          row.moving_raceway, row.ball_material, row.race_material)
     k_f = ball_on_groove(*common, row.conformity_fixed, row.pitch_diameter_m, row.contact_angle_rad,
                          fixed, row.ball_material, row.race_material)
-    return series_stiffness(k_m.stiffness_N_per_m1p5, k_f.stiffness_N_per_m1p5)
+    return k_m.stiffness_N_per_m1p5, k_f.stiffness_N_per_m1p5
+
+
+def ball_pair_stiffness(row) -> float:
+    """K of Q = K·δ^1.5 of a ball between the moving and the fixed groove of ``row``: its two
+    contacts (:func:`ball_contact_stiffnesses`) in series, N/m^1.5."""
+    return series_stiffness(*ball_contact_stiffnesses(row))
 
 
 class BallRowGeometry:

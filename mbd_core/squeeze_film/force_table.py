@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .limits import LIMITS, limit_force_N
-from .reynolds_grid import FilmGrid, SqueezeFilmDamper, film_pressure_fields
+from .reynolds_grid import FilmGrid, SqueezeFilmDamper, film_force_of_fields, film_pressure_fields
 
 __all__ = ["FilmForceTable", "tabulate", "TABLE_METHODS"]
 
@@ -78,16 +78,8 @@ class FilmForceTable:
 def _grid_row(damper: SqueezeFilmDamper, eps: float, psi: np.ndarray, grid: FilmGrid) -> np.ndarray:
     """(n_psi, 2) force per unit speed at ε for every direction ψ, from one pair of fields."""
     P1, P2 = film_pressure_fields(damper, eps, grid)
-    th = grid.theta_rad
-    dz = 0.5 * damper.length_m / damper.radius_m / grid.n_z
-    wz = np.full(grid.n_z, 2.0 * dz)
-    wz[0] = dz
     p = np.cos(psi)[:, None, None] * P1[None] + np.sin(psi)[:, None, None] * P2[None]
-    if damper.cavitation == "gumbel":
-        p = np.maximum(p, 0.0)
-    line = p @ wz                                               # (n_psi, n_theta)
-    s = -damper.force_scale_N_s_m * 2.0 * math.pi / grid.n_theta
-    return s * np.stack([line @ np.cos(th), line @ np.sin(th)], axis=1)
+    return film_force_of_fields(damper, grid, p)
 
 
 def tabulate(damper: SqueezeFilmDamper, method: str = "grid", n_eps: int = 41, n_psi: int = 288,

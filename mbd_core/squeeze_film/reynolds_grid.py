@@ -47,7 +47,8 @@ from scipy.sparse.linalg import splu
 
 from foundation.validation import check_positive
 
-__all__ = ["SqueezeFilmDamper", "CAVITATION_MODELS", "FilmGrid", "film_pressure_fields", "film_force_N"]
+__all__ = ["SqueezeFilmDamper", "CAVITATION_MODELS", "FilmGrid", "film_pressure_fields", "film_force_N",
+           "film_force_of_fields"]
 
 #: how the film treats sub-ambient pressure (module docstring)
 CAVITATION_MODELS = ("gumbel", "none")
@@ -159,12 +160,19 @@ def film_pressure_fields(damper: SqueezeFilmDamper, eccentricity_ratio: float,
     return _fields(eps, 0.5 * damper.length_m / damper.radius_m, grid)
 
 
-def _z_weights(damper: SqueezeFilmDamper, grid: FilmGrid) -> np.ndarray:
-    """Trapezoidal weights over the whole land (both halves) in ζ = z/R for the rows j < n_z."""
+def film_force_of_fields(damper: SqueezeFilmDamper, grid: FilmGrid, pressure: np.ndarray) -> np.ndarray:
+    """(…, 2) force (F_r, F_t) on the journal, N per unit velocity scale, of dimensionless full-film
+    pressures ``pressure`` (…, n_theta, n_z): cavitation applied, then the rectangle rule in θ and the
+    trapezoidal rule over both halves of the land in ζ = z/R."""
+    if damper.cavitation == "gumbel":
+        pressure = np.maximum(pressure, 0.0)
     dz = 0.5 * damper.length_m / damper.radius_m / grid.n_z
-    w = np.full(grid.n_z, 2.0 * dz)
-    w[0] = dz          # the mid-land row counts once (shared by the two halves, half weight each)
-    return w
+    wz = np.full(grid.n_z, 2.0 * dz)
+    wz[0] = dz          # the mid-land row counts once (shared by the two halves, half weight each)
+    line = pressure @ wz                                # ∫ P dζ at each θ
+    th = grid.theta_rad
+    s = -damper.force_scale_N_s_m * 2.0 * math.pi / grid.n_theta
+    return s * np.stack([line @ np.cos(th), line @ np.sin(th)], axis=-1)
 
 
 def film_force_N(damper: SqueezeFilmDamper, eccentricity_ratio: float, radial_velocity_m_s: float,
@@ -179,11 +187,5 @@ def film_force_N(damper: SqueezeFilmDamper, eccentricity_ratio: float, radial_ve
     grid : the film grid (:class:`FilmGrid`)
     """
     P1, P2 = film_pressure_fields(damper, eccentricity_ratio, grid)
-    p = radial_velocity_m_s * P1 + tangential_velocity_m_s * P2
-    if damper.cavitation == "gumbel":
-        p = np.maximum(p, 0.0)
-    th = grid.theta_rad
-    dth = 2.0 * math.pi / grid.n_theta
-    line = p @ _z_weights(damper, grid)       # ∫ P dζ at each θ
-    s = -damper.force_scale_N_s_m * dth
-    return s * float(line @ np.cos(th)), s * float(line @ np.sin(th))
+    f = film_force_of_fields(damper, grid, radial_velocity_m_s * P1 + tangential_velocity_m_s * P2)
+    return float(f[0]), float(f[1])
