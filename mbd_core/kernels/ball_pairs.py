@@ -20,11 +20,12 @@ from numba import njit
 from .ball_groove import groove_point_in
 from .body_frames import point_velocity, rotate, rotate_back, _add_force, _in_frame, _to_world
 from .element_contacts import ball_ball
-from .flexible_surface import _add_section_force, _nearest_deformed_centre, _section_velocity
+from .flexible_surface import SKIP_MARGIN, _add_section_force, _nearest_deformed_centre, _section_velocity
 from .friction_damping import _note_friction
 from .pair_types import BALL_BALL, BALL_GROOVE
 from .laws import normal_force_elastic
 from .point_contact import contact_force, point_force, _store
+from .raceway import interp_index
 from .strip_traction import strip_traction_forces
 
 
@@ -74,6 +75,26 @@ def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fri
     return fn, math.sqrt(sx * sx + sy * sy), math.sqrt(tx * tx + ty * ty), elastic * delta / (n_exp + 1.0)
 
 
+@njit(cache=True, inline="always", _nrt=False)
+def _open_beyond_bound(theta, periodic, pts, bound, th, lx, ly, lz, delta, clearance_radius, nx, ny, nz):
+    """Whether a ball at l (ring frame, rigid-groove penetration δ, unit normal n from the groove's
+    curvature centre) stays out of a modal ring's groove whatever its deformation: the deformed centre
+    moves by at most U + R·|c − p_s| (``bound`` = the body's row of ``w.flex_bound``, :mod:`.forces`),
+    and the nearest point of the deformed groove is no farther than that of θ; counts the check."""
+    if bound[0] == math.inf:
+        return False
+    i0, i1, w0, w1 = interp_index(theta, th, periodic)
+    r = delta + clearance_radius
+    bx = lx - r * nx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
+    by = ly - r * ny - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
+    bz = lz - r * nz - (w0 * pts[i0, 2] + w1 * pts[i1, 2])
+    bound[2] += 1.0
+    if delta + SKIP_MARGIN * (bound[0] + bound[1] * math.sqrt(bx * bx + by * by + bz * bz)) < 0.0:
+        bound[3] += 1.0
+        return True
+    return False
+
+
 @njit(cache=True, _nrt=False)
 def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
     e_sum = 0.0
@@ -110,15 +131,18 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
             jm, s0, s1 = m.groove_modal[g], m.groove_samp_off[g], m.groove_samp_off[g + 1]
             o0, o1 = m.modal_off[jm], m.modal_off[jm + 1]
             disp, rot, pts = m.samp_disp[s0:s1], m.samp_rot[s0:s1], m.samp_point[s0:s1]
-            cx, cy, cz, i0, i1, w0, w1 = _nearest_deformed_centre(
-                m.samp_theta[s0:s1], m.groove_periodic[g] == 1, disp, rot, pts, eta[o0:o1], w.groove_rows, m.groove_rc[g],
-                m.groove_zc[g], m.groove_h, m.groove_h_off[g], m.groove_h_off[g + 1], m.groove_dr,
-                m.groove_dr_off[g], m.groove_dr_off[g + 1], th, lx, ly, lz)
-            dx, dy, dz = lx - cx, ly - cy, lz - cz
-            dist = math.sqrt(dx * dx + dy * dy + dz * dz)
-            if dist > 0.0:
-                nx, ny, nz = dx / dist, dy / dist, dz / dist
-            delta = dist - (m.groove_r[g] - ra)
+            i0, i1, w0, w1 = 0, 0, 0.0, 0.0
+            if not _open_beyond_bound(m.samp_theta[s0:s1], m.groove_periodic[g] == 1, pts, w.flex_bound[jm], th,
+                                      lx, ly, lz, delta, m.groove_r[g] - ra, nx, ny, nz):
+                cx, cy, cz, i0, i1, w0, w1 = _nearest_deformed_centre(
+                    m.samp_theta[s0:s1], m.groove_periodic[g] == 1, disp, rot, pts, eta[o0:o1], w.groove_rows,
+                    m.groove_rc[g], m.groove_zc[g], m.groove_h, m.groove_h_off[g], m.groove_h_off[g + 1], m.groove_dr,
+                    m.groove_dr_off[g], m.groove_dr_off[g + 1], th, lx, ly, lz)
+                dx, dy, dz = lx - cx, ly - cy, lz - cz
+                dist = math.sqrt(dx * dx + dy * dy + dz * dz)
+                if dist > 0.0:
+                    nx, ny, nz = dx / dist, dy / dist, dz / dist
+                delta = dist - (m.groove_r[g] - ra)
             fn, u, ft, e = 0.0, 0.0, 0.0, 0.0
             # contact point (ring frame and world), normal of the force on the ball
             plx, ply, plz = lx + ra * nx, ly + ra * ny, lz + ra * nz

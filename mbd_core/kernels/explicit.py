@@ -261,7 +261,9 @@ def total_kinetic_energy(m, q, v, eta, eta_dot, w):
 def run_explicit(m, q, v, eta, eta_dot, w, t_origin, step0, n_steps, h, every, rec, energy_limit):
     """Advance n_steps steps from global step ``step0`` (t = t_origin + step·h), in place.
 
-    ``w.body_f``/``w.body_t``/``w.modal_f`` must hold the forces at the current state. After every global step
+    ``w.body_f``/``w.body_t``/``w.modal_f`` must hold the forces at the current state. With
+    ``w.flex_skip[0]`` set, the steps that are not recorded (nor the last) skip the deformation of
+    contacts open beyond their surface's motion bound (:mod:`.forces`; same forces). After every global step
     that is a multiple of ``every`` the state is stored in the record buffers ``rec`` (sample index
     counted from 0 within this call). Every 16th global step the kinetic energy is compared with
     ``energy_limit`` (J); above it the run stops with ``STATUS_ENERGY``. Returns (status, index,
@@ -277,6 +279,7 @@ def run_explicit(m, q, v, eta, eta_dot, w, t_origin, step0, n_steps, h, every, r
     implicit = False
     for i in range(imp.shape[0]):
         implicit = implicit or imp[i] != 0
+    may_skip = w.flex_skip[0] != 0
     for s in range(n_steps):
         step = step0 + s + 1
         t = t_origin + step * h
@@ -288,7 +291,11 @@ def run_explicit(m, q, v, eta, eta_dot, w, t_origin, step0, n_steps, h, every, r
             if not (modal_kick(m, q, v, eta, eta_dot, w, 0.5 * h, False)
                     and modal_drift(m, q, v, eta, eta_dot, w, h)):
                 return STATUS_MODAL, -1, s, k
+        # open surface contacts are skipped except where the outputs are kept: recorded steps and the
+        # last one, whose work arrays the caller reads (checkpoints)
+        w.flex_skip[1] = 1 if may_skip and step % every != 0 and s != n_steps - 1 else 0
         status, index = compute_forces(m, t, q, v, eta, eta_dot, w)
+        w.flex_skip[1] = 0
         if status != STATUS_OK:
             return status, index, s, k
         _kick(q, v, f, tau, mass, inertia, free, imp, 0.5 * h)

@@ -30,6 +30,10 @@ def _table_slope(table, start, stop, th):
     return (1.0 - w) * table[start + i0] + w * table[start + i1], (table[start + i1] - table[start + i0]) * n / TWO_PI
 
 
+#: factor on the motion bound of a sampled surface beyond which a contact's rigid-geometry gap counts
+#: as open (:mod:`.forces`)
+SKIP_MARGIN = 1.1
+
 # The modal sums below run over the modes innermost, along the tables' contiguous axis, and may
 # reassociate: LLVM then vectorises them (they differ from sequential sums by round-off only). They
 # are not inlined into the force kernel, so that the flag stays theirs.
@@ -216,14 +220,29 @@ def _wall_corners(pts, row, lx, ly, lz, corner, weight):
 # (at most 30 arguments: a call with more compiles to CALL_FUNCTION_EX, which numba cannot inline)
 @njit(cache=True, inline="always", _nrt=False)
 def _flexible_contact(q, v, bf, bt, disp, rot, pts, e_j, ed_j, rows, field, corner, weight, n, a, b, law, k_c,
-                      n_exp, damping, d_max, fric, fp_c, sd, sp, sn, k):
+                      n_exp, damping, d_max, fric, fp_c, sd, sp, sn, k, bound):
     """Contact point l = sp[k] (ring frame) of a pair on a sampled surface of modal body b, normal n = sn[k]
     of the force on a (ring frame), rigid-geometry penetration δ = sd[k]; the corners in ``corner[:, 0]``
     and ``weight``, the tables samp_disp, samp_rot, samp_point. Penetration δ + n·d, surface velocity in
     the slip, force on both frames, load gathered on the cached rows (module docstring; ``n`` slots of
-    the cache ``rows``, ``field`` in use, at least four free). Returns (n, F_n, δ + n·d, |v_t|, |F_t|,
-    energy, p world, m world)."""
+    the cache ``rows``, ``field`` in use, at least four free). ``bound``: the body's row of
+    ``w.flex_bound`` (a contact open beyond it is skipped, :mod:`.forces`). Returns (n, F_n, δ + n·d,
+    |v_t|, |F_t|, energy, p world, m world)."""
     lx, ly, lz, nx, ny, nz, delta = sp[k, 0], sp[k, 1], sp[k, 2], sn[k, 0], sn[k, 1], sn[k, 2], sd[k]
+    if bound[0] < math.inf:
+        psx = psy = psz = 0.0
+        for i in range(4):
+            row, cw = corner[i, 0], weight[i]
+            psx += cw * pts[row, 0]
+            psy += cw * pts[row, 1]
+            psz += cw * pts[row, 2]
+        bx, by, bz = lx - psx, ly - psy, lz - psz
+        bound[2] += 1.0
+        if delta + SKIP_MARGIN * (bound[0] + bound[1] * math.sqrt(bx * bx + by * by + bz * bz)) < 0.0:
+            bound[3] += 1.0
+            px, py, pz = _to_world(q, b, lx, ly, lz)
+            mx, my, mz = rotate(q, b, nx, ny, nz)
+            return n, 0.0, delta, 0.0, 0.0, 0.0, px, py, pz, mx, my, mz
     psx = psy = psz = ux = uy = uz = rx = ry = rz = vx = vy = vz = sx = sy = sz = 0.0
     for i in range(4):
         row = corner[i, 0]
@@ -281,7 +300,7 @@ def _flexible_point(m, q, v, eta, eta_dot, w, c, a, b, o0, o1, n, delta, lx, ly,
     n, fn, delta, u, ft, e, px, py, pz, mx, my, mz = _flexible_contact(
         q, v, w.body_f, w.body_t, m.samp_disp, m.samp_rot, m.samp_point, eta[o0:o1], eta_dot[o0:o1], w.flex_row,
         w.flex_field, w.flex_corner, w.flex_weight, n, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
-        m.pair_dmax[c], m.pair_fric[c], m.pair_fric_p[c], sd, sp, sn, 0)
+        m.pair_dmax[c], m.pair_fric[c], m.pair_fric_p[c], sd, sp, sn, 0, w.flex_bound[m.body_modal[b]])
     _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
     return n, fn, delta, u, ft, e, px, py, pz, mx, my, mz
 
@@ -302,7 +321,7 @@ def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns, imp, fpts
     theta = m.samp_theta[s0:s0 + (s1 - s0) // circ.shape[0]]
     periodic, kind = m.race_periodic[g] == 1, m.race_kind[g]
     law, k_c, n_exp, damp, d_mx = m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c]
-    fric, fp_c = m.pair_fric[c], m.pair_fric_p[c]
+    fric, fp_c, bound = m.pair_fric[c], m.pair_fric_p[c], w.flex_bound[jm]
     fn_sum, dmax, u_at_max, ft_sum, f_max, angle, e_sum = 0.0, -math.inf, 0.0, 0.0, -1.0, 0.0, 0.0
     bpx = bpy = bpz = bmx = bmy = bmz = 0.0
     n = 0
@@ -313,7 +332,7 @@ def _flexible_roller_raceway(m, q, v, eta, eta_dot, w, c, a, b, g, ns, imp, fpts
             n = 0
         n, fn, delta, u, ft, e, px, py, pz, mx, my, mz = _flexible_contact(
             q, v, bf, bt, disp, rot, pts, e_j, ed_j, rows, field, corner, weight, n, a, b, law, k_c, n_exp,
-            damp, d_mx, fric, fp_c, sd, sp, sn, k)
+            damp, d_mx, fric, fp_c, sd, sp, sn, k, bound)
         if delta > dmax:
             dmax = delta
             if f_max < 0.0:

@@ -43,6 +43,15 @@ to the modes by the transpose, Q += Σ_c w_c (D_cᵀ g + Ω_cᵀ((p − p_s) × 
 once per pair and the loads gathered per row before they are projected (``w.flex_*``, a small cache of
 rows that is flushed when full): the slices of a roller share a few rows.
 
+Open contacts on sampled surfaces. The sampled points of modal body j move at most
+U_j = Σ_k |η_k| max_s |D_s,k| and turn at most R_j = Σ_k |η_k| max_s |Ω_s,k| (``m.modal_disp_max``,
+``m.modal_rot_max``), so the deformation changes a contact's penetration by at most U_j + R_j |p − p_s|
+(weights ≥ 0, summing to one). On an evaluation that may skip (``w.flex_skip[1]``, set by the explicit
+step loop on the steps whose contact outputs are not recorded) a contact whose rigid-geometry
+penetration stays below −1.1 × that bound (10 % for the nearest-point search of a ball in a groove) is
+open whatever the deformation: its sample rows are not formed, and its outputs are those of the rigid
+geometry. Forces are unchanged bit for bit; ``w.flex_bound`` counts the checks and skips.
+
 Bodies that integrate their friction implicitly (``m.body_fric_implicit``) also get, per contact
 point, the damping matrix c Jᵀ(I − m mᵀ)J of the friction in (v, ω) world, c = |F_t|/|v_t| the secant
 coefficient (``w.fric_c``, from the points noted in ``w.fric_pts``), and the velocity of this
@@ -154,6 +163,23 @@ def _bushings(m, q, v, w):
 
 
 @njit(cache=True, _nrt=False)
+def _surface_bounds(m, eta, w):
+    """w.flex_bound[j, 0:2] = (U_j m, R_j rad) of every modal body (module docstring), inf when this
+    evaluation does not skip."""
+    skip = w.flex_skip[1] != 0
+    for j in range(m.modal_body.shape[0]):
+        u = r = math.inf
+        if skip:
+            u = r = 0.0
+            for k in range(m.modal_off[j], m.modal_off[j + 1]):
+                a = abs(eta[k])
+                u += a * m.modal_disp_max[k]
+                r += a * m.modal_rot_max[k]
+        w.flex_bound[j, 0] = u
+        w.flex_bound[j, 1] = r
+
+
+@njit(cache=True, _nrt=False)
 def compute_forces(m, t, q, v, eta, eta_dot, w):
     """Fill ``w.body_f``, ``w.body_t``, ``w.modal_f`` and the contact outputs at (t, q, v, η, η̇);
     returns (status, index)."""
@@ -168,6 +194,8 @@ def compute_forces(m, t, q, v, eta, eta_dot, w):
         j = _squeeze_films(m, q, v, w)
         if j >= 0:
             return STATUS_SQUEEZE_FILM, j
+    if m.modal_body.shape[0] > 0:
+        _surface_bounds(m, eta, w)
     e = 0.0
     n_of = w.type_count
     if n_of[BALL_GROOVE] > 0:

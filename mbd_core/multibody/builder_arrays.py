@@ -43,6 +43,9 @@ def modal_arrays(bodies, grooves, surfaces, pockets) -> dict:
             a = np.zeros((smp["theta"].size, 3, M))
             a[:, :, :smp[key].shape[2]] = smp[key]
             lst.append(a)
+    disp_max, rot_max = _mode_amplitudes(body_modal, counts, [(g["ring"], x) for g, x in zip(grooves, samples)]
+                                         + [(sf["ring"], x) for sf, x in zip(surfaces, grids)]
+                                         + [(p["cage"], x) for p, x in zip(pockets, walls)])
     I6 = pad("I6", (M, M))
     unit = [int(np.allclose(d["I6"], np.eye(d["I6"].shape[0]), rtol=0.0, atol=1e-12)) for d in modal]
     return dict(
@@ -68,7 +71,26 @@ def modal_arrays(bodies, grooves, surfaces, pockets) -> dict:
         race_circle_s=_f64(np.concatenate([x["circle_s"] for x in grids if x is not None] or [np.zeros(0)])),
         pocket_modal=_i64([-1 if x is None else body_modal[p["cage"]] for p, x in zip(pockets, walls)]),
         pocket_samp=_i64([-1 if x is None else r for x, r in zip(walls, pocket_samp)]),
+        modal_disp_max=disp_max, modal_rot_max=rot_max,
     )
+
+
+def _mode_amplitudes(body_modal, counts, sampled) -> tuple[np.ndarray, np.ndarray]:
+    """Per modal coordinate k of each modal body: the largest |D_s,k| (m/√kg) and |Ω_s,k| (rad/√kg)
+    over the samples s of all its sampled surfaces (``sampled``: (body index, sample or None) pairs).
+    Σ_k |η_k| times them bounds how far any sampled point of the body moves and turns
+    (:func:`mbd_core.kernels.forces.compute_forces`, the bound of the surface contacts)."""
+    off = np.concatenate([[0], np.cumsum(counts)]).astype(int)
+    disp_max, rot_max = np.zeros(off[-1]), np.zeros(off[-1])
+    for body, smp in sampled:
+        if smp is None:
+            continue
+        j = body_modal[body]
+        for key, out in (("disp", disp_max), ("rot", rot_max)):
+            amp = np.linalg.norm(np.asarray(smp[key]), axis=1).max(axis=0, initial=0.0)  # (modes,)
+            seg = out[off[j]:off[j] + amp.size]
+            np.maximum(seg, amp, out=seg)
+    return disp_max, rot_max
 
 
 def squeeze_film_arrays(dampers, q0) -> dict:

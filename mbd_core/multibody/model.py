@@ -65,6 +65,9 @@ Flexible cage pockets: pocket_modal (n_p,) int64 modal index of the pocket's cag
     (n_p,) int64 row in samp_* of the pocket's leading wall sample (the trailing wall's is the next row;
     −1 for a rigid pocket).
 Every one of these tables is empty, and every index −1, in a model without sampled surfaces or pockets.
+Bound of the sampled surfaces' motion: modal_disp_max, modal_rot_max (n_η,) the largest |D_s,k| m/√kg
+    and |Ω_s,k| rad/√kg of each modal coordinate k over the samples s of its body (zero for a body
+    without samples).
 """
 
 from __future__ import annotations
@@ -88,7 +91,8 @@ MODEL_FIELDS = (
     "gravity body_modal modal_body modal_off modal_frame_free modal_implicit modal_unit modal_omega2 modal_damp "
     "modal_mass modal_I2 modal_I3 modal_I4 modal_I5 modal_I6 modal_I7 modal_I8 modal_I9 "
     "groove_modal groove_periodic groove_samp_off samp_theta samp_point samp_disp samp_rot "
-    "race_modal race_periodic race_samp_off race_circle_off race_circle_s pocket_modal pocket_samp"
+    "race_modal race_periodic race_samp_off race_circle_off race_circle_s pocket_modal pocket_samp "
+    "modal_disp_max modal_rot_max"
 )
 ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 
@@ -113,6 +117,12 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: the contact points with friction on such a body (a, b, secant coefficient N·s/m, normal, world
 #: point m, pair, F_n N, slip speed m/s; n_f = 0 in a model without them), fric_n (1,) int64 how
 #: many; fric_a (6, 6), fric_r (6,), fric_g (6,), fric_rot (3, 3), fric_idx (6,) int64 scratch.
+#: Open contacts on sampled surfaces (:func:`mbd_core.kernels.forces.compute_forces`): flex_skip (2,)
+#: int64, [0] 1 when the caller allows a step to skip the surface deformation of a contact whose
+#: rigid-geometry gap exceeds the surface's motion bound, [1] 1 while the current evaluation does
+#: (set by the explicit step loop on steps that are not recorded); flex_bound (n_mb, 4) per modal
+#: body: the bound Σ|η_k| max|D_k| m and Σ|η_k| max|Ω_k| rad of this evaluation (inf when not
+#: skipping), and the running counts of surface contacts checked and skipped.
 WorkArrays = namedtuple(
     "WorkArrays",
     "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta contact_point "
@@ -120,7 +130,7 @@ WorkArrays = namedtuple(
     "load pi center axis point slice_delta slice_point slice_normal type_count "
     "modal_f modal_M modal_L modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta "
     "flex_row flex_field flex_corner flex_weight groove_rows fric_c fric_v fric_pts fric_n fric_a fric_r fric_g "
-    "fric_rot fric_idx",
+    "fric_rot fric_idx flex_skip flex_bound",
 )
 FLEX_ROWS = 32
 
@@ -237,6 +247,7 @@ def make_work(model: Model) -> WorkArrays:
         fric_pts=np.zeros((a.slice_drop.size + 2 * nc if a.body_fric_implicit.any() else 0, 12)),
         fric_n=np.zeros(1, dtype=np.int64), fric_a=np.zeros((6, 6)), fric_r=np.zeros(6), fric_g=np.zeros(6),
         fric_rot=np.zeros((3, 3)), fric_idx=np.zeros(6, dtype=np.int64),
+        flex_skip=np.zeros(2, dtype=np.int64), flex_bound=np.zeros((a.modal_body.size, 4)),
     )
 
 
