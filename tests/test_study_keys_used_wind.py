@@ -45,7 +45,7 @@ def _contact(c):
 def _install_recorders(monkeypatch, log: list) -> None:
     def run(c, progress=None):
         log.append(("dynamic", c.rollers, _bodies(c.bodies), _contact(c.contact), c.loads, c.analysis))
-        return SimpleNamespace(model=None), {"timestep_s": 1e-5}
+        return SimpleNamespace(model=None, modal=None), {"timestep_s": 1e-5}
 
     def roller_speeds(case, sc, rec):
         one = dict(loaded_mean_rpm=1.0, kinematic_rpm=1.0, loaded_error=0.01, one_roller=0, one_roller_mean_rpm=1.0,

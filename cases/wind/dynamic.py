@@ -55,29 +55,55 @@ def step_error(sc: WindScene, timestep_s: float) -> dict:
     return largest_load_step_error(sc.model, sc.state, timestep_s, [p for rb in sc.rows for p in rb.moving_pairs])
 
 
-def slice_error(case: WindCase) -> dict | None:
-    """Slicing error of the largest roller load: the quasi-static load distribution (rigid rings)
-    under the load of the case's history that loads a roller most, with ``rollers.n_slices``
-    slices and with 2× and 4× as many, extrapolated as the time step is
-    (:func:`mbd_core.multibody.step_error.richardson`, with 1/slices for h). None under the
-    ``adams`` preset, whose contact law takes the whole roller."""
+def slice_error(case: WindCase, modal=None) -> dict | None:
+    """Slicing error of the largest roller load: the quasi-static load distribution under the load
+    of the case's history that loads a roller most, with ``rollers.n_slices`` slices and with 2× and
+    4× as many, extrapolated as the time step is (:func:`mbd_core.multibody.step_error.richardson`,
+    with 1/slices for h). With the case's modal rings (``modal``, the scene's
+    :class:`.bodies.ModalBodies`) the rings bend in it as in the run (:func:`_flexible_largest`), so
+    their twist, which loads a roller unevenly along its length, is in the estimate; else rigid
+    rings. None under the ``adams`` preset, whose contact law takes the whole roller."""
     if case.contact.preset == "adams":
         return None
     _, loads = load_history(case)
     n = case.rollers.n_slices
+    flexible = modal is not None and modal.inner is not None and modal.outer is not None
 
     def largest(k: int, load) -> float:
-        bearing = Bearing("three-row roller", rows(case.with_(rollers={"n_slices": k * n})))
-        res = solve_load_distribution(bearing, inner_ring_load(load))
+        c = case.with_(rollers={"n_slices": k * n})
+        if flexible:
+            return _flexible_largest(c, modal, load)
+        res = solve_load_distribution(Bearing("three-row roller", rows(c)), inner_ring_load(load))
         return max(float(r.load_N.max()) for r in res.rows)
 
     worst = max(np.unique(loads, axis=0), key=lambda f: largest(1, f))
     est = richardson(*(largest(k, worst) for k in (1, 2, 4)))
+    rings = "the case's modal rings" if flexible else "rigid rings"
     return {"max_load": est.relative, "max_load_N": est.value, "order": est.order,
-            "order_observed": est.order_observed,
+            "order_observed": est.order_observed, "rings": "modal" if flexible else "rigid",
             "what": f"relative slicing error of the largest roller load at {n} slices per roller: quasi-static "
-                    f"(rigid rings) with {n}, {2 * n} and {4 * n} slices under the most loading load of the history "
+                    f"({rings}) with {n}, {2 * n} and {4 * n} slices under the most loading load of the history "
                     "(Richardson)"}
+
+
+def _flexible_largest(case: WindCase, modal, load) -> float:
+    """Largest roller load of the flexible quasi-static equilibrium
+    (:func:`mbd_core.quasistatic.flexible_solve.solve_flexible_load_distribution`): the inner ring
+    (free–free modes) rides on the rigid displacement, the outer ring is held at its bolts; each
+    row's raceway fields are those of the sampled circle in the middle of its (θ, s) grid, the
+    section's rotation carrying them along the roller."""
+    from mbd_core.quasistatic.flexible import FlexibleRing, build_flexible_model
+    from mbd_core.quasistatic.flexible_solve import solve_flexible_load_distribution
+
+    from .bodies import RACEWAYS
+
+    row_defs = rows(case)
+    mid = (case.bodies.n_across - 1) // 2
+    names = {r.name: f"{segment}@s{mid}" for r, segment in zip(row_defs, RACEWAYS)}
+    rings = (FlexibleRing("inner ring", modal.inner, "moving", names), FlexibleRing("outer ring", modal.outer, "fixed", names))
+    res = solve_flexible_load_distribution(build_flexible_model(Bearing("three-row roller", row_defs), rings),
+                                           inner_ring_load(load))
+    return max(float(r.load_N.max()) for r in res.rows)
 
 
 #: fewest recorded samples after the settling time that the averages of a run are taken over

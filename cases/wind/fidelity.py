@@ -181,7 +181,7 @@ def measure(case: WindCase) -> Outcome:
     if case.bodies.rings == "modal":
         rings = peak_stresses(sc, rec, case.analysis.settle_s, names=("inner ring", "outer ring"))
         figures["ring_von_mises"] = {name: w.von_mises_Pa for name, (_, _, w) in rings.items()}
-    slices = dynamic.slice_error(case)
+    slices = dynamic.slice_error(case, sc.modal)
     estimates = {"estimated_step_error": dynamic.step_error(sc, rec["timestep_s"])["max_load"],
                  "estimated_slice_error": None if slices is None else slices["max_load"]}
     return Outcome(loads, unloaded_share=UNLOADED_SHARE, estimates=estimates, figures=figures)

@@ -113,7 +113,7 @@ def _one_run(case: WindCase, progress=None, out=None, label: str = "") -> tuple[
                "equilibrium": dynamic.equilibrium_error(case, sc, rec),
                "cage_forces": dynamic.cage_forces(case, sc, rec), "timestep_s": rec["timestep_s"],
                "error_estimates": {"time_step": dynamic.step_error(sc, rec["timestep_s"]),
-                                   "slices": dynamic.slice_error(case)},
+                                   "slices": dynamic.slice_error(case, sc.modal)},
                "wall_time_s": time.perf_counter() - t0}
     if out is not None:
         out.write_timeseries(sc.model, rec, f"timeseries_{label}.nc" if label else "timeseries.nc", case=case.name,
