@@ -41,6 +41,8 @@ REPO = Path(__file__).resolve().parents[1]
     # a rigid ring's modal keys: no run reads them
     ("slewing-thermal", "top.n_modes=30", 'top.kind = "modal"'),
     ("slewing-undulation", "bottom.E_Pa=100e9", 'bottom.kind = "modal"'),
+    # the preset's top structure is chosen per equilibrium (auto): its modal keys are auto's
+    ("slewing-undulation", "top.n_modes=30", 'set top.kind = "modal" to choose it'),
     ("wind-speeds", "bodies.n_modes=10", 'bodies.rings or bodies.cages = "modal"'),
     ("wind-speeds-adams", "contact.damping_ratio=0.3", "adams preset"),
 ])
@@ -51,7 +53,7 @@ def test_an_override_the_study_does_not_read_is_refused_naming_the_key_that_does
 
 
 @pytest.mark.parametrize("name, overrides", [
-    ("slewing-undulation", ["top.n_modes=30"]),  # the study makes the top structure modal
+    ("slewing-undulation", ["top.kind=modal", "top.n_modes=30"]),  # the modal keys once the user picks modal
     ("slewing-thermal", ["top.kind=modal", "top.n_modes=30"]),
     ("wind-speeds", ["bodies.rings=modal", "bodies.n_modes=10"]),
     ("wind-rigid-flexible", ["bodies.n_modes=10"]),  # it runs modal bodies

@@ -233,7 +233,8 @@ def _check_spread(profile, contact_rz_m, spread_m: float, key: str) -> None:
 @dataclass(frozen=True)
 class BodyFidelity:
     """How a ring is modelled: ``rigid`` or ``modal`` (n_modes normal modes + raceway load shapes up
-    to harmonic ``groove_harmonics``, −1: none), or (top structure, one quasi-static equilibrium)
+    to harmonic ``groove_harmonics``, −1: none), or (top structure, quasi-static equilibria with the
+    balls at their places: study ``single`` without travel, each equilibrium of ``undulation``)
     ``auto``: a cheap pass chooses rigid or modal and the modal keys, and says why (:mod:`.auto`). ``E_Pa`` is its Young's modulus (the thesis'
     reduced-stiffness ring: 1.5975 GPa); ``element_size_m`` None takes a size from the variant.
     ``raceway_spread_m`` > 0 samples the groove averaged over a patch of that size around the
@@ -377,8 +378,14 @@ class SlewingCase(CaseTables):
         if self.bottom.kind == "auto":
             raise ValueError('bottom.kind: "auto" decides for the top structure only; the bottom race is "rigid" '
                              'or "modal"')
+        if self.study.kind == "undulation" and self.top.kind == "rigid":
+            raise ValueError('top.kind: the undulation study compares top structures of the moduli in '
+                             'study.top_E_Pa, and a rigid one has none: set top.kind = "auto" (each equilibrium '
+                             'chooses) or "modal"')
         if self.top.kind != "auto":
             return
+        if self.study.kind == "undulation":
+            return  # each of its equilibria decides for itself (cases.slewing.studies.study_undulation)
         if self.study.kind != "single":
             runs = f"the {self.study.kind} study"
         elif self.analysis.type != "quasi_static":
@@ -387,9 +394,9 @@ class SlewingCase(CaseTables):
             runs = "a travel (analysis.travel_steps > 0)"
         else:
             return
-        raise ValueError('top.kind: "auto" decides the top structure for one quasi-static equilibrium with the '
-                         f'balls at their places (study single, no travel); this case runs {runs}: set top.kind '
-                         '= "rigid" or "modal"')
+        raise ValueError('top.kind: "auto" decides the top structure for quasi-static equilibria with the '
+                         f'balls at their places (study single without travel, or undulation); this case runs {runs}: '
+                         'set top.kind = "rigid" or "modal"')
 
     def _check_model_sizes(self) -> None:
         """Each modal race can give its modes, fits in memory and has raceway load shapes its

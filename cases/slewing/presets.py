@@ -30,9 +30,10 @@ _PRESET_TABLES = {
         study={"kind": "rotation"}, geometry={"variant": "1m"},
         analysis={"type": "dynamic_explicit", "duration_s": 4.6}),
     "slewing-undulation": dict(
-        name="slewing-undulation", description="(c) 2 m ring, undulated bottom race ×0.5/×1/×1.5, modal top "
-        "structure with E = 200 GPa and the thesis' reduced 1.5975 GPa: max ball load, unloaded balls",
-        study={"kind": "undulation"}, top={"kind": "modal", "element_size_m": UNDULATION_TOP_ELEMENT_SIZE_M}),
+        name="slewing-undulation", description="(c) 2 m ring, undulated bottom race ×0.5/×1/×1.5, top structure "
+        "with E = 200 GPa and the thesis' reduced 1.5975 GPa, its fidelity chosen per equilibrium (auto): max ball "
+        "load, unloaded balls",
+        study={"kind": "undulation"}, top={"kind": "auto", "element_size_m": UNDULATION_TOP_ELEMENT_SIZE_M}),
     "slewing-thermal": dict(
         name="slewing-thermal", description="(d) 2 m ring, rigid races, radial offset Δ = 0.3/0.4/0.5 mm of the "
         "top race over 80–100° and the bottom race over 260–280°: load on a ball over one revolution",
@@ -120,6 +121,8 @@ def quick(case: SlewingCase) -> SlewingCase:
     from .studies import runs_of
 
     tables = dict(_QUICK[case.study.kind])
+    if case.top.kind == "auto" and "top" in tables:  # auto chooses the modal keys; only the mesh is coarsened
+        tables["top"] = {k: v for k, v in tables["top"].items() if k == "element_size_m"}
     modal = [k for k in ("top", "bottom") if getattr(case, k).kind == "modal"]
     if case.study.kind == "rotation" and modal:  # coarser modal rings
         tables.update({k: _QUICK_MODAL_FULL if case.geometry.variant == "full" else _QUICK_MODAL for k in modal})

@@ -40,6 +40,8 @@ def _fidelity(case: SlewingCase) -> str:
     def one(f, name, modulus=None):
         if f.kind == "rigid":
             return f"{name} rigid"
+        if f.kind == "auto":
+            return f"{name} chosen per equilibrium (auto), E {modulus or f'{f.E_Pa / 1e9:g} GPa'}"
         return (f"{name} modal ({f.n_modes} modes + groove shapes to harmonic {f.groove_harmonics}, "
                 f"E {modulus or f'{f.E_Pa / 1e9:g} GPa'})")
     if "top.E_Pa" in STUDIES[case.study.kind].unused:  # the study sets the modulus itself
@@ -109,9 +111,10 @@ def study_static(case: SlewingCase, out, progress=None) -> None:
 def study_undulation(case: SlewingCase, out, progress=None) -> None:
     """Undulated bottom race, ``undulation_scales`` × ``top_E_Pa``: max load, unloaded balls.
     Each pair is a ``single`` equilibrium in its own folder, the spacer run (:func:`_spacer_run`)
-    one more (:func:`_single_runs`)."""
+    one more (:func:`_single_runs`). With ``top.kind = "auto"`` each equilibrium decides its top
+    structure (its ``fidelity_decisions``; ``top_fidelity`` in the table)."""
     s = case.study
-    base = case.with_(top={"kind": "modal"} if case.top.kind == "rigid" else {})
+    base = case
     items = [(E, h) for E in s.top_E_Pa for h in s.undulation_scales]
     points = [(f"E={E / 1e9:g}GPa_undulation={h:g}", f"E {E / 1e9:g} GPa, undulation ×{h:g}",
                base.with_(top={"E_Pa": E}, undulation={"scale": h},
@@ -124,10 +127,12 @@ def study_undulation(case: SlewingCase, out, progress=None) -> None:
         out.warn(r.get("warnings", ()), label)
         fig = {k: r[k] for k in ("max_ball_load_N", "min_ball_load_N", "unloaded_balls", "equilibrium_error")}
         curves[(E, h)] = np.asarray(r["ball_load_N"], float)
+        decided = [d["choice"] for d in r.get("fidelity_decisions", ())]
         table.append({"top_E_Pa": E, "undulation_scale": h, **fig, "error_estimates": r["error_estimates"],
-                      "folder": folder})
+                      "folder": folder, **({"top_fidelity": decided[0]} if decided else {})})
         out.note(f"E {E / 1e9:7.4g} GPa, undulation ×{h:g}: max ball load {fig['max_ball_load_N']:.0f} N, "
-                 f"{plural(fig['unloaded_balls'], 'ball')} unloaded ({folder}/)")
+                 f"{plural(fig['unloaded_balls'], 'ball')} unloaded ({folder}/)"
+                 + (f"; top structure (auto): {decided[0]}" if decided else ""))
     azimuth = np.radians(summaries[points[0][0]]["ball_azimuth_deg"])
     out.summary["cases"] = table
     out.write_csv("ball_loads.csv", ["ball", "azimuth_deg"] + [f"load_E{E / 1e9:g}GPa_x{h:g}_N" for E, h in curves],
@@ -342,7 +347,7 @@ STUDIES = {
     "undulation": StudyEntry(study_undulation, sweeps=("undulation_scales", "top_E_Pa", "spacer_run_s",
                                                        "spacer_run_top"),
                              runs=("equilibria", "dynamic"), variants=True, unused={
-        **_TYPE, **_MODAL_TOP, "top.E_Pa": "set study.top_E_Pa (the moduli it sweeps)",
+        **_TYPE, "top.E_Pa": "set study.top_E_Pa (the moduli it sweeps)",
         "undulation.scale": "set study.undulation_scales (the scales it sweeps)",
         "analysis.duration_s": "set study.spacer_run_s (the simulated time of its spacer run)"}),
     "thermal": StudyEntry(study_thermal, sweeps=("offsets_m",), runs=("travels",), variants=True, unused={
@@ -384,7 +389,8 @@ def _fidelity_unused(case: SlewingCase) -> dict[str, str]:
         out.update({f"top.{k}": 'the top structure is rigid here; set top.kind = "modal"'
                     for k in (*_MODAL_KEYS, "include_tmr")})
     elif case.top.kind == "auto":
-        out.update({f"top.{k}": 'top.kind = "auto" chooses it' for k in CHOSEN_KEYS})
+        out.update({f"top.{k}": 'top.kind = "auto" chooses it; set top.kind = "modal" to choose it yourself'
+                    for k in CHOSEN_KEYS})
     if case.contact.preset == "thesis":
         out["contact.damping_ratio"] = "the thesis preset takes the thesis' damping c = K/1000 s"
     if case.bottom.kind != "modal":
@@ -436,7 +442,7 @@ def uses_dynamics(case: SlewingCase) -> bool:
 
 def run_study(case: SlewingCase, out, progress=None) -> None:
     """Run the study the case names (``single`` with ``quasi_static``: one equilibrium or a travel)."""
-    if case.top.kind == "auto":
+    if case.top.kind == "auto" and case.study.kind == "single":  # (a study's equilibria decide for themselves)
         case, decision = resolve_auto(case)
         out.summary["fidelity_decisions"] = [decision]
         out.note(f"fidelity auto: {decision['choice']}, because {decision['reason']}")
