@@ -113,11 +113,16 @@ def test_every_slewing_rung_is_a_valid_case_with_its_knob_values(variant, quick)
 
 
 def test_a_study_that_makes_the_top_modal_cannot_take_a_rigid_rung():
-    case = PRESETS["slewing-undulation"]
+    modal = {"top.kind": "modal", "top.n_modes": 5, "top.groove_harmonics": -1, "top.element_size_m": 0.1}
+    case = PRESETS["slewing-combined"]  # sets top.kind itself
     assert slewing_fidelity.rung_overrides(case, {"top.kind": "rigid"}) is None
-    o = slewing_fidelity.rung_overrides(case, {"top.kind": "modal", "top.n_modes": 5, "top.groove_harmonics": -1,
-                                               "top.element_size_m": 0.1})
-    assert o == {"top": {"n_modes": 5, "groove_harmonics": -1, "element_size_m": 0.1}}
+    assert slewing_fidelity.rung_overrides(case, modal) == {"top": {"n_modes": 5, "groove_harmonics": -1,
+                                                                   "element_size_m": 0.1}}
+    case = PRESETS["slewing-undulation"]  # auto by default; modal or auto, never rigid
+    assert slewing_fidelity.rung_overrides(case, {"top.kind": "rigid"}) is None
+    o = slewing_fidelity.rung_overrides(case, modal)
+    assert o == {"top": {"kind": "modal", "n_modes": 5, "groove_harmonics": -1, "element_size_m": 0.1}}
+    assert case.with_(**o).top.kind == "modal"
 
 
 def test_the_scene_of_the_undulation_study():

@@ -192,13 +192,15 @@ def describe(settings: dict) -> str:
 
 def rung_overrides(case: SlewingCase, settings: dict) -> dict | None:
     """The table overrides that run ``case`` at a rung's fidelity (its own study kept), or None when
-    its study fixes a knob to another value (a study that makes the top structure modal cannot run
-    a rigid rung)."""
+    its study fixes a knob to another value (a study that makes the top structure modal, or the
+    undulation study, cannot run a rigid rung)."""
     from .studies import case_unused_keys, modal_top
 
     kind = settings["top.kind"]
     study_sets_kind = "top.kind" in case_unused_keys(case)
     if study_sets_kind and kind != ("modal" if modal_top(case) else case.top.kind):
+        return None
+    if kind == "rigid" and case.study.kind == "undulation":  # it compares moduli of a bending top structure
         return None
     top = {} if study_sets_kind else {"kind": kind}
     if kind == "modal":
