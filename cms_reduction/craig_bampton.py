@@ -331,8 +331,10 @@ def reduce_model(
     probes : sequence of load shapes (:mod:`.augmentation`)
         Loads whose static response is measured but not added: the body's metadata gets
         ``probe_compliance_m_per_N``, the (k, k) compliance FᵀK⁻¹F of the k probe loads on the
-        elastic motion (inertia relief), and ``residual_compliance_m_per_N``, the part of it the
-        basis does not hold (:func:`residual_compliance`). Free bodies only.
+        elastic motion (inertia relief on a free floating body; with every interface grounded, the
+        motion of the held body), and ``residual_compliance_m_per_N``, the part of it the basis does
+        not hold (:func:`residual_compliance`). Free floating bodies, or bodies held at all their
+        interfaces.
     """
     interfaces = tuple(interfaces)
     augmentation = tuple(augmentation)
@@ -356,9 +358,11 @@ def reduce_model(
     KII, MII = (_block(A, interior) for A in (Kq, Mq))
     loads_q, probe_q = (_load_columns(model, T, shapes) for shapes in (augmentation, probes))
     free_body = len(master_cols) == 0 and C_avg.shape[0] == 0
-    if probe_q.shape[1] and not (free_body and floating):
-        raise ValueError("residual-compliance probes are measured on free floating bodies only")
-    probe_compliance = None
+    all_held = not floating and len(master_cols) == len(held) and bool(np.all(avg_grounded))
+    if probe_q.shape[1] and not ((free_body and floating) or (all_held and not free_body)):
+        raise ValueError("residual-compliance probes are measured on free floating bodies or on bodies held at "
+                         "all their interfaces")
+    probe_compliance, probe_shift = None, 0.0
     Rq = rigid_fields_q(model, interfaces, retained)
     held_rigid = np.vstack((Rq[held], C_avg[np.flatnonzero(avg_grounded)] @ Rq[interior]))
     length_m = body_length_m(model.nodes_m, mass_centre_m(model.M, model.nodes_m))
@@ -381,7 +385,7 @@ def reduce_model(
                 interior_blocks.append(U - rigid_q @ (MR.T @ U))
             if probe_q.shape[1]:
                 U = factor.solve(probe_q - MR @ (rigid_q.T @ probe_q))
-                probe_compliance = probe_q.T @ (U - rigid_q @ (MR.T @ U))
+                probe_compliance, probe_shift = probe_q.T @ (U - rigid_q @ (MR.T @ U)), sigma
         else:
             # interior rows: retained-node DOFs (rigid-interface masters excluded), which are also
             # the first columns of q, so the averaging constraints apply to them directly
@@ -399,6 +403,8 @@ def reduce_model(
                 interior_blocks.append(solver.KinvCt @ np.linalg.solve(solver.S, np.eye(C.shape[0])[:, free_avg]))
             if loads_q.shape[1]:
                 interior_blocks.append(solve_in_blocks(solver.solve, loads_q[interior], "load shapes"))
+            if probe_q.shape[1]:  # every master held: the probe loads on the interior do all the work
+                probe_compliance = probe_q[interior].T @ solve_in_blocks(solver.solve, probe_q[interior], "probes")
         blocks = []
         for k, blk in enumerate(interior_blocks):
             V = np.zeros((nq, blk.shape[1]))
@@ -412,7 +418,8 @@ def reduce_model(
             Vq, w2, dropped = _modal_form(Kq, Mq, blocks, rigid_q)
     metadata = {}
     if probe_compliance is not None:
-        metadata["residual_compliance_m_per_N"] = residual_compliance(probe_compliance, Vq, w2, probe_q, sigma).tolist()
+        metadata["residual_compliance_m_per_N"] = residual_compliance(probe_compliance, Vq, w2, probe_q,
+                                                                      probe_shift).tolist()
         metadata["probe_compliance_m_per_N"] = (0.5 * (probe_compliance + probe_compliance.T)).tolist()
     shapes = np.asarray(T @ Vq)
     freqs = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * math.pi)

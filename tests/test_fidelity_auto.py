@@ -39,10 +39,26 @@ def test_auto_keeps_the_top_rigid_under_a_uniform_load_and_says_why(static_scene
     assert "rigid" in summary["error_estimates"]["why_none"]
 
 
+def test_auto_decides_both_races_and_splits_the_tolerance(static_scene):
+    # Reference: as above, the analytic thrust load of a ring of revolution: both races stay rigid
+    # at the first step, each judged against half the tolerance (their deflections add).
+    case, path = static_scene
+    out = path.parent / "run-both"
+    assert main(["run", str(path), "--set", "top.kind=auto", "--set", "bottom.kind=auto", "--out", str(out)]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    got = {d["body"]: d for d in summary["fidelity_decisions"]}
+    assert set(got) == {"top", "bottom"}
+    for race, d in got.items():
+        assert d["choice"] == f"{race}.kind = rigid" and d["tolerance"] == pytest.approx(0.005)
+    Q, _ = analytic_ball_load_N(case)
+    assert summary["max_ball_load_N"] == pytest.approx(Q, rel=1e-9)
+
+
 @pytest.mark.parametrize("sets, named", [
     (["top.kind=auto", "analysis.travel_steps=4"], "top.kind"),
     (["top.kind=auto", "analysis.type=dynamic_explicit"], "top.kind"),
-    (["bottom.kind=auto"], "bottom.kind"),
+    (["bottom.kind=auto", "analysis.travel_steps=4"], "bottom.kind"),
+    (["bottom.kind=auto", "bottom.groove_harmonics=4"], "bottom.groove_harmonics"),
     (["top.kind=auto", "top.n_modes=30"], "top.n_modes"),
     (["top.kind=auto", "top.ball_load_shapes=true", "top.raceway_spread_m=0.02"], "top."),
 ])

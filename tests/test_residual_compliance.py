@@ -111,3 +111,39 @@ def test_truncation_estimate_by_hand():
     assert est["ring_stiffness_ratio"] == pytest.approx(5 * eta, rel=1e-12)
     assert est["max_load"] == pytest.approx(eta / (1 + 5 * eta), rel=1e-12)
     assert est["max_load"] == pytest.approx(0.17667, rel=1e-4)
+
+
+def test_a_ring_held_at_its_bolts_measures_its_probe_compliance(ring):
+    # Reference: the full stiffness matrix with every DOF of the bolt patches' nodes removed (a
+    # grounded rigid patch holds its nodes), solved with SuperLU: Fᵀ K_ff⁻¹ F_f. The reduction
+    # solves the interior block with its own factor: rtol 1e-8. Residual: that less the Ritz
+    # compliance of the kept fixed-interface modes, Σ (φᵀF)²/ω², with no shift.
+    from cms_reduction.craig_bampton import Interface
+    from fem_rings.nodesets import patch_nodes
+
+    model, probe = ring
+    bolts = [Interface(f"bolt {k}", patch_nodes(model.ring, "bottom", a, 0.02)) for k, a in enumerate((45, 165, 285))]
+    body = reduce_model(model, 10, bolts, probes=[probe])
+    F = probe.load_vectors(model, True)
+    held = np.unique(np.concatenate([3 * b.nodes[:, None] + np.arange(3) for b in bolts]).ravel())
+    free = np.setdiff1d(np.arange(model.K.shape[0]), held)
+    u = spla.splu(model.K.tocsc()[free][:, free]).solve(F[free])
+    exact = F[free].T @ u
+    np.testing.assert_allclose(body.metadata["probe_compliance_m_per_N"], exact, rtol=1e-8)
+    w2 = (2.0 * math.pi * np.asarray(body.frequencies_Hz)) ** 2
+    P = body.shapes.T @ F
+    expected = exact - P.T @ (P / w2[:, None])
+    np.testing.assert_allclose(body.metadata["residual_compliance_m_per_N"], expected, rtol=1e-6,
+                               atol=1e-6 * np.abs(exact).max())
+    assert np.all(np.linalg.eigvalsh(np.array(body.metadata["residual_compliance_m_per_N"])) > 0.0)
+
+
+def test_probes_refuse_a_body_with_free_interfaces(ring):
+    from cms_reduction.craig_bampton import Interface
+    from fem_rings.nodesets import patch_nodes
+
+    model, probe = ring
+    held = Interface("held", patch_nodes(model.ring, "bottom", 45, 0.02))
+    loose = Interface("loose", patch_nodes(model.ring, "bottom", 225, 0.02), grounded=False)
+    with pytest.raises(ValueError, match="held at all their interfaces"):
+        reduce_model(model, 6, [held, loose], probes=[probe])

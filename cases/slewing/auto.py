@@ -1,19 +1,23 @@
-"""``top.kind = "auto"``: model the top structure only as finely as the scene requires, and say why.
+"""``top.kind = "auto"`` and ``bottom.kind = "auto"``: model the top structure and the bottom race
+only as finely as the scene requires, and say why.
 
-A cheap pass decides, for the case's quasi-static equilibrium (study ``single`` without travel),
-in three steps:
+A cheap pass decides, for the case's quasi-static equilibrium (study ``single`` without travel, or
+each equilibrium of the undulation study), for each race left to it, in three steps:
 
-1. **Rigid equilibrium** (milliseconds). When its ball loads vary by less than the tolerance
-   around the ring, the top structure — a ring of revolution — deforms alike under every ball,
-   which leaves the loads equal, W / (Z sin α) (a shared change of α moves them together): rigid,
-   as the analytic check of the static case has it (thesis §3.2.1).
-2. **Coarse probe** (a reduction on a mesh twice as coarse as the default, 5 modes, no load
-   shapes, seconds): the ring's compliance c = nᵀCn to a ball force on its groove patch, with
-   inertia relief (:func:`cms_reduction.craig_bampton.residual_compliance`; the probe of
+1. **Rigid equilibrium** (milliseconds), every race left to ``auto`` rigid. When its ball loads vary
+   by less than the tolerance around the ring, a ring of revolution deforms alike under every
+   ball, which leaves the loads equal, W / (Z sin α) (a shared change of α moves them together):
+   rigid, as the analytic check of the static case has it (thesis §3.2.1).
+2. **Probe** (a reduction with 5 modes and no load shapes, seconds: the top structure on a mesh
+   twice as coarse as the default, the bottom race on its own, whose bolt patches need elements
+   narrower than they are): the race's compliance c = nᵀCn to a ball force on its groove patch — the
+   floating top structure with inertia relief, the bottom race held at its bolt patches
+   (:func:`cms_reduction.craig_bampton.residual_compliance`; the probe of
    :class:`cms_reduction.RacewaySpec`). Under the rigid loads the deflection differs between balls
    by at most Δr = c·(Q_max − Q_min); against the Hertz approach δ of the most loaded ball this is
    η = 1.5·Δr/δ (Hertz: dQ/dδ = 1.5 Q/δ), and η/(1 + η) bounds the load change it can cause when
-   the approaches are imposed. Below the tolerance: rigid.
+   the approaches are imposed. Below the tolerance: rigid. When both races decide, each takes half
+   the tolerance (their deflections add).
 3. **Modal**, with the static shapes of the ball forces at the balls' places on the groove patch
    s = 0.3·D (``ball_load_shapes``): the quasi-static equilibrium is then the finite-element solution
    of the ring under the ball forces (Ritz: their static response lies in the basis, up to what
@@ -24,7 +28,7 @@ in three steps:
 
 The element size stays the case's (the mesh is the user's budget); the modes, load shapes and
 patch are chosen. Travels and dynamics move the balls off the places their shapes hold, so
-``auto`` is refused there (when the case is built, naming ``top.kind``).
+``auto`` is refused there (when the case is built, naming the race's ``kind``).
 """
 
 from __future__ import annotations
@@ -41,7 +45,9 @@ __all__ = ["AUTO_TOLERANCE", "CHOSEN_KEYS", "resolve"]
 
 #: relative error of the largest ball load the decisions aim at
 AUTO_TOLERANCE = 0.01
-#: the top structure's keys ``auto`` chooses (a value set by the user is refused)
+#: the races ``auto`` decides for
+RACES = ("top", "bottom")
+#: a race's keys ``auto`` chooses (a value set by the user is refused)
 CHOSEN_KEYS = ("n_modes", "groove_harmonics", "raceway_spread_m", "ball_load_shapes")
 #: the coarse probe's mesh, as a factor of the default element size, and its modes
 PROBE_MESH_FACTOR = 2.0
@@ -51,57 +57,73 @@ MODAL_CHOICE = {"n_modes": 5, "groove_harmonics": -1, "ball_load_shapes": True}
 
 
 def _rigid_pass(case: SlewingCase):
-    c = case.with_(top={"kind": "rigid"})
-    res = equilibrium(c, scene_mod.Bodies(None, scene_mod.bottom_body(c)))
+    """The row of the equilibrium with every race ``auto`` decides kept rigid."""
+    c = case.with_(**{race: {"kind": "rigid"} for race in RACES if getattr(case, race).kind == "auto"})
+    res = equilibrium(c, scene_mod.Bodies(scene_mod.top_body(c), scene_mod.bottom_body(c)))
     return res.rows[0]
 
 
-def _probe_compliance_m_per_N(case: SlewingCase, alpha_rad: float) -> float:
-    """c = nᵀCn of the top structure at a ball (step 2), on the coarse mesh."""
-    h = round(PROBE_MESH_FACTOR * scene_mod.DEFAULT_ELEMENT_SIZE_M[case.geometry.variant], 4)
-    probe = case.with_(top={"kind": "modal", "n_modes": PROBE_MODES, "groove_harmonics": -1, "element_size_m": h,
-                            "raceway_spread_m": 0.0, "ball_load_shapes": False})
-    C = np.asarray(scene_mod.top_body(probe).metadata["probe_compliance_m_per_N"])
-    n = case.geometry.section().groove("top", case.geometry.pitch_diameter_m).direction(math.degrees(alpha_rad))
+def _probe_compliance_m_per_N(case: SlewingCase, race: str, alpha_rad: float) -> float:
+    """c = nᵀCn of ``race`` at a ball (step 2): the floating top structure with inertia relief on the
+    coarse mesh, the bottom race held at its bolts on its own mesh (a bolt patch needs elements
+    narrower than it)."""
+    h = round(PROBE_MESH_FACTOR * scene_mod.DEFAULT_ELEMENT_SIZE_M[case.geometry.variant], 4) if race == "top" \
+        else case.bottom.element_size_m
+    probe = case.with_(**{race: {"kind": "modal", "n_modes": PROBE_MODES, "groove_harmonics": -1, "element_size_m": h,
+                                 "raceway_spread_m": 0.0, "ball_load_shapes": False}})
+    body = scene_mod.top_body(probe) if race == "top" else scene_mod.bottom_body(probe)
+    C = np.asarray(body.metadata["probe_compliance_m_per_N"])
+    n = case.geometry.section().groove(race, case.geometry.pitch_diameter_m).direction(math.degrees(alpha_rad))
     return float(n @ C @ n)
 
 
-def _settings_text(top: dict) -> str:
-    return ", ".join(f"top.{k} = {v}" for k, v in top.items())
+def _settings_text(race: str, fidelity: dict) -> str:
+    return ", ".join(f"{race}.{k} = {v}" for k, v in fidelity.items())
 
 
-def resolve(case: SlewingCase, tolerance: float = AUTO_TOLERANCE) -> tuple[SlewingCase, dict]:
-    """``case`` with ``top.kind = "auto"`` replaced by the decision, and the decision
-    (``summary.json`` ``fidelity_decisions``): body, choice, reason, the figures it rests on."""
-    row = _rigid_pass(case)
+def _decide(case: SlewingCase, race: str, row, tolerance: float) -> tuple[dict, dict]:
+    """The fidelity of one race (module docstring) and its decision record."""
+    name = "top structure" if race == "top" else "bottom race"
     q = np.asarray(row.load_N, float)
     k = int(np.argmax(q))
     spread = float((q.max() - q.min()) / q.max())
     figures = {"rigid_max_ball_load_N": float(q.max()), "rigid_min_ball_load_N": float(q.min()),
                "rigid_load_spread": spread, "hertz_approach_m": float(row.approach_m[k]), "tolerance": tolerance}
     if spread < tolerance:
-        top = {"kind": "rigid"}
-        reason = (f"under a rigid top structure the ball loads vary by {100 * spread:.2g} % "
-                  f"(< {100 * tolerance:g} %): a ring of revolution deforms alike under every ball, which leaves "
-                  "the loads equal (W / (Z sin α)); rigid")
+        choice = {"kind": "rigid"}
+        reason = (f"under rigid races the ball loads vary by {100 * spread:.2g} % (< {100 * tolerance:g} %): a ring "
+                  "of revolution deforms alike under every ball, which leaves the loads equal (W / (Z sin α)); rigid")
     else:
-        c = _probe_compliance_m_per_N(case, float(row.contact_angle_rad[k]))
+        c = _probe_compliance_m_per_N(case, race, float(row.contact_angle_rad[k]))
         dr = c * float(q.max() - q.min())
         eta = 1.5 * dr / float(row.approach_m[k])
         bound = eta / (1.0 + eta)
         figures.update(ring_compliance_m_per_N=c, deflection_difference_m=dr, stiffness_ratio=eta, load_change_bound=bound)
-        where = (f"the ball loads under a rigid top structure vary by {100 * spread:.3g} %; the ring's compliance "
-                 f"at a ball is {c:.3g} m/N, so its deflection differs between balls by up to "
-                 f"{1e6 * dr:.3g} µm against the Hertz approach {1e6 * float(row.approach_m[k]):.3g} µm of the "
-                 f"most loaded ball (η = {eta:.3g}, load change up to {100 * bound:.3g} %)")
+        where = (f"the ball loads under rigid races vary by {100 * spread:.3g} %; the {name}'s compliance at a ball "
+                 f"is {c:.3g} m/N, so its deflection differs between balls by up to {1e6 * dr:.3g} µm against the "
+                 f"Hertz approach {1e6 * float(row.approach_m[k]):.3g} µm of the most loaded ball (η = {eta:.3g}, "
+                 f"load change up to {100 * bound:.3g} %)")
         if bound < tolerance:
-            top = {"kind": "rigid"}
+            choice = {"kind": "rigid"}
             reason = f"{where} (< {100 * tolerance:g} %): rigid"
         else:
-            top = {"kind": "modal", **MODAL_CHOICE, "raceway_spread_m": scene_mod.groove_patch_m(case)}
+            choice = {"kind": "modal", **MODAL_CHOICE, "raceway_spread_m": scene_mod.groove_patch_m(case)}
             reason = (f"{where} (≥ {100 * tolerance:g} %): modal, with the static shapes of the ball forces at "
-                      f"their places on a {1e3 * top['raceway_spread_m']:g} mm groove patch, which make the "
-                      "equilibrium the finite-element solution of the ring under them; normal modes and "
+                      f"their places on a {1e3 * choice['raceway_spread_m']:g} mm groove patch, which make the "
+                      f"equilibrium the finite-element solution of the {name} under them; normal modes and "
                       "harmonic load shapes add almost nothing to it (5 modes, none); the mesh's error remains")
-    decision = {"body": "top", "choice": _settings_text(top), "reason": reason, **figures}
-    return case.with_(top=top), decision
+    return choice, {"body": race, "choice": _settings_text(race, choice), "reason": reason, **figures}
+
+
+def resolve(case: SlewingCase, tolerance: float = AUTO_TOLERANCE) -> tuple[SlewingCase, list[dict]]:
+    """``case`` with every ``kind = "auto"`` (top structure, bottom race) replaced by its decision,
+    and the decisions (``summary.json`` ``fidelity_decisions``): body, choice, reason, the figures
+    it rests on. When both races decide, each takes half the tolerance."""
+    races = [race for race in RACES if getattr(case, race).kind == "auto"]
+    row = _rigid_pass(case)
+    share = tolerance / len(races) if races else tolerance
+    choices, decisions = {}, []
+    for race in races:
+        choices[race], decision = _decide(case, race, row, share)
+        decisions.append(decision)
+    return case.with_(**choices), decisions

@@ -233,9 +233,9 @@ def _check_spread(profile, contact_rz_m, spread_m: float, key: str) -> None:
 @dataclass(frozen=True)
 class BodyFidelity:
     """How a ring is modelled: ``rigid`` or ``modal`` (n_modes normal modes + raceway load shapes up
-    to harmonic ``groove_harmonics``, −1: none), or (top structure, quasi-static equilibria with the
-    balls at their places: study ``single`` without travel, each equilibrium of ``undulation``)
-    ``auto``: a cheap pass chooses rigid or modal and the modal keys, and says why (:mod:`.auto`). ``E_Pa`` is its Young's modulus (the thesis'
+    to harmonic ``groove_harmonics``, −1: none), or (quasi-static equilibria with the balls at their
+    places: study ``single`` without travel, each equilibrium of ``undulation``) ``auto``: a cheap
+    pass chooses rigid or modal and the modal keys, and says why (:mod:`.auto`). ``E_Pa`` is its Young's modulus (the thesis'
     reduced-stiffness ring: 1.5975 GPa); ``element_size_m`` None takes a size from the variant.
     ``raceway_spread_m`` > 0 samples the groove averaged over a patch of that size around the
     contact point, and spreads the load shapes' line loads over it (:class:`cms_reduction.RacewaySpec`);
@@ -375,28 +375,24 @@ class SlewingCase(CaseTables):
 
     def _check_auto(self) -> None:
         """``auto`` only where its cheap pass can decide (:mod:`.auto`)."""
-        if self.bottom.kind == "auto":
-            raise ValueError('bottom.kind: "auto" decides for the top structure only; the bottom race is "rigid" '
-                             'or "modal"')
         if self.study.kind == "undulation" and self.top.kind == "rigid":
             raise ValueError('top.kind: the undulation study compares top structures of the moduli in '
                              'study.top_E_Pa, and a rigid one has none: set top.kind = "auto" (each equilibrium '
                              'chooses) or "modal"')
-        if self.top.kind != "auto":
-            return
-        if self.study.kind == "undulation":
-            return  # each of its equilibria decides for itself (cases.slewing.studies.study_undulation)
-        if self.study.kind != "single":
-            runs = f"the {self.study.kind} study"
-        elif self.analysis.type != "quasi_static":
-            runs = "the dynamics"
-        elif self.analysis.travel_steps:
-            runs = "a travel (analysis.travel_steps > 0)"
-        else:
-            return
-        raise ValueError('top.kind: "auto" decides the top structure for quasi-static equilibria with the '
-                         f'balls at their places (study single without travel, or undulation); this case runs {runs}: '
-                         'set top.kind = "rigid" or "modal"')
+        for race in ("top", "bottom"):
+            if getattr(self, race).kind != "auto" or self.study.kind == "undulation":
+                continue  # (the undulation study's equilibria decide for themselves)
+            if self.study.kind != "single":
+                runs = f"the {self.study.kind} study"
+            elif self.analysis.type != "quasi_static":
+                runs = "the dynamics"
+            elif self.analysis.travel_steps:
+                runs = "a travel (analysis.travel_steps > 0)"
+            else:
+                continue
+            raise ValueError(f'{race}.kind: "auto" decides a race for quasi-static equilibria with the balls at '
+                             f'their places (study single without travel, or undulation); this case runs {runs}: '
+                             f'set {race}.kind = "rigid" or "modal"')
 
     def _check_model_sizes(self) -> None:
         """Each modal race can give its modes, fits in memory and has raceway load shapes its

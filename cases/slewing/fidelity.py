@@ -149,7 +149,7 @@ def measure(case: SlewingCase) -> Outcome:
     """Ball loads, contact angles and peak shear of the scene at the case's fidelity (``auto``:
     its decision's, the cheap pass included)."""
     c = scene(case)
-    if c.top.kind == "auto":
+    if "auto" in (c.top.kind, c.bottom.kind):
         from .auto import resolve
 
         c = resolve(c)[0]

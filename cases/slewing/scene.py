@@ -139,7 +139,7 @@ def _groove_spec(case: SlewingCase, race: str, harmonics: int) -> RacewaySpec:
     fidelity = getattr(case, race)
     balls = tuple(360.0 * i / case.geometry.n_balls for i in range(case.geometry.n_balls)) \
         if fidelity.ball_load_shapes else ()  # the load balls at the first position (ball_row, phase 0)
-    probe = groove_patch_m(case) if race == "top" else 0.0  # the floating top structure's truncation estimate
+    probe = groove_patch_m(case)  # its compliance at a ball: truncation estimate, auto's probe
     return RacewaySpec("groove", N_THETA, at_rz_m=tuple(groove.contact_point_m), n_max=harmonics,
                        spread_m=fidelity.raceway_spread_m, element_angles_deg=balls, probe_spread_m=probe)
 

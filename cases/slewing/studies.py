@@ -111,8 +111,8 @@ def study_static(case: SlewingCase, out, progress=None) -> None:
 def study_undulation(case: SlewingCase, out, progress=None) -> None:
     """Undulated bottom race, ``undulation_scales`` × ``top_E_Pa``: max load, unloaded balls.
     Each pair is a ``single`` equilibrium in its own folder, the spacer run (:func:`_spacer_run`)
-    one more (:func:`_single_runs`). With ``top.kind = "auto"`` each equilibrium decides its top
-    structure (its ``fidelity_decisions``; ``top_fidelity`` in the table)."""
+    one more (:func:`_single_runs`). With ``kind = "auto"`` each equilibrium decides its races
+    (its ``fidelity_decisions``; ``fidelity`` in the table)."""
     s = case.study
     base = case
     items = [(E, h) for E in s.top_E_Pa for h in s.undulation_scales]
@@ -127,12 +127,12 @@ def study_undulation(case: SlewingCase, out, progress=None) -> None:
         out.warn(r.get("warnings", ()), label)
         fig = {k: r[k] for k in ("max_ball_load_N", "min_ball_load_N", "unloaded_balls", "equilibrium_error")}
         curves[(E, h)] = np.asarray(r["ball_load_N"], float)
-        decided = [d["choice"] for d in r.get("fidelity_decisions", ())]
+        decided = "; ".join(d["choice"] for d in r.get("fidelity_decisions", ()))
         table.append({"top_E_Pa": E, "undulation_scale": h, **fig, "error_estimates": r["error_estimates"],
-                      "folder": folder, **({"top_fidelity": decided[0]} if decided else {})})
+                      "folder": folder, **({"fidelity": decided} if decided else {})})
         out.note(f"E {E / 1e9:7.4g} GPa, undulation ×{h:g}: max ball load {fig['max_ball_load_N']:.0f} N, "
                  f"{plural(fig['unloaded_balls'], 'ball')} unloaded ({folder}/)"
-                 + (f"; top structure (auto): {decided[0]}" if decided else ""))
+                 + (f"; auto: {decided}" if decided else ""))
     azimuth = np.radians(summaries[points[0][0]]["ball_azimuth_deg"])
     out.summary["cases"] = table
     out.write_csv("ball_loads.csv", ["ball", "azimuth_deg"] + [f"load_E{E / 1e9:g}GPa_x{h:g}_N" for E, h in curves],
@@ -388,12 +388,13 @@ def _fidelity_unused(case: SlewingCase) -> dict[str, str]:
     if not modal_top(case):
         out.update({f"top.{k}": 'the top structure is rigid here; set top.kind = "modal"'
                     for k in (*_MODAL_KEYS, "include_tmr")})
-    elif case.top.kind == "auto":
-        out.update({f"top.{k}": 'top.kind = "auto" chooses it; set top.kind = "modal" to choose it yourself'
-                    for k in CHOSEN_KEYS})
+    for race in ("top", "bottom"):
+        if getattr(case, race).kind == "auto":
+            out.update({f"{race}.{k}": f'{race}.kind = "auto" chooses it; set {race}.kind = "modal" to choose it '
+                        'yourself' for k in CHOSEN_KEYS})
     if case.contact.preset == "thesis":
         out["contact.damping_ratio"] = "the thesis preset takes the thesis' damping c = K/1000 s"
-    if case.bottom.kind != "modal":
+    if case.bottom.kind == "rigid":
         out.update({f"bottom.{k}": 'the bottom race is rigid here; set bottom.kind = "modal"'
                     for k in (*_MODAL_KEYS, "bolts")})
     return out
@@ -442,10 +443,11 @@ def uses_dynamics(case: SlewingCase) -> bool:
 
 def run_study(case: SlewingCase, out, progress=None) -> None:
     """Run the study the case names (``single`` with ``quasi_static``: one equilibrium or a travel)."""
-    if case.top.kind == "auto" and case.study.kind == "single":  # (a study's equilibria decide for themselves)
-        case, decision = resolve_auto(case)
-        out.summary["fidelity_decisions"] = [decision]
-        out.note(f"fidelity auto: {decision['choice']}, because {decision['reason']}")
+    if "auto" in (case.top.kind, case.bottom.kind) and case.study.kind == "single":  # (a study's equilibria decide)
+        case, decisions = resolve_auto(case)
+        out.summary["fidelity_decisions"] = decisions
+        for d in decisions:
+            out.note(f"fidelity auto: {d['choice']}, because {d['reason']}")
     out.note(f"modelled: {case.geometry.variant} ring, {plural(case.geometry.n_balls, 'load ball')}, dead load "
              f"{case.dead_load_t:g} t ({case.dead_load_N:.0f} N); {_fidelity(case)}; contact {case.contact.preset}")
     if STUDIES[case.study.kind].run is not None:
