@@ -87,9 +87,10 @@ def test_undulation_max_load_grows_with_height_and_falls_with_stiffness(tmp_path
 
     figures = {}
     monkeypatch.setattr(RunOutput, "save_figure", lambda self, fig, name: figures.setdefault(name, fig))
-    # a top structure meshed at 0.2 m instead of the quick variant's 0.12 m (38k instead of 91k DOF):
-    # 27 s instead of 80 s CPU, 0.97 instead of 2.2 GB measured; the orderings stay, the largest
-    # loads move ≤ 0.2 % (200 GPa) and ≤ 3.3 % (1.5975 GPa)
+    # a top structure meshed at 0.2 m instead of the quick variant's 0.12 m (38k instead of 91k DOF),
+    # chosen per equilibrium by the preset's auto (ball load shapes, 5 modes); the orderings hold on
+    # any mesh (measured with 20 modes and harmonic shapes: loads moved ≤ 0.2 % at 200 GPa and
+    # ≤ 3.3 % at 1.5975 GPa from 0.12 to 0.2 m)
     s, out = _run("slewing-undulation", tmp_path, "--set", "top.element_size_m=0.2")
     # the two moduli's ball-load plots share one load scale that holds the largest load of both
     # (the largest load is the summary's; README, output units: N on both)
@@ -134,8 +135,8 @@ def test_thermal_offset_raises_load_under_the_top_sector_and_lowers_it_under_the
 
 def test_life_of_the_worst_ball_uses_the_hertz_contact_of_the_foundation(tmp_path):
     # the top structure meshed at 0.2 m as in the undulation test above instead of the quick variant's
-    # 0.12 m (38k instead of 91k DOF, the same reduced top structure as the undulation test's,
-    # so the session's model cache holds it): 31 s instead of 103 s wall measured alone; the worst
+    # 0.12 m (38k instead of 91k DOF; the undulation test's top structure is auto's, with ball load
+    # shapes, so this one is reduced here): 31 s instead of 103 s wall measured alone; the worst
     # ball load moves −2.5 % (112.7 to 109.8 kN, same ball and azimuth), far above the 1.2 × nominal
     # checked below, and the life figures are checked against that ball's own load
     s, out = _run("slewing-life", tmp_path, "--set", "top.element_size_m=0.2")
