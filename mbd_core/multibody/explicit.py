@@ -389,8 +389,9 @@ def simulate(model: Model, state: State, t_end_s: float, timestep_s: float | Non
         if rec_file is not None:
             rec_file.write_checkpoint(t_origin, step, state, work, e_limit)
     checked, skipped = work.flex_bound[:, 2].sum(), work.flex_bound[:, 3].sum()
-    log.info("surface contacts: %d of %d evaluations skipped as open beyond the surfaces' motion bound",
-             skipped, checked)
+    if checked:
+        log.info("surface contacts: %d of %d checks skipped as open beyond the surfaces' motion bound",
+                 skipped, checked)
     if rec_file is not None:
         rec_file.finish("complete")
         out = read_run(folder)
