@@ -26,7 +26,10 @@ from cases.results import RPM_PER_RAD_S, plural
 from mbd_core.multibody import largest_load_step_error, stable_timestep
 from mbd_core.multibody.step_error import richardson
 from mbd_core.quasistatic import Bearing, solve_load_distribution
+from mbd_core.quasistatic.flexible import FlexibleRing, build_flexible_model
+from mbd_core.quasistatic.flexible_solve import solve_flexible_load_distribution
 
+from .bodies import RACEWAYS
 from .case import INNER_RING_MASS_KG, WindCase
 from .scene import G_M_S2, WindScene, build_scene, inner_ring_load, load_history, rolling_speeds, rows
 
@@ -90,13 +93,8 @@ def _flexible_largest(case: WindCase, modal, load) -> float:
     """Largest roller load of the flexible quasi-static equilibrium
     (:func:`mbd_core.quasistatic.flexible_solve.solve_flexible_load_distribution`): the inner ring
     (free–free modes) rides on the rigid displacement, the outer ring is held at its bolts; each
-    row's raceway fields are those of the sampled circle in the middle of its (θ, s) grid, the
-    section's rotation carrying them along the roller."""
-    from mbd_core.quasistatic.flexible import FlexibleRing, build_flexible_model
-    from mbd_core.quasistatic.flexible_solve import solve_flexible_load_distribution
-
-    from .bodies import RACEWAYS
-
+    row's raceway fields are those of the middle circle of its (θ, s) grid (of an even count, the
+    one just below the middle), the section's rotation carrying them along the roller."""
     row_defs = rows(case)
     mid = (case.bodies.n_across - 1) // 2
     names = {r.name: f"{segment}@s{mid}" for r, segment in zip(row_defs, RACEWAYS)}
