@@ -109,7 +109,8 @@ def test_undulation_max_load_grows_with_height_and_falls_with_stiffness(tmp_path
     # the dynamic spacer run starts at the rigid-top quasi-static equilibrium and the balls roll
     # only about 1° along the undulation in its 0.05 s: its largest ball load is the quasi-static
     # one (1.0 % above it measured, the loaded ball climbing)
-    case = loads_case(SlewingCase, (out / "case.toml").read_text()).with_(top={"kind": "rigid"},
+    case = loads_case(SlewingCase, (out / "case.toml").read_text()).with_(study={"kind": "single"},
+                                                                        top={"kind": "rigid"},
                                                                         undulation={"scale": 1.0})
     q_static = equilibrium(case, scene.Bodies(None, None)).rows[0].load_N.max()
     dyn = json.loads((out / "spacer_run" / "summary.json").read_text())

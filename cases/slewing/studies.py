@@ -165,8 +165,9 @@ def _spacer_run(case: SlewingCase) -> tuple[str, str, SlewingCase]:
     at E = ``top_E_Pa[0]``) turning for ``spacer_run_s``, in the sub-folder ``spacer_run``."""
     modal = case.study.spacer_run_top == "modal"
     top = {"kind": "modal", "E_Pa": case.study.top_E_Pa[0]} if modal else {"kind": "rigid"}
-    return "spacer_run", "spacer run", case.with_(top=top, undulation={"scale": 1.0}, analysis={
-        "type": "dynamic_explicit", "duration_s": case.study.spacer_run_s})
+    # (a single run: the undulation study itself takes no rigid top structure)
+    return "spacer_run", "spacer run", replace(case, study=Study()).with_(
+        top=top, undulation={"scale": 1.0}, analysis={"type": "dynamic_explicit", "duration_s": case.study.spacer_run_s})
 
 
 def _spacer_notes(case: SlewingCase, out, summary: dict) -> None:
