@@ -162,7 +162,9 @@ def test_auto_rings_bound_tracks_the_rigid_rung_error(ladder_folder):
 
     case = scene(preset("wind-speeds")).with_(bodies={"rings": "auto", "cages": "auto"})
     resolved, decisions = resolve(case)
-    rings, cages = decisions
+    rings, cages, slices = decisions
+    assert slices["choice"] == f"rollers.n_slices = {case.rollers.n_slices}" and "kept" in slices["reason"]
+    assert resolved.rollers.n_slices == case.rollers.n_slices
     assert resolved.bodies.rings == "modal" and resolved.bodies.n_modes == MODAL_N_MODES
     assert resolved.bodies.cages == "rigid" and cages["body"] == "cages" and "no raceway load" in cages["reason"]
     base = next(r for r in _rows(ladder_folder / "tradeoff.csv") if r["rung"] == "base")
@@ -212,7 +214,8 @@ def test_run_study_hands_the_decided_case_to_its_study(monkeypatch):
     out = Out()
     studies.run_study(preset("wind-speeds").with_(bodies={"cages": "auto"}), out)
     assert seen["case"].bodies.cages == "rigid" and seen["case"].bodies.rings == "rigid"
-    assert [d["body"] for d in out.summary["fidelity_decisions"]] == ["cages"]
+    assert [d["body"] for d in out.summary["fidelity_decisions"]] == ["cages", "rollers"]
+    assert seen["case"].rollers.n_slices == preset("wind-speeds").rollers.n_slices  # estimate far below 1 %
     assert out.notes and out.notes[0].startswith("fidelity auto: bodies.cages = rigid")
 
 
@@ -241,3 +244,20 @@ def test_slice_estimate_with_modal_rings_tracks_the_converged_flexible_load(n_sl
     true = abs(q - converged) / converged
     assert est["max_load_N"] == pytest.approx(q, rel=1e-12)
     assert 0.5 <= est["max_load"] / true <= 2.0
+
+
+def test_auto_raises_the_slices_until_their_estimate_meets_the_tolerance():
+    # Reference: the run's own slicing estimate (cases.wind.dynamic.slice_error) at each count: the
+    # choice is the first of n, 2n, 4n, 8n whose estimate meets the tolerance. On the ladder's scene one
+    # slice per roller is estimated at 0.071 % of the largest load (the rollers' loads hardly depend
+    # on the slicing), so a tolerance of 1e-4 needs 4 slices.
+    from cases.wind.auto import _slice_decision
+    from cases.wind.dynamic import slice_error
+    from cases.wind.fidelity import scene
+
+    case = scene(preset("wind-speeds")).with_(rollers={"n_slices": 1})
+    n, decision = _slice_decision(case, 1e-4)
+    errors = {k: slice_error(case.with_(rollers={"n_slices": k}))["max_load"] for k in (1, 2, 4)}
+    assert errors[1] >= 1e-4 and errors[2] >= 1e-4 and errors[4] < 1e-4
+    assert n == 4 and decision["choice"] == "rollers.n_slices = 4" and "raised from 1" in decision["reason"]
+    assert decision["estimated_slice_error"] == errors[4]

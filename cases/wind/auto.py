@@ -19,6 +19,12 @@ Rings — a cheap pass, in the manner of the slewing ring's top structure (:mod:
    largest roller load by 0.3 % (cases/wind/README.md, "Speed against accuracy"). The mesh, bolts
    and raceway grids stay the case's.
 
+Slices per roller: the case's ``rollers.n_slices`` while the slicing estimate of the largest roller
+load (:func:`.dynamic.slice_error`: quasi-static with rigid rings at n, 2n and 4n slices,
+Richardson; on the quick ladder within 1.2× of the slice sweep with rigid rings, and above the
+static slicing error with modal rings, 0.93–1.31× of which the flexible estimate gives) meets the
+tolerance; else doubled, at most :data:`MAX_SLICE_DOUBLINGS` times, and said so.
+
 Cages: rigid, always, with the reason: a cage carries no raceway load (the wind ladder measured
 modal cages moving the largest roller load by 0.2 %), and its pocket forces, which a modal cage
 does change, change by 30–140 % between every pair of rungs of that ladder, so no cage model
@@ -39,6 +45,7 @@ from mbd_core.quasistatic import Bearing, solve_load_distribution
 
 from ..parts import STEEL_42CRMO
 from .case import WindCase
+from .dynamic import slice_error
 from .scene import inner_ring_load, load_history, rows
 
 __all__ = ["AUTO_TOLERANCE", "MODAL_N_MODES", "resolve"]
@@ -50,6 +57,8 @@ PROBE_ELEMENT_SIZE_M = 0.18
 PROBE_MODES = 8
 #: modes of modal rings (module docstring)
 MODAL_N_MODES = 20
+#: the slices per roller are doubled at most this many times (module docstring)
+MAX_SLICE_DOUBLINGS = 3
 #: raceway of each row on the inner ring, and its contact normal in the (r, z) section
 _RACEWAY = {"radial": ("radial_raceway", (1.0, 0.0)), "front thrust": ("front_thrust_raceway", (0.0, 1.0)),
             "rear thrust": ("rear_thrust_raceway", (0.0, 1.0))}
@@ -111,9 +120,32 @@ _CAGE_REASON = ("a cage carries no raceway load: modal cages moved the largest r
                 "cage's stress is the question)")
 
 
+def _slice_decision(case: WindCase, tolerance: float) -> tuple[int, dict]:
+    """Slices per roller (module docstring): the case's, doubled up to :data:`MAX_SLICE_DOUBLINGS`
+    times until the slicing estimate of the largest roller load meets the tolerance."""
+    n = case.rollers.n_slices
+    for _ in range(MAX_SLICE_DOUBLINGS + 1):
+        est = slice_error(case.with_(rollers={"n_slices": n}))
+        if est is None or est["max_load"] < tolerance:
+            break
+        n *= 2
+    figures = {"estimated_slice_error": None if est is None else est["max_load"], "tolerance": tolerance}
+    if est is None:
+        return n, {"body": "rollers", "choice": f"rollers.n_slices = {n}", **figures,
+                   "reason": "the adams contact preset takes each roller contact whole; its slices only carry it"}
+    met = est["max_load"] < tolerance
+    kept = n == case.rollers.n_slices
+    reason = (f"{n} slice{'s' if n > 1 else ''} per roller put the slicing error of the largest roller load at {100 * est['max_load']:.2g} % "
+              f"({'<' if met else '≥'} {100 * tolerance:g} %; quasi-static, rigid rings, {n}/{2 * n}/{4 * n} slices, "
+              f"Richardson): {'kept' if kept else 'raised from ' + str(case.rollers.n_slices)}"
+              + ("" if met else f"; {n} is the most it takes (the case's × {2 ** MAX_SLICE_DOUBLINGS})"))
+    return n, {"body": "rollers", "choice": f"rollers.n_slices = {n}", "reason": reason, **figures}
+
+
 def resolve(case: WindCase, tolerance: float = AUTO_TOLERANCE) -> tuple[WindCase, list[dict]]:
-    """``case`` with ``"auto"`` rings and cages replaced by the decisions, and the decisions
-    (``summary.json`` ``fidelity_decisions``: body, choice, reason and the figures it rests on)."""
+    """``case`` with ``"auto"`` rings and cages replaced by the decisions, the slices per roller
+    checked against the tolerance, and the decisions (``summary.json`` ``fidelity_decisions``:
+    body, choice, reason and the figures it rests on)."""
     if not (math.isfinite(tolerance) and 0.0 < tolerance < 1.0):
         raise ValueError(f"auto tolerance must lie in (0, 1), got {tolerance!r}")
     bodies, decisions = {}, []
@@ -126,4 +158,6 @@ def resolve(case: WindCase, tolerance: float = AUTO_TOLERANCE) -> tuple[WindCase
     if case.bodies.cages == "auto":
         bodies["cages"] = "rigid"
         decisions.append({"body": "cages", "choice": "bodies.cages = rigid", "reason": _CAGE_REASON})
-    return case.with_(bodies=bodies), decisions
+    n_slices, decision = _slice_decision(case, tolerance)
+    decisions.append(decision)
+    return case.with_(bodies=bodies, rollers={"n_slices": n_slices}), decisions
