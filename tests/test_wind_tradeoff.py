@@ -261,3 +261,16 @@ def test_auto_raises_the_slices_until_their_estimate_meets_the_tolerance():
     assert errors[1] >= 1e-4 and errors[2] >= 1e-4 and errors[4] < 1e-4
     assert n == 4 and decision["choice"] == "rollers.n_slices = 4" and "raised from 1" in decision["reason"]
     assert decision["estimated_slice_error"] == errors[4]
+
+
+def test_auto_stops_doubling_the_slices_at_eight_times_and_says_so():
+    # A tolerance below what 8× the slices reach (its own estimate, cases.wind.dynamic.slice_error):
+    # the choice is 8× the case's, its estimate that of 8×, and the reason says it is not met.
+    from cases.wind.auto import _slice_decision
+    from cases.wind.dynamic import slice_error
+    from cases.wind.fidelity import scene
+
+    case = scene(preset("wind-speeds")).with_(rollers={"n_slices": 1})
+    n, decision = _slice_decision(case, 1e-9)
+    assert n == 8 and decision["estimated_slice_error"] == slice_error(case.with_(rollers={"n_slices": 8}))["max_load"]
+    assert "≥" in decision["reason"] and "the most it takes" in decision["reason"]

@@ -124,9 +124,9 @@ def _slice_decision(case: WindCase, tolerance: float) -> tuple[int, dict]:
     """Slices per roller (module docstring): the case's, doubled up to :data:`MAX_SLICE_DOUBLINGS`
     times until the slicing estimate of the largest roller load meets the tolerance."""
     n = case.rollers.n_slices
-    for _ in range(MAX_SLICE_DOUBLINGS + 1):
+    for doubling in range(MAX_SLICE_DOUBLINGS + 1):
         est = slice_error(case.with_(rollers={"n_slices": n}))
-        if est is None or est["max_load"] < tolerance:
+        if est is None or est["max_load"] < tolerance or doubling == MAX_SLICE_DOUBLINGS:
             break
         n *= 2
     figures = {"estimated_slice_error": None if est is None else est["max_load"], "tolerance": tolerance}
@@ -135,8 +135,9 @@ def _slice_decision(case: WindCase, tolerance: float) -> tuple[int, dict]:
                    "reason": "the adams contact preset takes each roller contact whole; its slices only carry it"}
     met = est["max_load"] < tolerance
     kept = n == case.rollers.n_slices
-    reason = (f"{n} slice{'s' if n > 1 else ''} per roller put the slicing error of the largest roller load at {100 * est['max_load']:.2g} % "
-              f"({'<' if met else '≥'} {100 * tolerance:g} %; quasi-static, rigid rings, {n}/{2 * n}/{4 * n} slices, "
+    reason = (f"{n} slice{'s' if n > 1 else ''} per roller put the slicing error of the largest roller load at "
+              f"{100 * est['max_load']:.2g} % ({'<' if met else '≥'} {100 * tolerance:g} %; quasi-static, rigid rings, "
+              f"{n}/{2 * n}/{4 * n} slices, "
               f"Richardson): {'kept' if kept else 'raised from ' + str(case.rollers.n_slices)}"
               + ("" if met else f"; {n} is the most it takes (the case's × {2 ** MAX_SLICE_DOUBLINGS})"))
     return n, {"body": "rollers", "choice": f"rollers.n_slices = {n}", "reason": reason, **figures}
