@@ -77,7 +77,7 @@ def test_the_bound_holds_and_skipping_changes_no_force(scene):
     the groove's curvature centre sits within F_D of its sampled point, the roller scene's contact
     points within 5 cm of theirs (the levers of the twin tests)."""
     if scene == "groove":
-        (model, state), states = _groove_scene(), None
+        model, state = _groove_scene()
         states = _states(grooves._scene_state, model, state, 7, jitter=1e-6)
         lever = grooves.F_D + 1e-3
     else:

@@ -20,7 +20,7 @@ from numba import njit
 from .ball_groove import groove_point_in
 from .body_frames import point_velocity, rotate, rotate_back, _add_force, _in_frame, _to_world
 from .element_contacts import ball_ball
-from .flexible_surface import SKIP_MARGIN, _add_section_force, _nearest_deformed_centre, _section_velocity
+from .flexible_surface import _add_section_force, _nearest_deformed_centre, _section_velocity, open_beyond_bound
 from .friction_damping import _note_friction
 from .pair_types import BALL_BALL, BALL_GROOVE
 from .laws import normal_force_elastic
@@ -80,19 +80,14 @@ def _open_beyond_bound(theta, periodic, pts, bound, th, lx, ly, lz, delta, clear
     """Whether a ball at l (ring frame, rigid-groove penetration δ, unit normal n from the groove's
     curvature centre) stays out of a modal ring's groove whatever its deformation: the deformed centre
     moves by at most U + R·|c − p_s| (``bound`` = the body's row of ``w.flex_bound``, :mod:`.forces`),
-    and the nearest point of the deformed groove is no farther than that of θ; counts the check."""
+    and the nearest point of the deformed groove is no farther than that of θ."""
     if bound[0] == math.inf:
         return False
     i0, i1, w0, w1 = interp_index(theta, th, periodic)
     r = delta + clearance_radius
-    bx = lx - r * nx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
-    by = ly - r * ny - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
-    bz = lz - r * nz - (w0 * pts[i0, 2] + w1 * pts[i1, 2])
-    bound[2] += 1.0
-    if delta + SKIP_MARGIN * (bound[0] + bound[1] * math.sqrt(bx * bx + by * by + bz * bz)) < 0.0:
-        bound[3] += 1.0
-        return True
-    return False
+    return open_beyond_bound(bound, delta, lx - r * nx - (w0 * pts[i0, 0] + w1 * pts[i1, 0]),
+                             ly - r * ny - (w0 * pts[i0, 1] + w1 * pts[i1, 1]),
+                             lz - r * nz - (w0 * pts[i0, 2] + w1 * pts[i1, 2]))
 
 
 @njit(cache=True, _nrt=False)

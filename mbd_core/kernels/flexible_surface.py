@@ -34,6 +34,19 @@ def _table_slope(table, start, stop, th):
 #: as open (:mod:`.forces`)
 SKIP_MARGIN = 1.1
 
+@njit(cache=True, inline="always", _nrt=False)
+def open_beyond_bound(bound, delta, bx, by, bz):
+    """Whether a contact of rigid-geometry penetration δ, at lever b from its interpolated sample
+    point, stays open whatever its surface's deformation: δ + SKIP_MARGIN·(U + R·|b|) < 0, with
+    ``bound`` the body's row (U, R, checks, skips) of ``w.flex_bound`` (:mod:`.forces`); counts the
+    check and the skip."""
+    bound[2] += 1.0
+    if delta + SKIP_MARGIN * (bound[0] + bound[1] * math.sqrt(bx * bx + by * by + bz * bz)) < 0.0:
+        bound[3] += 1.0
+        return True
+    return False
+
+
 # The modal sums below run over the modes innermost, along the tables' contiguous axis, and may
 # reassociate: LLVM then vectorises them (they differ from sequential sums by round-off only). They
 # are not inlined into the force kernel, so that the flag stays theirs.
@@ -236,10 +249,7 @@ def _flexible_contact(q, v, bf, bt, disp, rot, pts, e_j, ed_j, rows, field, corn
             psx += cw * pts[row, 0]
             psy += cw * pts[row, 1]
             psz += cw * pts[row, 2]
-        bx, by, bz = lx - psx, ly - psy, lz - psz
-        bound[2] += 1.0
-        if delta + SKIP_MARGIN * (bound[0] + bound[1] * math.sqrt(bx * bx + by * by + bz * bz)) < 0.0:
-            bound[3] += 1.0
+        if open_beyond_bound(bound, delta, lx - psx, ly - psy, lz - psz):
             px, py, pz = _to_world(q, b, lx, ly, lz)
             mx, my, mz = rotate(q, b, nx, ny, nz)
             return n, 0.0, delta, 0.0, 0.0, 0.0, px, py, pz, mx, my, mz
