@@ -16,7 +16,7 @@ from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
 from mbd_core.quasistatic.flexible import build_flexible_model
 from mbd_core.quasistatic.flexible_solve import solve_flexible_load_distribution
 
-from .bearing_rings import flexible_rings
+from .bearing_ring_reduction import flexible_rings
 
 __all__ = ["BearingSolver", "bearing_solver"]
 

@@ -42,11 +42,12 @@ ERROR_NAMES = {
     "cage_force_mean": "max over rows |F − F_ref| / F_ref, F the mean roller–pocket force",
     "cage_force_peak": "max over rows |F − F_ref| / F_ref, F the peak roller–pocket force",
     "ring_von_mises": "max over rings |σ − σ_ref| / σ_ref, σ the peak von Mises stress of a modal ring",
+    "race_torque": "max over races |T − T_ref| / |T_ref|, T the mean friction torque on a race about the axis",
 }
 #: the errors of a quasi-static ladder (the default of :attr:`Ladder.errors`)
 QUASI_STATIC_ERRORS = ("max_load", "load_max", "load_rms", "unloaded", "contact_angle_deg", "tau_max")
-#: the errors that compare :attr:`Outcome.figures` (name → {row or body: value})
-FIGURE_ERRORS = ("roller_speed", "cage_speed", "cage_force_mean", "cage_force_peak", "ring_von_mises")
+#: the errors that compare :attr:`Outcome.figures` (name → {row, body or race: value})
+FIGURE_ERRORS = ("roller_speed", "cage_speed", "cage_force_mean", "cage_force_peak", "ring_von_mises", "race_torque")
 
 
 class ToleranceError(ValueError):
@@ -76,7 +77,9 @@ class Knob:
 @dataclass(frozen=True)
 class Ladder:
     """Knobs, the base rung they vary from, the reference, named combined rungs, and the
-    family's primary quantity (a key of :data:`ERROR_NAMES`) and what it is."""
+    family's primary quantity (a key of :data:`ERROR_NAMES`) and what it is. ``primary_figure``:
+    (figure name, row) whose value the convergence plots follow along each knob; None, the largest
+    element load."""
 
     knobs: tuple[Knob, ...]
     base: Mapping
@@ -91,6 +94,7 @@ class Ladder:
     #: None, the whole ``primary`` error against the reference; a knob key, the part of it that
     #: knob's sweep measures (the error against the rung of that sweep at its last, finest value)
     estimates: Mapping = field(default_factory=lambda: {"estimated_error": None})
+    primary_figure: tuple | None = None
 
     def __post_init__(self) -> None:
         keys = {k.key for k in self.knobs}
@@ -106,6 +110,16 @@ class Ladder:
         for name, knob in self.estimates.items():
             if knob is not None and knob not in keys:
                 raise ValueError(f"ladder estimates: {name} estimates {knob!r}, no knob of the ladder")
+        if self.primary_figure is not None and self.primary_figure[0] not in FIGURE_ERRORS:
+            raise ValueError(f"ladder primary_figure: {self.primary_figure[0]!r} is no figure of {list(FIGURE_ERRORS)}")
+
+    def primary_value(self, outcome: "Outcome") -> float:
+        """The quantity the convergence plots follow: ``primary_figure`` of ``outcome``, or its largest
+        element load."""
+        if self.primary_figure is None:
+            return float(np.max(outcome.load_N))
+        name, row = self.primary_figure
+        return float(outcome.figures[name][row])
 
 
 @dataclass(frozen=True)

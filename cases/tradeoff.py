@@ -35,6 +35,8 @@ from fem_rings.cache import atomic_path, cache_dir, input_hash
 from .config import CaseError, dumps_case
 from .described import fidelity as described_fidelity
 from .described.case import DescribedCase
+from .dma import fidelity as dma_fidelity
+from .dma.case import DmaCase
 from .fidelity import (ERROR_NAMES, Ladder, Outcome, Rung, choose_rung, observed_order, rung_errors, rungs,
                        sweep_members)
 from .outdir import atomic_folder
@@ -53,7 +55,14 @@ log = logging.getLogger(__name__)
 #: case class → the module that declares its ladder (``ladder``, ``scene``, ``rung_case``,
 #: ``measure``, ``describe``, ``rung_overrides``, ``element_columns``; optional ``WARM_REPEAT``,
 #: False when a second, warm measurement of each rung is not worth its time)
-LADDERS = {SlewingCase: slewing_fidelity, WindCase: wind_fidelity, DescribedCase: described_fidelity}
+LADDERS = {SlewingCase: slewing_fidelity, WindCase: wind_fidelity, DescribedCase: described_fidelity,
+           DmaCase: dma_fidelity}
+#: family → why it declares no ladder (its model has no discretisation to trade)
+WITHOUT_LADDER = {
+    "crb": "the crb family's friction model is closed form contact by contact (roller loads from one root solve, "
+           "films and losses from fitted formulas): it has no mesh, modes, slices or step to trade, and a whole "
+           "speed–axial map takes about a second",
+}
 #: part of the ladder cache key: bump when what a rung measures changes
 TRADEOFF_VERSION = 3
 
@@ -61,6 +70,8 @@ TRADEOFF_VERSION = 3
 def family_ladder(case):
     """The module declaring ``case``'s ladder; CaseError naming the families that have one."""
     module = LADDERS.get(type(case))
+    if module is None and type(case).FAMILY in WITHOUT_LADDER:
+        raise CaseError(f"tradeoff and --tolerance: {WITHOUT_LADDER[type(case).FAMILY]}")
     if module is None:
         have = ", ".join(sorted(c.FAMILY for c in LADDERS))
         raise CaseError(f"no fidelity ladder is declared for {type(case).FAMILY} cases yet; tradeoff and "
@@ -288,10 +299,10 @@ def convergence(result: LadderResult) -> dict[str, dict]:
             continue
         values = [m.settings[knob.key] for m in members]
         res = [float(knob.resolution(v)) for v in values]
-        q = [result.row(m.name)["max_load_N"] for m in members]
+        q = [result.ladder.primary_value(result.outcomes[m.name]) for m in members]
         errors = [result.row(m.name)[result.ladder.primary] for m in members]
         out[knob.key] = {"label": knob.label, "resolution_label": knob.resolution_label, "values": values, "resolution": res, "rungs": [m.name for m in members],
-                         "max_load_N": q, "error": errors, "observed_order": observed_order(res, q)}
+                         "primary_value": q, "error": errors, "observed_order": observed_order(res, q)}
     return out
 
 

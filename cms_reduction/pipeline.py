@@ -87,7 +87,9 @@ class RacewaySpec:
     to unit radial and axial forces spread over a patch of that size (as ``element_angles_deg``)
     that the kept modes and shapes do not hold (metadata ``residual_compliance_m_per_N``, radial
     then axial, m/N; :func:`.craig_bampton.residual_compliance`), an estimate of the truncation
-    error that costs two solves with the factor the reduction has.
+    error that costs two solves with the factor the reduction has. ``probe_angles_deg``: the
+    angles of those probe forces (two solves each); the compliance (metadata
+    ``probe_compliance_m_per_N``) is then (2k, 2k), radial and axial at each angle in turn.
     """
 
     segment: str
@@ -99,8 +101,12 @@ class RacewaySpec:
     spread_m: float = 0.0
     element_angles_deg: tuple = ()
     probe_spread_m: float = 0.0
+    probe_angles_deg: tuple = (0.0,)
 
     def __post_init__(self) -> None:
+        if not self.probe_angles_deg or not all(math.isfinite(a) for a in self.probe_angles_deg):
+            raise ValueError(f"raceway {self.segment!r}: probe_angles_deg must hold finite angles, got "
+                             f"{self.probe_angles_deg!r}")
         p = float(self.probe_spread_m)
         if not (math.isfinite(p) and p >= 0.0):
             raise ValueError(f"raceway {self.segment!r}: probe_spread_m must be ≥ 0 and finite, got {self.probe_spread_m!r}")
@@ -165,8 +171,9 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
                 for c, r, pt in zip(curves, spec.raceways, patches) if r.element_angles_deg]
         if spec.centrifugal:
             aug.append(CentrifugalAugmentation())
-        probes = [ElementAugmentation(c, (0.0,), tuple(raceway_patch(c, model.ring.profile, r.probe_spread_m)),
-                                      r.probe_spread_m) for c, r in zip(curves, spec.raceways) if r.probe_spread_m > 0]
+        probes = [ElementAugmentation(c, tuple(math.radians(a) for a in r.probe_angles_deg),
+                                      tuple(raceway_patch(c, model.ring.profile, r.probe_spread_m)), r.probe_spread_m)
+                  for c, r in zip(curves, spec.raceways) if r.probe_spread_m > 0]
         body = reduce_model(model, spec.n_modes, interfaces, aug, damping_ratio=spec.damping_ratio,
                             name=name or profile.name, probes=probes)
         with phase("inertia invariants"):

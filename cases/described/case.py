@@ -41,12 +41,16 @@ __all__ = ["Source", "RingFidelity", "Life", "Study", "Rotation", "DescribedCase
 class Source:
     """``[bearing]``: ``file`` — a built-in bearing's name (``flexbearing loaddist`` lists them) or a
     description file (.toml, path relative to the current folder); ``rings`` — ``"file"`` (modal where
-    the file has ``[rings.X]`` tables) or ``"rigid"``."""
+    the file has ``[rings.X]`` tables), ``"rigid"``, or ``"auto"`` (the load-distribution study: a
+    cheap pass keeps each of the file's modal rings rigid where its deflection cannot change the
+    element loads by the tolerance, else chooses its modal model, and says why; :mod:`.auto`)."""
 
     file: str = "slewing-ring"
-    rings: Literal["file", "rigid"] = "file"
+    rings: Literal["file", "rigid", "auto"] = "file"
 
     def __post_init__(self) -> None:
+        if self.rings not in ("file", "rigid", "auto"):
+            raise ValueError(f"rings: file, rigid or auto, got {self.rings!r}")
         if not self.file.strip():
             raise ValueError("file: must name a built-in bearing or a description file (.toml)")
 
@@ -221,6 +225,14 @@ class DescribedCase(CaseTables):
     life: Life = field(default_factory=Life)
     study: Study = field(default_factory=Study)
     rotation: Rotation = field(default_factory=Rotation)
+
+    def __post_init__(self) -> None:
+        if self.bearing.rings == "auto":
+            from .auto import refused_reason
+
+            why = refused_reason(self)
+            if why:
+                raise ValueError(f'bearing.rings: "auto" decides the rings of a load distribution; {why}')
 
     def input_files(self) -> dict[str, str]:
         """The files the case reads, by key (checked when a run is resolved)."""

@@ -13,6 +13,9 @@ Knobs (keys of :class:`.case.DescribedCase`, cheap → expensive):
   finite-element solution of the rings under the element forces). Not offered when a row is a
   four-point or crossed roller row (cases/bearings/README.md).
 
+Combined rungs: ``auto`` (``bearing.rings = "auto"``: each ring rigid or modal as its cheap pass
+decides, :mod:`.auto`), cheap and fine modal rings, and element load shapes with 10 modes.
+
 Reference: 80 modes, harmonics to 32, the finest mesh (0.5×) and, where offered, the element load
 shapes: the most accurate model of the rings the project builds on this machine. The quick ladder
 keeps every ring's mesh as the file gives it, and measures modes, load shapes and element shapes
@@ -33,12 +36,13 @@ import numpy as np
 from fem_rings.cache import file_digest
 from foundation.materials import BEARING_STEEL
 from mbd_core.contact.subsurface import subsurface_shear
-from mbd_core.quasistatic import solve_load_distribution
 from mbd_core.quasistatic.contacts import contact_sets
-from mbd_core.quasistatic.rows import FourPointRow
 
+from ..bearing_ring_reduction import two_sided
 from ..bearing_solver import bearing_solver
 from ..fidelity import Knob, Ladder, Outcome, case_tables
+from .auto import most_loaded_case, refused_reason
+from .auto import resolve as resolve_auto
 from .case import DescribedCase
 from .studies import described_bearing
 
@@ -56,7 +60,7 @@ LOADS_FILE = "element_loads.csv"
 
 
 def _shapes_offered(desc) -> bool:
-    return not any(isinstance(r, FourPointRow) or getattr(r, "orientation", "") == "crossed" for r in desc.bearing.rows)
+    return not any(two_sided(r) for r in desc.bearing.rows)
 
 
 def _description(case: DescribedCase):
@@ -92,7 +96,7 @@ def ladder(case: DescribedCase, quick: bool = False) -> Ladder:
         return Ladder(tuple(knobs), base, reference, primary="max_load", primary_label="largest element load",
                       scene=text, estimates={})
     reference = {"rings.n_modes": 80, "rings.raceway_harmonics": 32, "rings.element_size_factor": SIZE_FACTORS[-1], **on}
-    combined = {"cheap": {"rings.n_modes": 10, "rings.raceway_harmonics": 4},
+    combined = {"auto": {"bearing.rings": "auto"}, "cheap": {"rings.n_modes": 10, "rings.raceway_harmonics": 4},
                 "fine": {"rings.n_modes": 40, "rings.raceway_harmonics": 16, "rings.element_size_factor": SIZE_FACTORS[1]}}
     if shapes:
         combined.update({"shapes-cheap": {**on, "rings.n_modes": 10},
@@ -103,9 +107,7 @@ def ladder(case: DescribedCase, quick: bool = False) -> Ladder:
 
 def _scene_load(desc) -> tuple[int, object]:
     """(index, load) of the load case with the largest rigid-ring element load."""
-    worst = [max(float(np.max(r.load_N)) for r in solve_load_distribution(desc.bearing, load).rows)
-             for load in desc.load_cases]
-    k = int(np.argmax(worst))
+    k, _ = most_loaded_case(desc)
     return k, desc.load_cases[k]
 
 
@@ -132,9 +134,12 @@ def _tau_max_Pa(desc, dist) -> float:
 
 
 def measure(case: DescribedCase) -> Outcome:
-    """Element loads, contact angles and peak shear of the scene at the case's fidelity."""
+    """Element loads, contact angles and peak shear of the scene at the case's fidelity (``auto``: the
+    rings as its pass decides them)."""
     _, desc = described_bearing(case)
     _, load = _scene_load(desc)
+    if case.bearing.rings == "auto":
+        desc = resolve_auto(case, desc)[0]
     dist = bearing_solver(desc, rigid=case.bearing.rings == "rigid").solve(load)
     loads = np.concatenate([np.asarray(r.load_N, float) for r in dist.rows])
     angles = np.concatenate([np.asarray(r.contact_angle_rad, float) for r in dist.rows])
@@ -149,9 +154,9 @@ def element_columns(case: DescribedCase, n: int) -> tuple[list[str], list[tuple]
 
 
 def _settings_used(settings: dict) -> dict:
-    """A rigid rung sets no ``rings.*`` key (the case refuses them with rigid rings)."""
-    if settings.get("bearing.rings") == "rigid":
-        return {"bearing.rings": "rigid"}
+    """A rigid or ``auto`` rung sets no ``rings.*`` key (the case refuses them there)."""
+    if settings.get("bearing.rings") in ("rigid", "auto"):
+        return {"bearing.rings": settings["bearing.rings"]}
     return dict(settings)
 
 
@@ -164,16 +169,21 @@ def describe(settings: dict) -> str:
     """A rung in words, as a user would set it."""
     if settings.get("bearing.rings") == "rigid":
         return "rigid rings"
+    if settings.get("bearing.rings") == "auto":
+        return "auto (each ring rigid or modal as its cheap pass decides)"
     shapes = "element load shapes + " if settings.get("rings.element_load_shapes") else ""
     return (f"modal rings: {shapes}{settings['rings.n_modes']} modes, raceway load shapes to harmonic "
             f"{settings['rings.raceway_harmonics']}, element size × {settings['rings.element_size_factor']:g}")
 
 
-def rung_overrides(case: DescribedCase, settings: dict) -> dict:
-    """The table overrides that run ``case`` at a rung's fidelity (its own study kept)."""
+def rung_overrides(case: DescribedCase, settings: dict) -> dict | None:
+    """The table overrides that run ``case`` at a rung's fidelity (its own study kept); None for the
+    ``auto`` rung when the case's study is not one ``auto`` decides for."""
     used = _settings_used(settings)
+    if used.get("bearing.rings") == "auto" and refused_reason(case):
+        return None
     tables = case_tables(used)
-    if used.get("bearing.rings") == "rigid":
+    if used.get("bearing.rings") in ("rigid", "auto"):
         tables["rings"] = {f.name: f.default for f in dataclasses.fields(type(case.rings))}
     return tables
 

@@ -83,7 +83,7 @@ def modal_rings(desc, rings: str) -> dict:
         return {}
     from foundation.progress import phase
 
-    from ..bearing_rings import reduce_ring
+    from ..bearing_ring_reduction import reduce_ring
 
     with phase(f"modal rings of {desc.name}"):
         return {m.side: (m, reduce_ring(m, desc.bearing)) for m in desc.rings.values()}

@@ -55,6 +55,8 @@ def _figures(summary: dict, out) -> None:
 def _run(curve: bool):
     def run(case: DescribedCase, out, progress=None) -> None:
         name, desc = described_bearing(case)
+        if case.bearing.rings == "auto":
+            desc = _decide_rings(case, desc, out)
         solver = bearing_solver(desc, rigid=case.bearing.rings == "rigid")
         loads = desc.load_cases
         results = [solver.solve(load) for load in (progress(loads, "load cases") if progress else loads)]
@@ -62,6 +64,17 @@ def _run(curve: bool):
                                    desc.time_share, solver)
         _figures(summary, out)
     return run
+
+
+def _decide_rings(case: DescribedCase, desc, out):
+    """``bearing.rings = "auto"``: the rings decided (:mod:`.auto`), the decisions in the summary."""
+    from .auto import resolve
+
+    desc, decisions = resolve(case, desc)
+    out.summary["fidelity_decisions"] = decisions
+    for d in decisions:
+        out.note(f"{d['body']}: {d['choice']} — {d['reason']}")
+    return desc
 
 
 def _rotation(case: DescribedCase, out, progress=None) -> None:
@@ -91,6 +104,9 @@ def case_unused_keys(case: DescribedCase) -> dict[str, str]:
     if case.bearing.rings == "rigid":
         out.update({f"rings.{f.name}": 'bearing.rings = "rigid" (no modal rings)'
                     for f in dataclasses.fields(RingFidelity)})
+    if case.bearing.rings == "auto":
+        out.update({f"rings.{f.name}": 'bearing.rings = "auto" chooses the rings\' fidelity; set bearing.rings = '
+                    '"file" to choose it yourself' for f in dataclasses.fields(RingFidelity)})
     return out
 
 
@@ -101,9 +117,9 @@ PREPARE_TABLES = ("bearing", "rings")
 def prepare(case: DescribedCase) -> bool:
     """Mesh and reduce the modal rings of the case's bearing into the model cache (a sweep does this
     once before its points start); False when the rings are rigid or the file makes none modal."""
-    from ..bearing_rings import flexible_rings
+    from ..bearing_ring_reduction import flexible_rings
 
-    if case.bearing.rings == "rigid":
+    if case.bearing.rings != "file":  # rigid, or decided by auto's pass when the run starts
         return False
     _, desc = described_bearing(case)
     return bool(desc.rings) and bool(flexible_rings(desc.rings, desc.bearing))

@@ -126,13 +126,15 @@ class Traction:
 
 @dataclass(frozen=True)
 class Analysis:
-    """``[analysis]``: simulated time (s), the share of it left out of the means as start-up, and the
+    """``[analysis]``: simulated time (s), the share of it left out of the means as start-up, the
     largest time between recorded samples (s; the torque and the spectra are taken at the samples: 20 µs
-    resolve up to 25 kHz)."""
+    resolve up to 25 kHz), and the explicit step as a share of the automatic stable step (1: the step
+    :func:`mbd_core.multibody.stable_timestep` picks; smaller: a finer, slower run)."""
 
     duration_s: float = 0.05
     settle_fraction: float = 0.4
     sample_interval_s: float = 2e-5
+    step_factor: float = 1.0
 
     def __post_init__(self) -> None:
         _positive(self, "duration_s")
@@ -144,6 +146,8 @@ class Analysis:
         if self.sample_interval_s > self.duration_s / 10:
             raise ValueError(f"sample_interval_s: must be ≤ duration_s/10 ({self.duration_s / 10:g} s), got "
                              f"{self.sample_interval_s!r}")
+        if not (isinstance(self.step_factor, (int, float)) and 0.01 <= self.step_factor <= 1.0):
+            raise ValueError(f"step_factor: must lie in 0.01 … 1 (a share of the stable step), got {self.step_factor!r}")
 
 
 @dataclass(frozen=True)

@@ -77,6 +77,7 @@ class TorqueRun:
     """Race torques of one run. ``t_s`` (k,) the samples; ``inner_Nm``, ``outer_Nm`` (k,) the torque
     the balls put on each race about +z (the outer race turns about +z); ``ball_radial_m``,
     ``ball_axial_m`` (k,) ball 0's centre; ``settled`` (k,) bool, the part the means are taken over;
+    ``ball_load_N`` (Z,) each ball's outer-race contact load averaged over it;
     ``drag_moment_Nm`` the mean moment of the balls' drag about the axis over it (in a steady state
     the race torques balance it: T_inner + T_outer = M_drag)."""
 
@@ -86,6 +87,7 @@ class TorqueRun:
     ball_radial_m: np.ndarray
     ball_axial_m: np.ndarray
     settled: np.ndarray
+    ball_load_N: np.ndarray
     n_balls: int
     contact_load_N: float
     contact_frequency_Hz: float
@@ -130,7 +132,7 @@ def run_torque(case: DmaCase) -> TorqueRun:
     model, state, rows, inner, outer = build(case)
     start = static_equilibrium(model, state).state
     set_rolling_velocities(model, start, rows.elements, outer, inner)
-    step = stable_timestep(model, start).timestep_s
+    step = case.analysis.step_factor * stable_timestep(model, start).timestep_s
     record_every = max(1, int(case.analysis.sample_interval_s / step))
     run = simulate(model, start, case.analysis.duration_s, timestep_s=step, record_every=record_every)
     t, torque = axial_torques(model, run, (inner, outer))
@@ -145,5 +147,5 @@ def run_torque(case: DmaCase) -> TorqueRun:
     drag = c * float(np.mean(np.linalg.norm(balls_v, axis=2)))
     moment = -c * float(np.mean(np.sum(balls_q[..., 0] * balls_v[..., 1] - balls_q[..., 1] * balls_v[..., 0], axis=1)))
     return TorqueRun(t, torque[:, 0], torque[:, 1], np.hypot(x[:, 0], x[:, 1]), x[:, 2], settled,
-                     len(rows.elements), load, _contact_frequency_Hz(case, row, load), drag, moment,
+                     loads.mean(axis=0), len(rows.elements), load, _contact_frequency_Hz(case, row, load), drag, moment,
                      int(round((t[-1] - t[0]) / step)))

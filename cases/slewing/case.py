@@ -32,6 +32,8 @@ import math
 from dataclasses import dataclass, field
 from typing import ClassVar, Literal
 
+import numpy as np
+
 from fem_rings.sections import SlewingSection
 from mbd_core.contact.friction import Coulomb
 
@@ -225,7 +227,8 @@ def _check_spread(profile, contact_rz_m, spread_m: float, key: str) -> None:
 
     curve = section_raceway_curve(profile, "groove", (0.0,), contact_rz_m)
     try:
-        raceway_patch(curve, profile, spread_m)
+        with np.errstate(over="ignore", invalid="ignore"):  # an absurd spread is refused below, quietly
+            raceway_patch(curve, profile, spread_m)
     except ValueError as exc:
         raise ValueError(f"{key}.raceway_spread_m: {exc}") from None
 
