@@ -4,20 +4,24 @@ only as finely as the scene requires, and say why.
 A cheap pass decides, for the case's quasi-static equilibrium (study ``single`` without travel, or
 each equilibrium of the undulation study), for each race left to it, in three steps:
 
-1. **Rigid equilibrium** (milliseconds), every race left to ``auto`` rigid. When its ball loads vary
-   by less than the tolerance around the ring, a ring of revolution deforms alike under every
-   ball, which leaves the loads equal, W / (Z sin α) (a shared change of α moves them together):
-   rigid, as the analytic check of the static case has it (thesis §3.2.1).
+1. **Rigid equilibrium** (milliseconds), every race left to ``auto`` rigid. For the top structure,
+   which floats: when its ball loads vary by less than the tolerance around the ring, a floating
+   ring of revolution deforms alike under every ball, which leaves the loads equal, W / (Z sin α):
+   rigid, as the analytic check of the static case has it (thesis §3.2.1). Not for the bottom
+   race: its bolts alone spread equal loads (+13 % on the largest of the 2 m ring's flat dead-load
+   equilibrium with 12 bolts).
 2. **Probe** (a reduction with 5 modes and no load shapes, seconds: the top structure on a mesh
    twice as coarse as the default, the bottom race on its own, whose bolt patches need elements
-   narrower than they are): the race's compliance c = nᵀCn to a ball force on its groove patch — the
-   floating top structure with inertia relief, the bottom race held at its bolt patches
-   (:func:`cms_reduction.craig_bampton.residual_compliance`; the probe of
-   :class:`cms_reduction.RacewaySpec`). Under the rigid loads the deflection differs between balls
-   by at most Δr = c·(Q_max − Q_min); against the Hertz approach δ of the most loaded ball this is
-   η = 1.5·Δr/δ (Hertz: dQ/dδ = 1.5 Q/δ), and η/(1 + η) bounds the load change it can cause when
-   the approaches are imposed. Below the tolerance: rigid. When both races decide, each takes half
-   the tolerance (their deflections add).
+   narrower than they are): the race's compliance to radial and axial ball forces on its groove
+   patch at every ball — the floating top structure with inertia relief, the bottom race held at
+   its bolt patches (the probe of :class:`cms_reduction.RacewaySpec`). With it, the race's static
+   deflection d_k along each ball's contact normal under all the rigid ball forces. The balls'
+   approaches then change by up to Δr = max d − min d between them (a shared part moves the race
+   and leaves the loads); against the Hertz approach δ of the most loaded ball this is
+   η = 1.5·Δr/δ (Hertz: dQ/dδ = 1.5 Q/δ, and Q/δ grows with the load, so no ball's load changes by
+   more than η·Q_max), and η/(1 + η) bounds the load change it can cause when the approaches are
+   imposed. Below the tolerance: rigid. When both races decide, each takes half the tolerance
+   (their deflections add).
 3. **Modal**, with the static shapes of the ball forces at the balls' places on the groove patch
    s = 0.3·D (``ball_load_shapes``): the quasi-static equilibrium is then the finite-element solution
    of the ring under the ball forces (Ritz: their static response lies in the basis, up to what
@@ -63,18 +67,25 @@ def _rigid_pass(case: SlewingCase):
     return res.rows[0]
 
 
-def _probe_compliance_m_per_N(case: SlewingCase, race: str, alpha_rad: float) -> float:
-    """c = nᵀCn of ``race`` at a ball (step 2): the floating top structure with inertia relief on the
-    coarse mesh, the bottom race held at its bolts on its own mesh (a bolt patch needs elements
-    narrower than it)."""
+def _probe_compliance_m_per_N(case: SlewingCase, race: str) -> np.ndarray:
+    """(2Z, 2Z) compliance of ``race`` to radial and axial ball forces at every ball (step 2): the
+    floating top structure with inertia relief on the coarse mesh, the bottom race held at its bolts
+    on its own mesh (a bolt patch needs elements narrower than it)."""
     h = round(PROBE_MESH_FACTOR * scene_mod.DEFAULT_ELEMENT_SIZE_M[case.geometry.variant], 4) if race == "top" \
         else case.bottom.element_size_m
     probe = case.with_(**{race: {"kind": "modal", "n_modes": PROBE_MODES, "groove_harmonics": -1, "element_size_m": h,
                                  "raceway_spread_m": 0.0, "ball_load_shapes": False}})
-    body = scene_mod.top_body(probe) if race == "top" else scene_mod.bottom_body(probe)
-    C = np.asarray(body.metadata["probe_compliance_m_per_N"])
-    n = case.geometry.section().groove(race, case.geometry.pitch_diameter_m).direction(math.degrees(alpha_rad))
-    return float(n @ C @ n)
+    build = scene_mod.top_body if race == "top" else scene_mod.bottom_body
+    return np.asarray(build(probe, probe_all_balls=True).metadata["probe_compliance_m_per_N"], float)
+
+
+def _deflections_m(case: SlewingCase, race: str, row, C: np.ndarray) -> np.ndarray:
+    """(Z,) the race's static deflection along each ball's contact normal under all the rigid ball
+    forces (each along its normal at its loaded angle)."""
+    groove = case.geometry.section().groove(race, case.geometry.pitch_diameter_m)
+    n = np.array([groove.direction(math.degrees(a)) for a in np.asarray(row.contact_angle_rad, float)])
+    d = (C @ (n * np.asarray(row.load_N, float)[:, None]).ravel()).reshape(-1, 2)
+    return np.sum(d * n, axis=1)
 
 
 def _settings_text(race: str, fidelity: dict) -> str:
@@ -89,20 +100,23 @@ def _decide(case: SlewingCase, race: str, row, tolerance: float) -> tuple[dict, 
     spread = float((q.max() - q.min()) / q.max())
     figures = {"rigid_max_ball_load_N": float(q.max()), "rigid_min_ball_load_N": float(q.min()),
                "rigid_load_spread": spread, "hertz_approach_m": float(row.approach_m[k]), "tolerance": tolerance}
-    if spread < tolerance:
+    if race == "top" and spread < tolerance:
         choice = {"kind": "rigid"}
-        reason = (f"under rigid races the ball loads vary by {100 * spread:.2g} % (< {100 * tolerance:g} %): a ring "
-                  "of revolution deforms alike under every ball, which leaves the loads equal (W / (Z sin α)); rigid")
+        reason = (f"under rigid races the ball loads vary by {100 * spread:.2g} % (< {100 * tolerance:g} %): a "
+                  "floating ring of revolution deforms alike under every ball, which leaves the loads equal "
+                  "(W / (Z sin α)); rigid")
     else:
-        c = _probe_compliance_m_per_N(case, race, float(row.contact_angle_rad[k]))
-        dr = c * float(q.max() - q.min())
+        d = _deflections_m(case, race, row, _probe_compliance_m_per_N(case, race))
+        on = q > 0.0
+        dr = float(d[on].max() - d[on].min())
         eta = 1.5 * dr / float(row.approach_m[k])
         bound = eta / (1.0 + eta)
-        figures.update(ring_compliance_m_per_N=c, deflection_difference_m=dr, stiffness_ratio=eta, load_change_bound=bound)
-        where = (f"the ball loads under rigid races vary by {100 * spread:.3g} %; the {name}'s compliance at a ball "
-                 f"is {c:.3g} m/N, so its deflection differs between balls by up to {1e6 * dr:.3g} µm against the "
-                 f"Hertz approach {1e6 * float(row.approach_m[k]):.3g} µm of the most loaded ball (η = {eta:.3g}, "
-                 f"load change up to {100 * bound:.3g} %)")
+        figures.update(deflection_difference_m=dr, stiffness_ratio=eta, load_change_bound=bound)
+        held = "" if race == "top" else ", held at its bolts,"
+        where = (f"the ball loads under rigid races vary by {100 * spread:.3g} %; under them the {name}{held} "
+                 f"deflects by up to {1e6 * dr:.3g} µm more at one loaded ball than at another (its static "
+                 f"response), against the Hertz approach {1e6 * float(row.approach_m[k]):.3g} µm of the most loaded "
+                 f"ball (η = {eta:.3g}, load change up to {100 * bound:.3g} %)")
         if bound < tolerance:
             choice = {"kind": "rigid"}
             reason = f"{where} (< {100 * tolerance:g} %): rigid"

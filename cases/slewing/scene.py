@@ -134,18 +134,26 @@ def groove_patch_m(case: SlewingCase) -> float:
     return round(GROOVE_PATCH_SHARE * case.geometry.ball_diameter_m, 4)
 
 
-def _groove_spec(case: SlewingCase, race: str, harmonics: int) -> RacewaySpec:
+def ball_angles_deg(case: SlewingCase) -> tuple:
+    """The load balls' angles at the first position (ball_row, phase 0), degrees."""
+    return tuple(360.0 * i / case.geometry.n_balls for i in range(case.geometry.n_balls))
+
+
+def _groove_spec(case: SlewingCase, race: str, harmonics: int, probe_all_balls: bool = False) -> RacewaySpec:
+    """The race's sampled groove; its probe (the compliance to a ball force on the groove patch) at
+    θ = 0 for the truncation estimate, or at every ball for ``auto``'s static response."""
     groove = case.geometry.section().groove(race, case.geometry.pitch_diameter_m)
     fidelity = getattr(case, race)
-    balls = tuple(360.0 * i / case.geometry.n_balls for i in range(case.geometry.n_balls)) \
-        if fidelity.ball_load_shapes else ()  # the load balls at the first position (ball_row, phase 0)
-    probe = groove_patch_m(case)  # its compliance at a ball: truncation estimate, auto's probe
+    balls = ball_angles_deg(case) if fidelity.ball_load_shapes else ()
     return RacewaySpec("groove", N_THETA, at_rz_m=tuple(groove.contact_point_m), n_max=harmonics,
-                       spread_m=fidelity.raceway_spread_m, element_angles_deg=balls, probe_spread_m=probe)
+                       spread_m=fidelity.raceway_spread_m, element_angles_deg=balls,
+                       probe_spread_m=groove_patch_m(case),
+                       probe_angles_deg=ball_angles_deg(case) if probe_all_balls else (0.0,))
 
 
-def top_body(case: SlewingCase):
-    """The reduced top structure (floating), or None when the case keeps it rigid."""
+def top_body(case: SlewingCase, probe_all_balls: bool = False):
+    """The reduced top structure (floating), or None when the case keeps it rigid; ``probe_all_balls``:
+    its probe at every ball (:func:`_groove_spec`)."""
     f = case.top
     if f.kind != "modal":
         return None
@@ -155,7 +163,7 @@ def top_body(case: SlewingCase):
     mass_kg = profile.revolved_properties(DENSITY_KG_M3)["mass_kg"]
     density = DENSITY_KG_M3 * 1000.0 * case.dead_load_t / mass_kg  # weight = dead load (module docstring)
     material = ElasticMaterial("steel carrying the dead load", REFERENCE_E_PA, NU, density)
-    spec = ReductionSpec(n_modes=f.n_modes, raceways=(_groove_spec(case, "top", f.groove_harmonics),),
+    spec = ReductionSpec(n_modes=f.n_modes, raceways=(_groove_spec(case, "top", f.groove_harmonics, probe_all_balls),),
                          damping_ratio=f.damping_ratio)
     log.info("top structure: %.1f t of steel carrying %.1f t (density ×%.2f)", mass_kg / 1e3, case.dead_load_t,
              density / DENSITY_KG_M3)
@@ -163,15 +171,16 @@ def top_body(case: SlewingCase):
     return with_modulus(body, f.E_Pa)
 
 
-def bottom_body(case: SlewingCase):
-    """The reduced bottom race (grounded at its bolt patches), or None when rigid."""
+def bottom_body(case: SlewingCase, probe_all_balls: bool = False):
+    """The reduced bottom race (grounded at its bolt patches), or None when rigid; ``probe_all_balls``:
+    its probe at every ball (:func:`_groove_spec`)."""
     f = case.bottom
     if f.kind != "modal":
         return None
     g = case.geometry
     bolts = tuple(360.0 * (k + 0.5) / f.bolts for k in range(f.bolts))
     spec = ReductionSpec(n_modes=f.n_modes, interfaces=(InterfaceSpec("bolt_face", bolts, BOLT_HALF_WIDTH_M),),
-                         raceways=(_groove_spec(case, "bottom", f.groove_harmonics),), damping_ratio=f.damping_ratio)
+                         raceways=(_groove_spec(case, "bottom", f.groove_harmonics, probe_all_balls),), damping_ratio=f.damping_ratio)
     material = ElasticMaterial("steel", REFERENCE_E_PA, NU, DENSITY_KG_M3)
     body = reduced_body(slewing_bottom_race(g.pitch_diameter_m, g.section()), _mesh(case, f), material, spec)
     return with_modulus(body, f.E_Pa)
