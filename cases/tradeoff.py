@@ -64,7 +64,7 @@ WITHOUT_LADDER = {
            "speed–axial map takes about a second",
 }
 #: part of the ladder cache key: bump when what a rung measures changes
-TRADEOFF_VERSION = 3
+TRADEOFF_VERSION = 4
 
 
 def family_ladder(case):

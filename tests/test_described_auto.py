@@ -1,13 +1,12 @@
 """``bearing.rings = "auto"`` on a bearing file with modal rings (:mod:`cases.described.auto`).
 
 The bearing is that of ``tests/test_bearing_tradeoff.py``: one angular-contact ball row in two small
-box rings (the inner ring bolted, the outer clamped at a face). Checks against references:
-- combined load: both rings go modal, and the largest element load is within 1 % of the finite-
-  element reference (element load shapes with 40 modes and harmonics to 16, the quick ladder's
-  reference, solved directly here); the true change from rigid rings stays below the sum of the
-  rings' bounds η/(1 + η), as the decision assumes;
-- pure thrust: the rigid loads are equal, but the bolts spread them (+4.7 % on the largest in the
-  FE reference): auto goes modal for the bolted ring and meets 1 %;
+box rings (the inner ring bolted, the outer clamped at a face), here under pure thrust. Checks
+against references:
+- the rigid loads are equal, but the bolts spread them (+4.5 % on the largest in the finite-element
+  reference: element load shapes with 40 modes and harmonics to 16, the quick ladder's reference,
+  solved directly here): auto goes modal for the bolted ring and meets 1 %, and the true change
+  from rigid rings stays below the sum of the rings' bounds η/(1 + η), as the decision assumes;
 - the keys auto chooses, and the studies it does not decide for, are refused naming the key.
 """
 
@@ -39,24 +38,6 @@ def _largest(desc, load, rings=None) -> float:
     return max(float(np.max(r.load_N)) for r in bearing_solver(d, rigid=rings == {}).solve(load).rows)
 
 
-def test_auto_under_combined_load_meets_the_tolerance(tmp_path):
-    case = _write(tmp_path, BEARING)
-    out = tmp_path / "run"
-    assert main(["run", str(case), "--out", str(out)]) == 0
-    summary = json.loads((out / "summary.json").read_text())
-    decisions = {d["body"]: d for d in summary["fidelity_decisions"]}
-    assert set(decisions) == {"rings.inner", "rings.outer"}
-    assert all(d["choice"].startswith("modal, element load shapes") for d in decisions.values())
-    desc = loads_bearing(BEARING)
-    load = desc.default_load
-    reference = _largest(desc, load, with_fidelity(dict(desc.rings), {"n_modes": 40, "raceway_harmonics": 16,
-                                                                      "element_load_shapes": True}))
-    assert summary["largest_element_load_N"] == pytest.approx(reference, rel=0.01)
-    rigid = _largest(desc, load, {})
-    bound = sum(d["load_change_bound"] for d in decisions.values())
-    assert abs(reference - rigid) / rigid <= bound
-
-
 def test_auto_under_pure_thrust_sees_the_bolts(tmp_path):
     """Equal rigid loads, yet the bolted inner ring carries the balls over its 8 bolts more stiffly
     than those between them: the FE reference spreads the loads by ±5 %; auto sees it in the static
@@ -76,6 +57,10 @@ def test_auto_under_pure_thrust_sees_the_bolts(tmp_path):
     rigid = _largest(desc, load, {})
     bound = sum(d["load_change_bound"] for d in summary["fidelity_decisions"])
     assert abs(reference - rigid) / rigid <= bound
+    # the chosen basis holds the static response to the element forces: no residual flexibility at
+    # the probe; the 4 mm element patch under 40 mm elements is said to carry the mesh's error
+    assert summary["error_estimates"]["modal_truncation"]["max_load"] < 1e-6
+    assert any("narrower than the ring's elements" in w for w in summary["warnings"])
 
 
 def test_auto_refuses_what_it_chooses_and_the_studies_it_does_not_decide(tmp_path, capsys):

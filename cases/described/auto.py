@@ -9,15 +9,18 @@ For each ring, in three steps:
    that load.
 2. **Probe** (a reduction with :data:`PROBE_MODES` modes on the file's mesh and support): the ring's
    compliance to radial and axial forces at every element of that row, spread over the raceway
-   patch element load shapes use (:func:`cases.bearing_ring_reduction.probe_compliance_m_per_N`). With it,
-   the raceway's static deflection d_k along each element's contact normal under all the rigid
+   patch element load shapes use (:func:`cases.bearing_ring_reduction.probe_compliance_m_per_N`).
+   With it, the raceway's static deflection d_k along each element's contact normal under all the rigid
    element forces (held at its support, so bolts and clamps are in it). The elements' approaches
    then change by up to Δr = max d − min d between them (a shared part moves the ring and leaves
    the loads); against the approach δ of the most loaded element this is η = e·Δr/δ (Hertz:
    dQ/dδ = e·Q/δ, e = 1.5 for balls, 10/9 for rollers, ISO/TS 16281; Q/δ grows with the load, so
    no element's load changes by more than η·Q_max), and η/(1 + η) bounds that change relative
    to the largest load. Below the ring's share of the tolerance: rigid. (A ring of revolution under
-   equal element loads is not enough: the bolts alone spread a thrust-loaded ring's loads.)
+   equal element loads is not enough: the bolts alone spread a thrust-loaded ring's loads.) A
+   four-point or crossed roller row has its contacts on the two flanks of its groove and its
+   raceway sample at the apex, where no probe patch fits: its ring is not probed and stays modal
+   as the file makes it, and the decision says so.
 3. **Modal**: with the static shapes of the element forces at their places
    (``element_load_shapes``) and :data:`MODAL_CHOICE`'s modes, which make the equilibrium the
    finite-element solution of the ring under the element forces (the ladder's ``shapes-cheap`` rung,
@@ -41,7 +44,8 @@ from mbd_core.multibody.bearings import LINE_EXPONENT
 from mbd_core.quasistatic import solve_load_distribution
 from mbd_core.quasistatic.rows import RollerRow
 
-from ..bearing_ring_reduction import element_patch_m, probe_compliance_m_per_N, two_sided
+from ..bearing_ring_reduction import contact_normals_rz, element_patch_m, probe_compliance_m_per_N, two_sided
+from ..bearing_rings import ring_mesh_spec
 from .case import DescribedCase
 
 __all__ = ["AUTO_TOLERANCE", "MODAL_CHOICE", "PROBE_MODES", "resolve", "most_loaded_case", "refused_reason"]
@@ -67,20 +71,6 @@ def most_loaded_case(desc):
     return best[1], best[2]
 
 
-def _normals_rz(place, row, alpha_rad: np.ndarray) -> np.ndarray:
-    """(Z, 2) contact normal of each element of ``row`` on a ring, into the ring's material, in its
-    (r, z) section: the loaded contact angle with the groove's signs (a ball row), the raceway face's
-    normal (a roller row, and the two-sided rows, whose loaded flank the quasi-static row does not
-    give: an approximation)."""
-    from ..ring_sections import FACE_AXES
-
-    face = np.asarray(FACE_AXES[place.face][1], float)
-    if isinstance(row, RollerRow) or two_sided(row) or not place.arcs:
-        return np.tile(face, (len(alpha_rad), 1))
-    into = np.asarray(place.point_rz_m, float) - np.asarray(place.arcs[0][0], float)
-    return np.column_stack((np.copysign(np.cos(alpha_rad), into[0]), np.copysign(np.sin(alpha_rad), into[1])))
-
-
 def _decide(desc, name: str, m, res, tolerance: float) -> tuple[dict | None, dict]:
     """(ring keys to set, or None for rigid; the decision record) of ring ``name``."""
     rows = {r.name: r for r in desc.bearing.rows}
@@ -89,8 +79,18 @@ def _decide(desc, name: str, m, res, tolerance: float) -> tuple[dict | None, dic
     q = np.asarray(loaded.load_N, float)
     k = int(np.argmax(q))
     delta = float(loaded.approach_m[k])
+    record = {"body": f"rings.{name}"}
+    if two_sided(row):
+        choice = (f"modal, the file's {m.keys.n_modes} modes and raceway load shapes to harmonic "
+                  f"{m.keys.raceway_harmonics}")
+        reason = (f"the {row.name} row's contacts lie on the two flanks of its groove, away from the raceway "
+                  "sample at its apex, where no probe patch fits: the ring's deflection at the elements is not "
+                  "measured, so it stays as the file makes it (element load shapes are not offered there either, "
+                  "cases/bearings/README.md)")
+        return {}, {**record, "choice": choice, "reason": reason, "row": row.name,
+                    "rigid_max_element_load_N": float(q.max()), "tolerance": tolerance}
     C = probe_compliance_m_per_N(m, desc.bearing, row.name, PROBE_MODES)
-    n = _normals_rz(m.places[row.name], row, np.asarray(loaded.contact_angle_rad, float))
+    n = contact_normals_rz(m, row, loaded.contact_angle_rad)
     # deflection of the raceway along each element's normal under all the rigid element forces
     forces = (n * q[:, None]).ravel()
     d = (C @ forces).reshape(-1, 2)
@@ -107,22 +107,26 @@ def _decide(desc, name: str, m, res, tolerance: float) -> tuple[dict | None, dic
              f"under them the {name} ring's raceway deflects by up to {1e6 * dr:.3g} µm more at one loaded element "
              f"than at another (its static response, held at its support), against the approach "
              f"{1e6 * delta:.3g} µm of the most loaded (η = {eta:.3g}, load change up to {100 * bound:.3g} %)")
-    record = {"body": f"rings.{name}"}
     if bound < tolerance:
         return None, {**record, "choice": "rigid", "reason": f"{where} (< {100 * tolerance:g} %): rigid", **figures}
     if any(two_sided(r) for r in desc.bearing.rows):
         keys = {}
         choice = (f"modal, the file's {m.keys.n_modes} modes and raceway load shapes to harmonic "
                   f"{m.keys.raceway_harmonics}")
-        why = ("element load shapes are not offered with a four-point or crossed roller row (cases/bearings/"
-               "README.md), so the file's own modes and raceway load shapes")
+        why = ("element load shapes are not offered with a four-point or crossed roller row in the bearing "
+               "(cases/bearings/README.md), so the file's own modes and raceway load shapes")
     else:
         keys = dict(MODAL_CHOICE)
-        choice = (f"modal, element load shapes on a {1e3 * element_patch_m(m, row):.3g} mm raceway patch, "
-                  f"{keys['n_modes']} modes, harmonic 0")
+        patch, size = element_patch_m(m, row), ring_mesh_spec(m).size_m
+        choice = f"modal, element load shapes on a {1e3 * patch:.3g} mm raceway patch, {keys['n_modes']} modes, harmonic 0"
         why = ("the static shapes of the element forces at their places make the equilibrium the finite-element "
                f"solution of the ring under them; {keys['n_modes']} normal modes add little to it (the ladder's "
                "shapes-cheap rung)")
+        if patch < size:
+            figures["warning"] = (f"rings.{name}: the element patch ({1e3 * patch:.3g} mm) is narrower than the ring's "
+                                  f"elements ({1e3 * size:.3g} mm), so the finite-element solution on this mesh carries "
+                                  "the mesh's error (1.4 % on the test bearing of cases/bearings/README.md); refine "
+                                  "rings.element_size_factor with bearing.rings = \"file\" to see it")
     return keys, {**record, "choice": choice, "reason": f"{where} (≥ {100 * tolerance:g} %): {why}", **figures}
 
 

@@ -22,7 +22,9 @@ keeps every ring's mesh as the file gives it, and measures modes, load shapes an
 there against a reference on that mesh (40 modes, harmonics to 16).
 
 Scene: the load case of the file whose largest element load under rigid rings is the largest (the
-most demanding one; the file's only load when it has one), solved quasi-statically.
+most demanding one; the file's only load when it has one), solved quasi-statically. Each rung also
+gives its own estimate of its modal truncation error (:mod:`.estimates`), which the ladder compares
+with its true error.
 """
 
 from __future__ import annotations
@@ -44,6 +46,7 @@ from ..fidelity import Knob, Ladder, Outcome, case_tables
 from .auto import most_loaded_case, refused_reason
 from .auto import resolve as resolve_auto
 from .case import DescribedCase
+from .estimates import truncation_estimates
 from .studies import described_bearing
 
 __all__ = ["ladder", "scene", "measure", "rung_case", "describe", "rung_overrides", "element_columns", "cache_inputs",
@@ -94,7 +97,7 @@ def ladder(case: DescribedCase, quick: bool = False) -> Ladder:
     if quick:
         reference = {"rings.n_modes": 40, "rings.raceway_harmonics": 16, **on}
         return Ladder(tuple(knobs), base, reference, primary="max_load", primary_label="largest element load",
-                      scene=text, estimates={})
+                      scene=text)
     reference = {"rings.n_modes": 80, "rings.raceway_harmonics": 32, "rings.element_size_factor": SIZE_FACTORS[-1], **on}
     combined = {"auto": {"bearing.rings": "auto"}, "cheap": {"rings.n_modes": 10, "rings.raceway_harmonics": 4},
                 "fine": {"rings.n_modes": 40, "rings.raceway_harmonics": 16, "rings.element_size_factor": SIZE_FACTORS[1]}}
@@ -102,7 +105,7 @@ def ladder(case: DescribedCase, quick: bool = False) -> Ladder:
         combined.update({"shapes-cheap": {**on, "rings.n_modes": 10},
                          "shapes-fine": {**on, "rings.n_modes": 10, "rings.element_size_factor": SIZE_FACTORS[1]}})
     return Ladder(tuple(knobs), base, reference, combined, primary="max_load", primary_label="largest element load",
-                  scene=text, estimates={})
+                  scene=text)
 
 
 def _scene_load(desc) -> tuple[int, object]:
@@ -140,10 +143,13 @@ def measure(case: DescribedCase) -> Outcome:
     _, load = _scene_load(desc)
     if case.bearing.rings == "auto":
         desc = resolve_auto(case, desc)[0]
-    dist = bearing_solver(desc, rigid=case.bearing.rings == "rigid").solve(load)
+    solver = bearing_solver(desc, rigid=case.bearing.rings == "rigid")
+    dist = solver.solve(load)
     loads = np.concatenate([np.asarray(r.load_N, float) for r in dist.rows])
     angles = np.concatenate([np.asarray(r.contact_angle_rad, float) for r in dist.rows])
-    return Outcome(loads, angles, _tau_max_Pa(desc, dist), unloaded_share=UNLOADED_SHARE)
+    est = truncation_estimates(desc, solver, dist)["modal_truncation"]
+    return Outcome(loads, angles, _tau_max_Pa(desc, dist), unloaded_share=UNLOADED_SHARE,
+                   estimates={"estimated_error": None if est is None else est["max_load"]})
 
 
 def element_columns(case: DescribedCase, n: int) -> tuple[list[str], list[tuple]]:

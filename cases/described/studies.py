@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
-import dataclasses
+import numpy as np
 
 from ..bearing_rings import with_fidelity
 from ..bearing_solver import bearing_solver
@@ -12,6 +13,7 @@ from ..config import CaseError
 from ..loaddist_command import LoaddistOptions, bearing_description, loaddist_outputs
 from ..overrides import StudyEntry, unused_keys
 from .case import DescribedCase, RingFidelity
+from .estimates import truncation_estimates
 
 __all__ = ["STUDIES", "PREPARE_TABLES", "case_unused_keys", "prepare", "uses_dynamics", "run_study",
            "described_bearing"]
@@ -63,6 +65,8 @@ def _run(curve: bool):
         summary = loaddist_outputs(_options(case, str(out.path("loaddist")), curve), name, desc, results,
                                    desc.time_share, solver)
         _figures(summary, out)
+        worst = max(results, key=lambda res: max(float(np.max(r.load_N)) for r in res.rows))
+        out.summary["error_estimates"] = truncation_estimates(desc, solver, worst)
     return run
 
 
@@ -74,6 +78,7 @@ def _decide_rings(case: DescribedCase, desc, out):
     out.summary["fidelity_decisions"] = decisions
     for d in decisions:
         out.note(f"{d['body']}: {d['choice']} — {d['reason']}")
+    out.warn([d["warning"] for d in decisions if "warning" in d])
     return desc
 
 

@@ -19,8 +19,9 @@ of the sweep's smallest), half the stable step (the step sweep measures what a q
 0.1 s; the quick ladder's: 20 strips, 0.03 mm/s, half the step, 0.02 s.
 
 What a rung computes (:func:`measure`): the mean friction torque per ball on the inner and the outer
-race (the family's primary quantity: the larger of the two relative errors) and each ball's mean
-outer-race contact load.
+race (the family's primary quantity: the larger of the two relative errors), each ball's mean
+outer-race contact load, and the run's own estimate of its time-step error in the race torques
+(:func:`.torque.run_torque`), which the ladder compares with the step sweep.
 """
 
 from __future__ import annotations
@@ -76,7 +77,8 @@ def ladder(case: DmaCase, quick: bool = False) -> Ladder:
                                           **({"traction.blend_m_s": 3e-5} if blended else {})}}
     return Ladder(tuple(knobs), base, reference, combined, primary="race_torque",
                   primary_label="mean race friction torque", scene="one torque run: " + describe_scene(case),
-                  errors=_ERRORS, estimates={}, primary_figure=("race_torque", "inner"))
+                  errors=_ERRORS, estimates={"estimated_step_error": "analysis.step_factor"},
+                  primary_figure=("race_torque", "inner"))
 
 
 def _scene_values(case: DmaCase) -> dict:
@@ -108,7 +110,8 @@ def measure(case: DmaCase) -> Outcome:
     """Mean race torques per ball and the balls' mean contact loads of one run of ``case``."""
     run = run_torque(case)
     figures = {"race_torque": {"inner": run.mean_per_ball("inner"), "outer": run.mean_per_ball("outer")}}
-    return Outcome(np.asarray(run.ball_load_N, float), unloaded_share=UNLOADED_SHARE, figures=figures)
+    return Outcome(np.asarray(run.ball_load_N, float), unloaded_share=UNLOADED_SHARE, figures=figures,
+                   estimates={"estimated_step_error": run.step_error["race_torque"]})
 
 
 def element_columns(case: DmaCase, n: int) -> tuple[list[str], list[tuple]]:

@@ -12,6 +12,10 @@ re-evaluated at each recorded sample from the recorded state (:func:`mbd_core.mu
 Its mean and ripple are taken over the run after ``analysis.settle_fraction`` of it; its spectrum
 and that of ball 0's radial and axial position over the same part (Hann window).
 
+Time-step error (``error_estimates`` in ``summary.json``): a window of 200 steps from the run's end
+repeated at h/2 and h/4, the mean race torques over it extrapolated (Richardson,
+:func:`mbd_core.multibody.step_error.step_error`).
+
 Reference frequency: the elastic contact frequency of a ball between its two linearised Hertz
 contacts, f = sqrt((k_i + k_o)/m)/(2π), k = 1.5·Q/δ at the mean contact load Q.
 """
@@ -30,6 +34,7 @@ from mbd_core.multibody import ContactLaw, Driven, Fixed, ModelBuilder, simulate
 from mbd_core.multibody.bearings import add_ball_row, ball_mass_kg, set_rolling_velocities
 from mbd_core.multibody.ring_torque import axial_torques, spectrum_peaks_Hz
 from mbd_core.multibody.statics import static_equilibrium
+from mbd_core.multibody.step_error import WINDOW_STEPS, step_error
 from mbd_core.quasistatic import BallRow
 
 from .case import DmaCase
@@ -79,7 +84,8 @@ class TorqueRun:
     ``ball_axial_m`` (k,) ball 0's centre; ``settled`` (k,) bool, the part the means are taken over;
     ``ball_load_N`` (Z,) each ball's outer-race contact load averaged over it;
     ``drag_moment_Nm`` the mean moment of the balls' drag about the axis over it (in a steady state
-    the race torques balance it: T_inner + T_outer = M_drag)."""
+    the race torques balance it: T_inner + T_outer = M_drag); ``step_error`` the time-step error
+    estimate of the race torques (module docstring)."""
 
     t_s: np.ndarray
     inner_Nm: np.ndarray
@@ -94,6 +100,7 @@ class TorqueRun:
     drag_per_ball_N: float
     drag_moment_Nm: float
     steps: int
+    step_error: dict
 
     def mean_per_ball(self, which: str) -> float:
         return float(np.mean(getattr(self, f"{which}_Nm")[self.settled]) / self.n_balls)
@@ -103,7 +110,8 @@ class TorqueRun:
         return float(np.std(getattr(self, f"{which}_Nm")[self.settled]) / self.n_balls)
 
     def summary(self) -> dict:
-        out = {"steps": self.steps, "contact_load_N": self.contact_load_N,
+        out = {"steps": self.steps, "error_estimates": {"time_step": self.step_error},
+               "contact_load_N": self.contact_load_N,
                "contact_frequency_Hz": self.contact_frequency_Hz, "drag_per_ball_N": self.drag_per_ball_N,
                "drag_moment_Nm": self.drag_moment_Nm}
         for which in ("inner", "outer"):
@@ -148,4 +156,19 @@ def run_torque(case: DmaCase) -> TorqueRun:
     moment = -c * float(np.mean(np.sum(balls_q[..., 0] * balls_v[..., 1] - balls_q[..., 1] * balls_v[..., 0], axis=1)))
     return TorqueRun(t, torque[:, 0], torque[:, 1], np.hypot(x[:, 0], x[:, 1]), x[:, 2], settled,
                      loads.mean(axis=0), len(rows.elements), load, _contact_frequency_Hz(case, row, load), drag, moment,
-                     int(round((t[-1] - t[0]) / step)))
+                     int(round((t[-1] - t[0]) / step)), _torque_step_error(model, start, step, (inner, outer)))
+
+
+def _torque_step_error(model, state, step: float, races) -> dict:
+    """The time-step error of the mean race torques over a window from ``state`` (module docstring):
+    the larger relative error of the two races, and each race's."""
+    def figures(rec):
+        _, torque = axial_torques(model, rec, races)
+        return {"inner": float(torque[:, 0].mean()), "outer": float(torque[:, 1].mean())}
+
+    est = step_error(model, state, step, figures)
+    return {"race_torque": max(e.relative for e in est.values()),
+            **{f"{name}_race_torque": e.relative for name, e in est.items()},
+            "order": min(e.order for e in est.values()), "window_s": WINDOW_STEPS * step,
+            "what": f"relative time-step error of the mean race torques over {WINDOW_STEPS} steps from the run's end, "
+                    "repeated at h/2 and h/4 (Richardson)"}

@@ -30,7 +30,8 @@ import numpy as np
 __all__ = ["truncation_estimate"]
 
 
-def truncation_estimate(compliance_rz_m_per_N, residual_rz_m_per_N, direction_rz, load_N, approach_m) -> dict:
+def truncation_estimate(compliance_rz_m_per_N, residual_rz_m_per_N, direction_rz, load_N, approach_m,
+                        exponent: float = 1.5) -> dict:
     """The truncation estimate at the most loaded element (module docstring).
 
     Parameters
@@ -43,6 +44,9 @@ def truncation_estimate(compliance_rz_m_per_N, residual_rz_m_per_N, direction_rz
         Unit direction of each element's force on the ring in its section (radial, axial).
     load_N, approach_m : (Z,)
         Element loads and Hertz approaches (as in :class:`.results.RowLoads`).
+    exponent : float
+        e of the load–approach law Q ∝ δ^e: 1.5 for balls (the 1.5 above), 10/9 for rollers
+        (ISO/TS 16281).
 
     Returns
     -------
@@ -59,6 +63,6 @@ def truncation_estimate(compliance_rz_m_per_N, residual_rz_m_per_N, direction_rz
     k = int(np.argmax(q))
     r = float(max(n[k] @ R @ n[k], 0.0)) * float(q[k])  # R is positive semi-definite up to round-off
     w = float(n[k] @ C @ n[k]) * float(q[k])
-    eta, kappa = (1.5 * x / float(d[k]) if d[k] > 0.0 else 0.0 for x in (r, w))
+    eta, kappa = (exponent * x / float(d[k]) if d[k] > 0.0 else 0.0 for x in (r, w))
     return {"element": k, "residual_deflection_m": r, "hertz_approach_m": float(d[k]), "stiffness_ratio": eta,
             "ring_stiffness_ratio": kappa, "max_load": eta / (1.0 + kappa)}
