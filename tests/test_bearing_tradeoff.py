@@ -13,7 +13,6 @@ rings, under a combined load. Checks against references:
 - ``--tolerance`` runs the rung it names (its largest element load to 1e-6).
 """
 
-import csv
 import json
 import math
 
@@ -25,6 +24,7 @@ from cases.bearing_rings import with_fidelity
 from cases.bearing_solver import bearing_solver
 from cases.cli import main
 from cases.config import CaseError
+from tests.reference.tables import csv_rows
 
 BEARING = """
 [bearing]
@@ -119,16 +119,13 @@ def test_an_interrupted_ladder_measures_only_the_missing_rungs(folder, tmp_path,
     np.testing.assert_array_equal(fresh["outcome"].load_N, second[ladder_rungs[2].name]["outcome"].load_N)
 
 
-def _rows(path):
-    with open(path) as fh:
-        return list(csv.DictReader(fh))
 
 
 def test_quick_ladder_errors_and_the_reference(ladder_folder, folder):
-    rows = {r["rung"]: r for r in _rows(ladder_folder / "tradeoff.csv")}
+    rows = {r["rung"]: r for r in csv_rows(ladder_folder / "tradeoff.csv")}
     assert set(rows) == {"base", "bearing.rings=rigid", "rings.n_modes=5", "rings.raceway_harmonics=0",
                          "rings.element_load_shapes=True", "reference"}
-    loads = {r: np.array([float(x[f"{r}_N"]) for x in _rows(ladder_folder / "element_loads.csv")]) for r in rows}
+    loads = {r: np.array([float(x[f"{r}_N"]) for x in csv_rows(ladder_folder / "element_loads.csv")]) for r in rows}
     ref = loads["reference"]
     for name, q in loads.items():
         d = q - ref
@@ -159,7 +156,7 @@ def test_quick_ladder_errors_and_the_reference(ladder_folder, folder):
 
 
 def test_run_with_a_tolerance_runs_the_rung_it_names(ladder_folder, folder):
-    rows = [r for r in _rows(ladder_folder / "tradeoff.csv") if r["rung"] != "reference"]
+    rows = [r for r in csv_rows(ladder_folder / "tradeoff.csv") if r["rung"] != "reference"]
     tol = max(float(r["max_load"]) for r in rows) * 1.01
     meeting = [r for r in rows if float(r["max_load"]) <= tol]
     fastest = min(meeting, key=lambda r: float(r["wall_s"]))

@@ -22,7 +22,7 @@ from cases.bearing_solver import bearing_solver
 from cases.cli import main
 from mbd_core.quasistatic import RingLoad
 
-from test_bearing_tradeoff import BEARING
+from tests.test_bearing_tradeoff import BEARING
 
 
 def _write(folder, bearing_text, extra=""):

@@ -13,7 +13,6 @@ The quick ladder measures the traction-models study's scene (κ = 0.030, 267 N, 
 - ``--tolerance`` picks the fastest rung meeting it and runs the case's own study at it.
 """
 
-import csv
 import json
 import math
 
@@ -26,11 +25,9 @@ from cases.dma.presets import PRESETS
 from cases.dma.torque import ball_row, run_torque
 from cases.fidelity import rungs
 from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
+from tests.reference.tables import csv_rows
 
 
-def _rows(path):
-    with open(path) as fh:
-        return list(csv.DictReader(fh))
 
 
 @pytest.fixture(scope="module")
@@ -48,14 +45,14 @@ def _torques(settings):
 def test_quick_ladder_errors_against_direct_runs(ladder_folder):
     case = PRESETS["dma-torque"]
     ladder = fidelity.ladder(case, quick=True)
-    rows = {r["rung"]: r for r in _rows(ladder_folder / "tradeoff.csv")}
+    rows = {r["rung"]: r for r in csv_rows(ladder_folder / "tradeoff.csv")}
     assert set(rows) == {"base", "traction.strips=0", "traction.blend_m_s=0.001", "analysis.step_factor=0.5",
                          "reference"}
     ref_t, ref_run = _torques({**ladder.base, **ladder.reference})
     base_t, _ = _torques(dict(ladder.base))
     assert float(rows["base"]["race_torque"]) == pytest.approx(np.max(np.abs(base_t - ref_t) / np.abs(ref_t)),
                                                                rel=1e-6, abs=1e-9)
-    loads = {r: np.array([float(x[f"{r}_N"]) for x in _rows(ladder_folder / "ball_loads.csv")]) for r in rows}
+    loads = {r: np.array([float(x[f"{r}_N"]) for x in csv_rows(ladder_folder / "ball_loads.csv")]) for r in rows}
     np.testing.assert_allclose(loads["reference"], ref_run.ball_load_N, rtol=1e-7)
     for name, q in loads.items():
         d = q - loads["reference"]
@@ -78,13 +75,13 @@ def test_ball_loads_are_the_quasi_static_solution(ladder_folder):
     static = solve_load_distribution(Bearing("dma", (row,)), RingLoad(Fz_N=267.0)).rows[0].load_N
     # 24 balls alike under pure thrust: the dynamic means equal the static load within 1 % (the
     # balls orbit and roll; their centrifugal force m·Ω²·r_m is 4e-4 N against 25 N)
-    loads = np.array([float(x["reference_N"]) for x in _rows(ladder_folder / "ball_loads.csv")])
+    loads = np.array([float(x["reference_N"]) for x in csv_rows(ladder_folder / "ball_loads.csv")])
     assert loads == pytest.approx(np.asarray(static), rel=0.01)
     assert math.isclose(float(np.mean(static)), 25.1, rel_tol=0.01)
 
 
 def test_run_with_a_tolerance_runs_the_rung_it_names(ladder_folder, tmp_path):
-    rows = [r for r in _rows(ladder_folder / "tradeoff.csv") if r["rung"] != "reference"]
+    rows = [r for r in csv_rows(ladder_folder / "tradeoff.csv") if r["rung"] != "reference"]
     meeting = [r for r in rows if float(r["race_torque"]) <= 0.01]
     fastest = min(meeting, key=lambda r: float(r["wall_s"]))
     out = tmp_path / "run"

@@ -15,7 +15,6 @@ Checks against references:
   (1e-6), and that rung is the fastest of those whose error meets the tolerance.
 """
 
-import csv
 import dataclasses
 import json
 
@@ -26,6 +25,7 @@ from cases.cli import main
 from cases.config import dumps_case
 from cases.slewing import fidelity
 from cases.slewing.presets import PRESETS
+from tests.reference.tables import csv_rows
 
 
 @pytest.fixture(scope="module")
@@ -43,18 +43,15 @@ def ladder_folder(scene_file):
     return out
 
 
-def _rows(path):
-    with open(path) as fh:
-        return list(csv.DictReader(fh))
 
 
 def test_quick_ladder_outputs_and_errors(ladder_folder):
-    rows = {r["rung"]: r for r in _rows(ladder_folder / "tradeoff.csv")}
+    rows = {r["rung"]: r for r in csv_rows(ladder_folder / "tradeoff.csv")}
     assert set(rows) == {"base", "top.kind=rigid", "top.n_modes=5", "top.groove_harmonics=-1",
                          "top.ball_load_shapes=True", "reference"}
     for name in ("max_load", "load_max", "load_rms", "tau_max", "contact_angle_deg", "unloaded"):
         assert float(rows["reference"][name]) == 0.0
-    loads = {r: np.array([float(x[f"{r}_N"]) for x in _rows(ladder_folder / "ball_loads.csv")]) for r in rows}
+    loads = {r: np.array([float(x[f"{r}_N"]) for x in csv_rows(ladder_folder / "ball_loads.csv")]) for r in rows}
     ref = loads["reference"]
     for name, q in loads.items():
         d = q - ref
@@ -79,7 +76,7 @@ def test_quick_ladder_outputs_and_errors(ladder_folder):
 
 
 def test_run_with_a_tolerance_takes_the_fastest_rung_meeting_it(ladder_folder, scene_file):
-    rows = [r for r in _rows(ladder_folder / "tradeoff.csv") if r["rung"] != "reference"]
+    rows = [r for r in csv_rows(ladder_folder / "tradeoff.csv") if r["rung"] != "reference"]
     meeting = [r for r in rows if float(r["max_load"]) <= 0.15]
     fastest = min(meeting, key=lambda r: float(r["wall_s"]))
     out = scene_file.parent / "run15"
@@ -100,7 +97,7 @@ def test_impossible_tolerance_stops_before_any_work(scene_file, tolerance, capsy
 
 
 def test_tolerance_no_rung_meets_names_the_best(ladder_folder, scene_file, capsys):
-    rows = [r for r in _rows(ladder_folder / "tradeoff.csv") if r["rung"] != "reference"]
+    rows = [r for r in csv_rows(ladder_folder / "tradeoff.csv") if r["rung"] != "reference"]
     best = min(rows, key=lambda r: float(r["max_load"]))
     out = scene_file.parent / "run-tight"
     assert main(["run", str(scene_file), "--tolerance", "1e-6", "--out", str(out)]) == 2
@@ -122,7 +119,7 @@ def test_auto_on_the_undulated_ring_is_modal_and_meets_the_reference(ladder_fold
     decision = summary["fidelity_decisions"][0]
     assert decision["choice"].startswith("top.kind = modal") and "ball_load_shapes = True" in decision["choice"]
     assert decision["rigid_load_spread"] > 0.5 and decision["load_change_bound"] > 0.01
-    ref = max(float(r["reference_N"]) for r in _rows(ladder_folder / "ball_loads.csv"))
+    ref = max(float(r["reference_N"]) for r in csv_rows(ladder_folder / "ball_loads.csv"))
     assert summary["max_ball_load_N"] == pytest.approx(ref, rel=0.005)
     assert summary["error_estimates"]["modal_truncation"]["max_load"] < 1e-6  # the basis holds the response
 

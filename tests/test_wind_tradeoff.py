@@ -8,7 +8,6 @@ here from the written roller loads by their definitions (cases.fidelity.ERROR_NA
 
 from __future__ import annotations
 
-import csv
 import json
 
 import numpy as np
@@ -21,11 +20,9 @@ from cases.wind.presets import preset
 from cases.wind.scene import G_M_S2, rows
 from cases.wind.spectrum import load_cases
 from mbd_core.quasistatic import Bearing, RingLoad, solve_load_distribution
+from tests.reference.tables import csv_rows
 
 
-def _rows(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
 
 
 @pytest.fixture(scope="module")
@@ -46,13 +43,13 @@ def test_rigid_rung_loads_match_the_quasi_static_distribution(ladder_folder):
                                   RingLoad(Fx_N=f[0], Fy_N=f[1] - INNER_RING_MASS_KG * G_M_S2, Fz_N=f[2],
                                            Mx_Nm=f[3], My_Nm=f[4]))
     qs = max(float(r.load_N.max()) for r in res.rows)
-    base = next(r for r in _rows(ladder_folder / "tradeoff.csv") if r["rung"] == "base")
+    base = next(r for r in csv_rows(ladder_folder / "tradeoff.csv") if r["rung"] == "base")
     assert float(base["max_load_N"]) == pytest.approx(qs, rel=5e-3)
 
 
 def test_errors_are_those_of_the_written_roller_loads(ladder_folder):
-    table = {r["rung"]: r for r in _rows(ladder_folder / "tradeoff.csv")}
-    loads = _rows(ladder_folder / "roller_loads.csv")
+    table = {r["rung"]: r for r in csv_rows(ladder_folder / "tradeoff.csv")}
+    loads = csv_rows(ladder_folder / "roller_loads.csv")
     assert len(loads) == 98 + 94 + 94
     assert {r["row"] for r in loads} == {"radial", "front thrust", "rear thrust"}
     ref = np.array([float(x["reference_N"]) for x in loads])
@@ -101,7 +98,7 @@ def test_tolerance_chooses_the_fastest_rung_meeting_it(ladder_folder):
     # The ladder is cached by the fixture's run; no rung runs again.
     from cases.tradeoff import choose_fidelity
 
-    table = [r for r in _rows(ladder_folder / "tradeoff.csv") if r["rung"] != "reference"]
+    table = [r for r in csv_rows(ladder_folder / "tradeoff.csv") if r["rung"] != "reference"]
     meeting = [r for r in table if float(r["max_load"]) <= 0.01]
     fastest = min(meeting, key=lambda r: float(r["wall_s"]))
     said = []
@@ -167,7 +164,7 @@ def test_auto_rings_bound_tracks_the_rigid_rung_error(ladder_folder):
     assert resolved.rollers.n_slices == case.rollers.n_slices
     assert resolved.bodies.rings == "modal" and resolved.bodies.n_modes == MODAL_N_MODES
     assert resolved.bodies.cages == "rigid" and cages["body"] == "cages" and "no raceway load" in cages["reason"]
-    base = next(r for r in _rows(ladder_folder / "tradeoff.csv") if r["rung"] == "base")
+    base = next(r for r in csv_rows(ladder_folder / "tradeoff.csv") if r["rung"] == "base")
     assert base["bodies_rings"] == "rigid"
     true_error = float(base["max_load"])
     assert true_error / 3.0 <= rings["load_change_bound"] <= 3.0 * true_error
