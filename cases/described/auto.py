@@ -10,13 +10,11 @@ For each ring, in three steps:
 2. **Probe** (a reduction with :data:`PROBE_MODES` modes on the file's mesh and support): the ring's
    compliance to radial and axial forces at every element of that row, spread over the raceway
    patch element load shapes use (:func:`cases.bearing_ring_reduction.probe_compliance_m_per_N`).
-   With it, the raceway's static deflection d_k along each element's contact normal under all the rigid
-   element forces (held at its support, so bolts and clamps are in it). The elements' approaches
-   then change by up to Δr = max d − min d between them (a shared part moves the ring and leaves
-   the loads); against the approach δ of the most loaded element this is η = e·Δr/δ (Hertz:
-   dQ/dδ = e·Q/δ, e = 1.5 for balls, 10/9 for rollers, ISO/TS 16281; Q/δ grows with the load, so
-   no element's load changes by more than η·Q_max), and η/(1 + η) bounds that change relative
-   to the largest load. Below the ring's share of the tolerance: rigid. (A ring of revolution under
+   With it, the raceway's static deflection along each element's contact normal under all the
+   rigid element forces (held at its support, so bolts and clamps are in it), and from the
+   difference between elements against the approach of the most loaded one the bound η/(1 + η) on
+   the change of the loads (:func:`mbd_core.quasistatic.estimates.deflection_bound`; e = 1.5 for
+   balls, 10/9 for rollers, ISO/TS 16281). Below the ring's share of the tolerance: rigid. (A ring of revolution under
    equal element loads is not enough: the bolts alone spread a thrust-loaded ring's loads.) A
    four-point or crossed roller row has its contacts on the two flanks of its groove and its
    raceway sample at the apex, where no probe patch fits: its ring is not probed and stays modal
@@ -42,6 +40,7 @@ import numpy as np
 
 from mbd_core.multibody.bearings import LINE_EXPONENT
 from mbd_core.quasistatic import solve_load_distribution
+from mbd_core.quasistatic.estimates import deflection_bound
 from mbd_core.quasistatic.rows import RollerRow
 
 from ..bearing_ring_reduction import contact_normals_rz, element_patch_m, probe_compliance_m_per_N, two_sided
@@ -56,8 +55,6 @@ AUTO_TOLERANCE = 0.01
 PROBE_MODES = 5
 #: the modal choice (step 3)
 MODAL_CHOICE = {"n_modes": 10, "raceway_harmonics": 0, "element_load_shapes": True}
-#: Hertz exponent of the load–approach law, Q ∝ δ^e
-BALL_EXPONENT = 1.5
 
 
 def most_loaded_case(desc):
@@ -91,18 +88,10 @@ def _decide(desc, name: str, m, res, tolerance: float) -> tuple[dict | None, dic
                     "rigid_max_element_load_N": float(q.max()), "tolerance": tolerance}
     C = probe_compliance_m_per_N(m, desc.bearing, row.name, PROBE_MODES)
     n = contact_normals_rz(m, row, loaded.contact_angle_rad)
-    # deflection of the raceway along each element's normal under all the rigid element forces
-    forces = (n * q[:, None]).ravel()
-    d = (C @ forces).reshape(-1, 2)
-    d = np.sum(d * n, axis=1)
-    on = q > 0.0
-    dr = float(d[on].max() - d[on].min())
-    exponent = LINE_EXPONENT if isinstance(row, RollerRow) else BALL_EXPONENT
-    eta = exponent * dr / delta
-    bound = eta / (1.0 + eta)
+    test = deflection_bound(C, n, q, loaded.approach_m, LINE_EXPONENT if isinstance(row, RollerRow) else 1.5)
+    dr, eta, bound = test["deflection_difference_m"], test["stiffness_ratio"], test["load_change_bound"]
     figures = {"row": row.name, "rigid_max_element_load_N": float(q.max()), "rigid_min_element_load_N": float(q.min()),
-               "hertz_approach_m": delta, "deflection_difference_m": dr, "stiffness_ratio": eta,
-               "load_change_bound": bound, "tolerance": tolerance}
+               "hertz_approach_m": delta, **test, "tolerance": tolerance}
     where = (f"under rigid rings the {row.name} row's element loads run from {q.min():.4g} to {q.max():.4g} N; "
              f"under them the {name} ring's raceway deflects by up to {1e6 * dr:.3g} µm more at one loaded element "
              f"than at another (its static response, held at its support), against the approach "

@@ -15,13 +15,11 @@ each equilibrium of the undulation study), for each race left to it, in three st
    narrower than they are): the race's compliance to radial and axial ball forces on its groove
    patch at every ball — the floating top structure with inertia relief, the bottom race held at
    its bolt patches (the probe of :class:`cms_reduction.RacewaySpec`). With it, the race's static
-   deflection d_k along each ball's contact normal under all the rigid ball forces. The balls'
-   approaches then change by up to Δr = max d − min d between them (a shared part moves the race
-   and leaves the loads); against the Hertz approach δ of the most loaded ball this is
-   η = 1.5·Δr/δ (Hertz: dQ/dδ = 1.5 Q/δ, and Q/δ grows with the load, so no ball's load changes by
-   more than η·Q_max), and η/(1 + η) bounds the load change it can cause when the approaches are
-   imposed. Below the tolerance: rigid. When both races decide, each takes half the tolerance
-   (their deflections add).
+   deflection along each ball's contact normal under all the rigid ball forces, and from the
+   difference between balls against the Hertz approach of the most loaded one the bound η/(1 + η)
+   on the change of the loads (:func:`mbd_core.quasistatic.estimates.deflection_bound`). Below the
+   tolerance: rigid. When both races decide, each takes half the tolerance (their deflections
+   add).
 3. **Modal**, with the static shapes of the ball forces at the balls' places on the groove patch
    s = 0.3·D (``ball_load_shapes``): the quasi-static equilibrium is then the finite-element solution
    of the ring under the ball forces (Ritz: their static response lies in the basis, up to what
@@ -40,6 +38,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
+from mbd_core.quasistatic.estimates import deflection_bound
 
 from . import scene as scene_mod
 from .case import SlewingCase
@@ -79,13 +79,10 @@ def _probe_compliance_m_per_N(case: SlewingCase, race: str) -> np.ndarray:
     return np.asarray(build(probe, probe_all_balls=True).metadata["probe_compliance_m_per_N"], float)
 
 
-def _deflections_m(case: SlewingCase, race: str, row, C: np.ndarray) -> np.ndarray:
-    """(Z,) the race's static deflection along each ball's contact normal under all the rigid ball
-    forces (each along its normal at its loaded angle)."""
+def _contact_normals(case: SlewingCase, race: str, row) -> np.ndarray:
+    """(Z, 2) each ball's contact normal on ``race`` at its loaded angle."""
     groove = case.geometry.section().groove(race, case.geometry.pitch_diameter_m)
-    n = np.array([groove.direction(math.degrees(a)) for a in np.asarray(row.contact_angle_rad, float)])
-    d = (C @ (n * np.asarray(row.load_N, float)[:, None]).ravel()).reshape(-1, 2)
-    return np.sum(d * n, axis=1)
+    return np.array([groove.direction(math.degrees(a)) for a in np.asarray(row.contact_angle_rad, float)])
 
 
 def _settings_text(race: str, fidelity: dict) -> str:
@@ -106,12 +103,10 @@ def _decide(case: SlewingCase, race: str, row, tolerance: float) -> tuple[dict, 
                   "floating ring of revolution deforms alike under every ball, which leaves the loads equal "
                   "(W / (Z sin α)); rigid")
     else:
-        d = _deflections_m(case, race, row, _probe_compliance_m_per_N(case, race))
-        on = q > 0.0
-        dr = float(d[on].max() - d[on].min())
-        eta = 1.5 * dr / float(row.approach_m[k])
-        bound = eta / (1.0 + eta)
-        figures.update(deflection_difference_m=dr, stiffness_ratio=eta, load_change_bound=bound)
+        test = deflection_bound(_probe_compliance_m_per_N(case, race), _contact_normals(case, race, row), q,
+                                row.approach_m)
+        dr, eta, bound = test["deflection_difference_m"], test["stiffness_ratio"], test["load_change_bound"]
+        figures.update(test)
         held = "" if race == "top" else ", held at its bolts,"
         where = (f"the ball loads under rigid races vary by {100 * spread:.3g} %; under them the {name}{held} "
                  f"deflects by up to {1e6 * dr:.3g} µm more at one loaded ball than at another (its static "

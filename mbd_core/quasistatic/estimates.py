@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["truncation_estimate"]
+__all__ = ["truncation_estimate", "deflection_bound"]
 
 
 def truncation_estimate(compliance_rz_m_per_N, residual_rz_m_per_N, direction_rz, load_N, approach_m,
@@ -66,3 +66,26 @@ def truncation_estimate(compliance_rz_m_per_N, residual_rz_m_per_N, direction_rz
     eta, kappa = (exponent * x / float(d[k]) if d[k] > 0.0 else 0.0 for x in (r, w))
     return {"element": k, "residual_deflection_m": r, "hertz_approach_m": float(d[k]), "stiffness_ratio": eta,
             "ring_stiffness_ratio": kappa, "max_load": eta / (1.0 + kappa)}
+
+
+def deflection_bound(compliance_m_per_N, direction_rz, load_N, approach_m, exponent: float = 1.5) -> dict:
+    """How much a ring's deflection under the elements' loads can change them (``auto``'s test).
+
+    The ring's static deflection along each element's contact direction under all the element
+    forces, d = Nᵀ C N Q (C the (2Z, 2Z) compliance to radial and axial forces at the Z elements, N
+    the directions, Q the loads of a rigid-ring solution), changes the elements' approaches by up to
+    Δr = max d − min d over the loaded ones (a part shared by all moves the ring and leaves the
+    loads). Against the approach δ of the most loaded element, η = e·Δr/δ (Q ∝ δ^e: dQ/dδ = e·Q/δ;
+    Q/δ grows with the load, so no element's load changes by more than η·Q_max to first order), and
+    η/(1 + η) bounds the change relative to the largest load once the approaches are imposed.
+
+    Returns ``deflection_difference_m`` Δr, ``stiffness_ratio`` η and ``load_change_bound``.
+    """
+    n = np.asarray(direction_rz, float).reshape(-1, 2)
+    q = np.asarray(load_N, float)
+    d = np.sum((np.asarray(compliance_m_per_N, float) @ (n * q[:, None]).ravel()).reshape(-1, 2) * n, axis=1)
+    on = q > 0.0
+    dr = float(d[on].max() - d[on].min()) if on.any() else 0.0
+    delta = float(np.asarray(approach_m, float)[int(np.argmax(q))])
+    eta = exponent * dr / delta if delta > 0.0 else 0.0
+    return {"deflection_difference_m": dr, "stiffness_ratio": eta, "load_change_bound": eta / (1.0 + eta)}
