@@ -118,5 +118,12 @@ def uses_dynamics(case: CrbCase) -> bool:
     return False
 
 
+#: ``error_estimates`` of every run: the model has no discretisation whose error a run could estimate
+ERROR_ESTIMATES = {"why_none": "closed form contact by contact (roller loads from one root solve to 1e-13, films "
+                               "and losses from fitted formulas): no mesh, modes, slices or step to estimate an "
+                               "error of; its model error is the comparison with the catalogue model"}
+
+
 def run_study(case: CrbCase, out, progress=None) -> None:
     STUDIES[case.study.kind].run(case, out, progress)
+    out.summary["error_estimates"] = dict(ERROR_ESTIMATES)
