@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Knob", "Ladder", "Rung", "Outcome", "ToleranceError", "ERROR_NAMES", "QUASI_STATIC_ERRORS", "FIGURE_ERRORS",
+__all__ = ["Knob", "fixed_knob", "Ladder", "Rung", "Outcome", "ToleranceError", "ERROR_NAMES", "QUASI_STATIC_ERRORS", "FIGURE_ERRORS",
            "rungs", "rung_errors", "case_tables",
            "choose_rung", "parse_tolerance", "observed_order"]
 
@@ -72,6 +72,11 @@ class Knob:
     def __post_init__(self) -> None:
         if len(self.values) < 1 or len(set(self.values)) != len(self.values):
             raise ValueError(f"knob {self.key}: values must be distinct, got {self.values}")
+
+
+def fixed_knob(key: str, value, label: str) -> Knob:
+    """A setting every rung of a ladder shares (shown in its table, not varied)."""
+    return Knob(key, (value,), label)
 
 
 @dataclass(frozen=True)

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..fidelity import Knob, Ladder, Outcome, case_tables
+from ..fidelity import Knob, Ladder, Outcome, case_tables, fixed_knob
 from .case import DmaCase
 from .studies import TRACTION_MODELS
 from .torque import run_torque
@@ -48,11 +48,6 @@ LOADS_FILE = "ball_loads.csv"
 _ERRORS = ("race_torque", "max_load", "load_max", "load_rms", "unloaded")
 
 
-def _single(key: str, value, label: str) -> Knob:
-    """A setting every rung shares (shown in the table, not varied)."""
-    return Knob(key, (value,), label)
-
-
 def ladder(case: DmaCase, quick: bool = False) -> Ladder:
     """The ladder of ``case`` (module docstring; ``quick``: 0 or 10 strips, two blends, the stable
     step or half of it, 0.02 s)."""
@@ -64,7 +59,7 @@ def ladder(case: DmaCase, quick: bool = False) -> Ladder:
                  "1 / blend speed (s/m)")
     step = Knob("analysis.step_factor", (1.0, 0.5) if quick else (1.0, 0.5, 0.25), "share of the stable step",
                 lambda f: 1.0 / f, "1 / step factor")
-    duration = (_single("analysis.duration_s", 0.02, "simulated time (s)") if quick else
+    duration = (fixed_knob("analysis.duration_s", 0.02, "simulated time (s)") if quick else
                 Knob("analysis.duration_s", (0.02, 0.05, 0.1), "simulated time (s)", float, "simulated time (s)"))
     knobs = [strips, *([blend] if blended else []), step, duration]
     base = {"traction.strips": 10 if quick else 20, "analysis.step_factor": 1.0,

@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..fidelity import Knob, Ladder, Outcome, case_tables
+from ..fidelity import Knob, Ladder, Outcome, case_tables, fixed_knob
 from . import dynamic
 from .bodies import peak_stresses
 from .case import WindCase
@@ -64,11 +64,6 @@ _ERRORS = ("max_load", "load_max", "load_rms", "unloaded", "roller_speed", "cage
            "cage_force_peak", "ring_von_mises")
 
 
-def _single(key: str, value, label: str) -> Knob:
-    """A setting every rung shares (shown in the table, not varied)."""
-    return Knob(key, (value,), label)
-
-
 def ladder(case: WindCase, quick: bool = False) -> Ladder:
     """The ladder of ``case`` (``quick``: rigid or modal rings at 8 modes on coarse meshes, 5 or 10
     slices, two steps, two transition speeds, implicit or explicit friction, over 0.06 s)."""
@@ -77,14 +72,14 @@ def ladder(case: WindCase, quick: bool = False) -> Ladder:
     if quick:
         modal = {"bodies.rings": "modal"}
         knobs = [Knob("bodies.rings", ("rigid", "modal"), "rings"),
-                 _single("bodies.cages", "rigid", "cages"),
-                 *(_single(k, v, k.split(".")[1]) for k, v in QUICK_BODIES.items()),
+                 fixed_knob("bodies.cages", "rigid", "cages"),
+                 *(fixed_knob(k, v, k.split(".")[1]) for k, v in QUICK_BODIES.items()),
                  Knob("rollers.n_slices", (5, 10), "slices per roller", float, "slices per roller"),
                  Knob("analysis.step_factor", (1.0,) if adams else (1.0, 0.5), "share of the stable step",
                       lambda f: 1.0 / f, "1 / step factor"),
                  Knob("contact.v_static_m_s", (0.3, 0.1), "friction transition speed (m/s)", lambda v: 1.0 / v,
                       "1 / transition speed (s/m)", implies={v: {"contact.v_dynamic_m_s": 2 * v} for v in (0.3, 0.1)}),
-                 _single("contact.v_dynamic_m_s", 0.6, "friction: μ_dynamic from (m/s)"),
+                 fixed_knob("contact.v_dynamic_m_s", 0.6, "friction: μ_dynamic from (m/s)"),
                  Knob("contact.implicit_friction", (True, False), "implicit friction")]
         base = {"bodies.rings": "rigid", **{k.key: k.values[0] for k in knobs if k.key != "bodies.rings"}}
         reference = {**modal, "rollers.n_slices": 10, "analysis.step_factor": 1.0 if adams else 0.5,
@@ -97,15 +92,15 @@ def ladder(case: WindCase, quick: bool = False) -> Ladder:
         knobs = [Knob("bodies.rings", ("rigid", "modal"), "rings"),
                  Knob("bodies.cages", ("rigid", "modal"), "cages"),
                  Knob("bodies.n_modes", (8, 20, 40), "modes per body", float, "modes n"),
-                 _single("bodies.bolts", b.bolts, "bolts"),
-                 _single("bodies.ring_element_size_m", b.ring_element_size_m, "ring element size (m)"),
-                 _single("bodies.cage_element_size_m", b.cage_element_size_m, "cage element size (m)"),
+                 fixed_knob("bodies.bolts", b.bolts, "bolts"),
+                 fixed_knob("bodies.ring_element_size_m", b.ring_element_size_m, "ring element size (m)"),
+                 fixed_knob("bodies.cage_element_size_m", b.cage_element_size_m, "cage element size (m)"),
                  Knob("rollers.n_slices", (5, 10, 20), "slices per roller", float, "slices per roller"),
                  Knob("analysis.step_factor", (1.0,) if adams else (1.0, 0.5, 0.25), "share of the stable step",
                       lambda f: 1.0 / f, "1 / step factor"),
                  Knob("contact.v_static_m_s", speeds, "friction transition speed (m/s)", lambda v: 1.0 / v,
                       "1 / transition speed (s/m)", implies={v: {"contact.v_dynamic_m_s": 2 * v} for v in speeds}),
-                 _single("contact.v_dynamic_m_s", 0.6, "friction: μ_dynamic from (m/s)"),
+                 fixed_knob("contact.v_dynamic_m_s", 0.6, "friction: μ_dynamic from (m/s)"),
                  Knob("contact.implicit_friction", (True, False), "implicit friction")]
         # the sweeps vary around modal rings: the rigid rings' error dwarfs every other knob's
         base = {"bodies.rings": "modal", "bodies.cages": "rigid", "bodies.n_modes": 20,
@@ -117,8 +112,8 @@ def ladder(case: WindCase, quick: bool = False) -> Ladder:
         reference = {**modal, "bodies.n_modes": 40, "rollers.n_slices": 20,
                      "analysis.step_factor": 1.0 if adams else 0.25, "contact.v_static_m_s": 0.03,
                      "contact.v_dynamic_m_s": 0.06}
-    knobs = [*knobs, _single("analysis.duration_s", duration, "simulated window (s)"),
-             _single("analysis.settle_s", settle, "settling left out (s)")]
+    knobs = [*knobs, fixed_knob("analysis.duration_s", duration, "simulated window (s)"),
+             fixed_knob("analysis.settle_s", settle, "settling left out (s)")]
     base.update({"analysis.duration_s": duration, "analysis.settle_s": settle})
     return Ladder(tuple(knobs), base, reference, combined, primary="max_load",
                   primary_label="largest roller load (mean over the window)",
