@@ -37,7 +37,7 @@ from pathlib import Path
 from fem_rings.cache import process_alive
 
 from .config import CaseError
-from .signals import held
+from .signals import at_stop, held
 
 __all__ = ["MARKER", "OutputTargetError", "atomic_folder", "check_output_target", "is_results_folder", "marker_entry",
            "marker_source", "open_collection", "recover"]
@@ -51,6 +51,8 @@ MARKER_FORMAT = "flexbearing-results/1"
 STALE_AGE_S = 7 * 24 * 3600.0
 
 _TMP, _OLD = "fb-tmp", "fb-old"
+#: temporary folders of this process not yet swapped in or removed (:func:`_remove_unfinished`)
+_UNFINISHED: set[Path] = set()
 _LEFTOVER = re.compile(r"^\.(?P<name>.+)\.(?P<kind>fb-tmp|fb-old)-(?P<pid>\d+)-[0-9a-f]{8}$")
 
 
@@ -247,8 +249,10 @@ def atomic_folder(out_dir, name: str = "", source: str | None = None):
     out = check_output_target(out_dir)
     out.parent.mkdir(parents=True, exist_ok=True)
     recover(out.parent)
-    tmp = _make_folder(_leftover_name(out, _TMP))
+    tmp = _leftover_name(out, _TMP)
+    _UNFINISHED.add(tmp)  # before it exists: a stop right after mkdir is still cleaned up
     try:
+        _make_folder(tmp)
         yield tmp
         _write_marker(tmp, name or out.name, source)
         _swap_in(tmp, out)
@@ -256,3 +260,16 @@ def atomic_folder(out_dir, name: str = "", source: str | None = None):
         with held():
             shutil.rmtree(tmp, ignore_errors=True)
         raise
+    finally:
+        _UNFINISHED.discard(tmp)
+
+
+def _remove_unfinished() -> None:
+    """Delete the temporary folders of this process that no block finished: a stop signal that came
+    between their creation and the ``with`` block that owns them (:func:`cases.signals.at_stop`)."""
+    for tmp in list(_UNFINISHED):
+        shutil.rmtree(tmp, ignore_errors=True)
+        _UNFINISHED.discard(tmp)
+
+
+at_stop(_remove_unfinished)

@@ -11,17 +11,26 @@ A signal that arrives while Python runs a finaliser or weakref callback (an impo
 clean-up, a garbage-collected object's ``__del__``) raises :class:`Terminated` where Python cannot
 let it propagate: it would print "Exception ignored … Traceback" and lose the stop. The hook on
 such exceptions raises it again from a short timer (SIGALRM), once the finaliser is done.
+
+A stop that lands between two steps of a cleanup's set-up (a temporary folder made, the block that
+removes it not yet entered) would skip that cleanup. Code that makes such things registers a
+function with :func:`at_stop`; it runs once the stop has unwound the stack, before the process
+ends (and at any normal exit).
 """
 
 from __future__ import annotations
 
+import atexit
 import os
 import signal
 import sys
 import threading
 from contextlib import contextmanager
 
-__all__ = ["Terminated", "held", "install"]
+__all__ = ["Terminated", "at_stop", "held", "install"]
+
+#: functions run when a stop has unwound the stack, or at exit (:func:`at_stop`)
+_AT_STOP: list = []
 
 _STOP = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n))
 
@@ -41,9 +50,30 @@ def _raise(signum, frame):
     raise Terminated(signum)
 
 
+def at_stop(fn) -> None:
+    """Run ``fn()`` (no arguments) when a stop signal ends the process, after the stack has unwound,
+    and at a normal exit: the last chance to remove what a run left unfinished. Exceptions of
+    ``fn`` (other than a further stop) are ignored."""
+    if fn not in _AT_STOP:
+        _AT_STOP.append(fn)
+
+
+def _run_at_stop() -> None:
+    with held():
+        for fn in _AT_STOP:
+            try:
+                fn()
+            except Exception:  # noqa: BLE001 — a cleanup that fails must not hide the stop
+                pass
+
+
+atexit.register(_run_at_stop)
+
+
 def _excepthook(kind, value, tb, _previous=sys.excepthook):
     if not isinstance(value, Terminated):
         return _previous(kind, value, tb)
+    _run_at_stop()
     print(f"flexbearing: {value}; unfinished results removed", file=sys.stderr)
     sys.stderr.flush()
     sys.stdout.flush()

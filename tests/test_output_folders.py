@@ -220,6 +220,31 @@ def test_a_stop_signal_inside_a_finaliser_still_stops_the_run(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["results"]
 
 
+def test_a_stop_before_the_with_block_starts_still_removes_the_temporary_folder(tmp_path):
+    """The folder is made when the block is entered; a stop handled right after (in the context
+    manager's own code, before the ``with`` block that removes it on errors is set up) never reaches
+    that cleanup. Here the context manager is entered by hand and the block never set up: the folder
+    must still go, the old result stay, and the process end by the signal."""
+    _write(tmp_path / "results", "old")
+    code = (
+        "import os, signal, sys, time\n"
+        "from cases import signals\n"
+        "from cases.outdir import atomic_folder\n"
+        "signals.install()\n"
+        "cm = atomic_folder(sys.argv[1])\n"
+        "tmp = cm.__enter__()\n"
+        "assert tmp.is_dir()\n"
+        "os.kill(os.getpid(), signal.SIGTERM)\n"
+        "time.sleep(30)\n"
+    )
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]))
+    proc = subprocess.run([sys.executable, "-c", code, str(tmp_path / "results")], env=env, capture_output=True,
+                          text=True, timeout=60)
+    assert proc.returncode == -signal.SIGTERM and "stopped by SIGTERM" in proc.stderr, proc.stderr
+    assert _value(tmp_path / "results") == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["results"]
+
+
 @pytest.mark.parametrize("name", ["SIGTERM", "SIGHUP", "SIGINT"])
 def test_stop_signals_unwind_like_ctrl_c(tmp_path, name):
     """A stop signal in the middle of writing: the temporary folder is removed, the old result
