@@ -213,7 +213,8 @@ def mesh_ring(profile: Profile, spec: MeshSpec, pockets: CagePockets | None = No
                                "mesh finer")
     leftover = "pocket" if pockets is not None else ("other" if spec.solid is not None else None)
     facet_sets = classify_boundary(mesh, profile, spec, leftover)
-    missing = [n for n in profile.names if n not in facet_sets]
+    on_axis = {s.name for s in profile.segments if isinstance(s, Line) and max(s.start[0], s.end[0]) == 0.0}
+    missing = [n for n in profile.names if n not in facet_sets and n not in on_axis]  # the axis sweeps no face
     if missing and spec.solid is not None:  # the section's faces the solid leaves out (teeth cut the outer face)
         log.info("%s: the STEP solid has no facets on the section's segments %s", profile.name, missing)
     elif missing:

@@ -1,0 +1,125 @@
+"""Campbell diagram of a spinning modal body: whirl frequencies against speed.
+
+At each speed Ω the spinning-frame equations (:mod:`.spin`) M η̈ + C η̇ + K η = 0 are solved as a
+first-order eigenproblem; an eigenvalue λ = −σ + i ω_r (ω_r > 0) is a mode of frequency ω_r seen
+from the spinning body, damping ratio σ/|λ|.
+
+Fixed frame. On a body of revolution every mode is a pattern of n nodal diameters turning round
+the axis (or standing, n = 0). Its angular order n follows from the mode vector v and the rotation
+generator Q of :mod:`.spin`: n = −Im(vᴴ Q v) / vᴴ I6 v, an integer for an exact body of revolution
+(a signed one: the sense of the pattern's travel), close to one for a meshed one. A pattern
+e^{i(nθ + ω_r t)} in the spinning frame, θ = θ_f − Ωt, is e^{i(nθ_f + (ω_r − nΩ) t)} in the fixed
+frame: frequency |ω_r − nΩ|, turning at −(ω_r − nΩ)/n, i.e. with the spin (forward) when that is
+positive. Lateral modes of a rotor (its bending and its whirl on the supports) have |n| = 1, so a
+forward whirl seen at ω_r from the rotor is one of ω_r + Ω from the ground; axial and torsional
+modes have n = 0 and keep ω_r; a disc's own modes shift by n Ω.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+
+from .spin import SpinningBody, spinning_matrices
+
+__all__ = ["CampbellDiagram", "ORDER_TOL", "angular_order", "campbell", "spinning_modes"]
+
+#: a mode whose angular order lies farther than this from an integer is reported as mixed
+#: (order NaN, fixed-frame frequency NaN): a meshed body that is not near enough to one of revolution,
+#: or two modes of different orders at nearly the same frequency
+ORDER_TOL = 0.2
+
+
+def spinning_modes(body: SpinningBody, speed_rad_s: float, stationary_damping_per_s: float = 0.0):
+    """Modes at one speed: (λ, vectors) with Im λ > 0, sorted by Im λ; vectors (m, k) complex."""
+    M, C, K = spinning_matrices(body, speed_rad_s, stationary_damping_per_s)
+    m = M.shape[0]
+    Minv = np.linalg.inv(M)
+    A = np.block([[np.zeros((m, m)), np.eye(m)], [-Minv @ K, -Minv @ C]])
+    lam, vec = sla.eig(A)
+    keep = lam.imag > 1e-9 * max(1.0, np.abs(lam).max())
+    lam, vec = lam[keep], vec[:m, keep]
+    order = np.argsort(lam.imag)
+    return lam[order], vec[:, order]
+
+
+def angular_order(body: SpinningBody, vectors: np.ndarray) -> np.ndarray:
+    """Signed angular order n of each complex mode vector (module docstring); (k,) float."""
+    V = np.asarray(vectors, dtype=complex)
+    num = np.einsum("ki,kl,li->i", V.conj(), body.rotation, V).imag
+    den = np.einsum("ki,kl,li->i", V.conj(), body.mass, V).real
+    return -num / den
+
+
+@dataclass(frozen=True)
+class CampbellDiagram:
+    """Whirl frequencies against speed (module docstring); k modes per speed, lowest first.
+
+    Attributes
+    ----------
+    speeds_rad_s : (n,) float64
+    spinning_Hz : (n, k) float64
+        Frequencies seen from the spinning body.
+    fixed_Hz : (n, k) float64
+        Frequencies seen from the fixed frame (≥ 0).
+    whirl : (n, k) int
+        +1 forward, −1 backward, 0 standing (n = 0, or a mixed mode), in the fixed frame.
+    order : (n, k) float64
+        Angular order n (nodal diameters, signed), as computed; see ``ORDER_TOL``.
+    damping_ratio : (n, k) float64
+    """
+
+    speeds_rad_s: np.ndarray
+    spinning_Hz: np.ndarray
+    fixed_Hz: np.ndarray
+    whirl: np.ndarray
+    order: np.ndarray
+    damping_ratio: np.ndarray
+
+    @property
+    def speeds_rpm(self) -> np.ndarray:
+        return self.speeds_rad_s * 30.0 / np.pi
+
+    def critical_speeds_rad_s(self, whirl: int = 1, order: float = 1.0) -> np.ndarray:
+        """Speeds where a mode of the given whirl crosses the line f = order·Ω/2π (linear
+        interpolation between the diagram's speeds), ascending."""
+        out = []
+        line = order * self.speeds_rad_s / (2.0 * np.pi)
+        for j in range(self.fixed_Hz.shape[1]):
+            d = np.where(self.whirl[:, j] == whirl, self.fixed_Hz[:, j] - line, np.nan)
+            for i in range(len(d) - 1):
+                if np.isfinite(d[i]) and np.isfinite(d[i + 1]) and d[i] * d[i + 1] <= 0.0 and d[i] != d[i + 1]:
+                    t = d[i] / (d[i] - d[i + 1])
+                    out.append(self.speeds_rad_s[i] + t * (self.speeds_rad_s[i + 1] - self.speeds_rad_s[i]))
+        return np.sort(np.asarray(out))
+
+
+def campbell(body: SpinningBody, speeds_rad_s, n_modes: int | None = None,
+             stationary_damping_per_s: float = 0.0) -> CampbellDiagram:
+    """Campbell diagram of ``body`` at ``speeds_rad_s``; the lowest ``n_modes`` modes in the
+    fixed frame (default: all) at each speed."""
+    speeds = np.asarray(speeds_rad_s, dtype=float).ravel()
+    if np.any(~np.isfinite(speeds)):
+        raise ValueError("speeds_rad_s must be finite")
+    k = body.n_modes if n_modes is None else int(n_modes)
+    if not 1 <= k <= body.n_modes:
+        raise ValueError(f"n_modes must lie in 1…{body.n_modes}, got {n_modes}")
+    rows = []
+    for W in speeds:
+        lam, vec = spinning_modes(body, W, stationary_damping_per_s)
+        w_r = lam.imag
+        order = angular_order(body, vec)
+        n = np.round(order)
+        mixed = np.abs(order - n) > ORDER_TOL
+        shifted = w_r - n * W
+        fixed = np.where(mixed, np.nan, np.abs(shifted))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            whirl = np.where(mixed | (n == 0), 0, np.sign(-shifted / n)).astype(int)
+        zeta = -lam.real / np.abs(lam)
+        pick = np.argsort(np.where(mixed, w_r, fixed), kind="stable")[:k]
+        rows.append((w_r[pick], fixed[pick], whirl[pick], order[pick], zeta[pick]))
+    cols = [np.array([r[i] for r in rows]) for i in range(5)]
+    two_pi = 2.0 * np.pi
+    return CampbellDiagram(speeds, cols[0] / two_pi, cols[1] / two_pi, cols[2].astype(int), cols[3], cols[4])
