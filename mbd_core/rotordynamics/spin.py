@@ -56,7 +56,7 @@ class SpinningBody:
     mass : (m, m) float64
         I6, modal mass (the identity for mass-normalised shapes).
     stiffness_rad2_s2 : (m, m) float64
-        K = diag(ω_k²), N/m per unit modal mass.
+        K = diag(ω_k²), N/m per unit modal mass, plus the bearing springs (:func:`.seats.on_bearings`).
     damping_rad_s : (m, m) float64
         C = diag(2 ζ_k ω_k): damping that turns with the body.
     coriolis : (m, m) float64
@@ -70,6 +70,9 @@ class SpinningBody:
     rotation : (m, m) float64
         Q = A − Φᵀ D Φ, the mass-weighted rotation generator 𝓛 on the modes (skew), which gives
         a mode's nodal diameters (:mod:`fem_rings.spinning`, :func:`.campbell.angular_order`).
+    support_damping, support_cross : (m, m) float64
+        Stationary damping of the supports (:func:`.seats.on_bearings`): c in the damping and
+        Ω times ``support_cross`` in the stiffness; zero by default.
     """
 
     mass: np.ndarray
@@ -80,6 +83,13 @@ class SpinningBody:
     cross: np.ndarray
     stiffening: np.ndarray
     rotation: np.ndarray
+    support_damping: np.ndarray | None = None
+    support_cross: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("support_damping", "support_cross"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, np.zeros_like(self.mass))
 
     @property
     def n_modes(self) -> int:
@@ -135,6 +145,7 @@ def spinning_matrices(body: SpinningBody, speed_rad_s: float,
     W, cs = float(speed_rad_s), float(stationary_damping_per_s)
     if cs < 0.0:
         raise ValueError(f"stationary_damping_per_s must be ≥ 0, got {cs}")
-    C = body.damping_rad_s + W * body.coriolis + cs * body.mass
-    K = body.stiffness_rad2_s2 + W * W * (body.stiffening - body.softening) + W * cs * body.cross
+    C = body.damping_rad_s + W * body.coriolis + cs * body.mass + body.support_damping
+    K = (body.stiffness_rad2_s2 + W * W * (body.stiffening - body.softening) + W * cs * body.cross
+         + W * body.support_cross)
     return body.mass, C, K
