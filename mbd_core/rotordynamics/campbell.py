@@ -7,7 +7,11 @@ from the spinning body, damping ratio σ/|λ|.
 Fixed frame. On a body of revolution every mode is a pattern of n nodal diameters turning round
 the axis (or standing, n = 0). Its angular order n follows from the mode vector v and the rotation
 generator Q of :mod:`.spin`: n = −Im(vᴴ Q v) / vᴴ I6 v, an integer for an exact body of revolution
-(a signed one: the sense of the pattern's travel), close to one for a meshed one. A pattern
+(a signed one: the sense of the pattern's travel), close to one for a meshed one. Where modes of
+different order meet in the spinning frame (frequencies within ``CLUSTER_RTOL``) the eigensolver
+returns arbitrary mixtures; the cluster is turned into the combinations of definite order (the
+eigenvectors of the Hermitian pencil (iQ, I6) on it), each with the frequencies of its members
+weighted by their share. A pattern
 e^{i(nθ + ω_r t)} in the spinning frame, θ = θ_f − Ωt, is e^{i(nθ_f + (ω_r − nΩ) t)} in the fixed
 frame: frequency |ω_r − nΩ|, turning at −(ω_r − nΩ)/n, i.e. with the spin (forward) when that is
 positive. Lateral modes of a rotor (its bending and its whirl on the supports) have |n| = 1, so a
@@ -24,7 +28,11 @@ import scipy.linalg as sla
 
 from .spin import SpinningBody, spinning_matrices
 
-__all__ = ["CampbellDiagram", "ORDER_TOL", "angular_order", "campbell", "spinning_modes"]
+__all__ = ["CampbellDiagram", "CLUSTER_RTOL", "ORDER_TOL", "angular_order", "campbell", "spinning_modes"]
+
+#: modes whose spinning-frame frequencies differ by less than this share are one cluster: within it
+#: any combination is a mode as well, and the one of definite angular order is taken
+CLUSTER_RTOL = 1e-3
 
 #: a mode whose angular order lies farther than this from an integer is reported as mixed
 #: (order NaN, fixed-frame frequency NaN): a meshed body that is not near enough to one of revolution,
@@ -43,6 +51,28 @@ def spinning_modes(body: SpinningBody, speed_rad_s: float, stationary_damping_pe
     lam, vec = lam[keep], vec[:m, keep]
     order = np.argsort(lam.imag)
     return lam[order], vec[:, order]
+
+
+def _definite_orders(body: SpinningBody, lam: np.ndarray, vec: np.ndarray):
+    """(λ, vectors) with every cluster of nearly equal frequencies turned into modes of definite
+    angular order (module docstring)."""
+    lam, vec = lam.copy(), vec.copy()
+    w = lam.imag
+    start = 0
+    for end in range(1, len(w) + 1):
+        if end < len(w) and w[end] - w[end - 1] <= CLUSTER_RTOL * abs(w[end]):
+            continue
+        if end - start > 1:
+            V = vec[:, start:end]
+            H = V.conj().T @ (1j * body.rotation) @ V
+            G = V.conj().T @ body.mass @ V
+            _, Y = sla.eigh(0.5 * (H + H.conj().T), 0.5 * (G + G.conj().T))
+            share = np.abs(Y) ** 2 * np.real(np.diag(G))[:, None]
+            share /= share.sum(axis=0)
+            vec[:, start:end] = V @ Y
+            lam[start:end] = share.T @ lam[start:end]
+        start = end
+    return lam, vec
 
 
 def angular_order(body: SpinningBody, vectors: np.ndarray) -> np.ndarray:
@@ -108,7 +138,7 @@ def campbell(body: SpinningBody, speeds_rad_s, n_modes: int | None = None,
         raise ValueError(f"n_modes must lie in 1…{body.n_modes}, got {n_modes}")
     rows = []
     for W in speeds:
-        lam, vec = spinning_modes(body, W, stationary_damping_per_s)
+        lam, vec = _definite_orders(body, *spinning_modes(body, W, stationary_damping_per_s))
         w_r = lam.imag
         order = angular_order(body, vec)
         n = np.round(order)
