@@ -13,6 +13,11 @@ running speed (1×), and writes campbell.png and unbalance.png (10 g·mm at the 
 stationary damping of 2 % of the first forward critical) to $FLEXBEARING_EXAMPLE_OUT (default
 results/rotor_campbell).
 
+Then the same rotor on its ball bearings instead of rigid seats: Craig–Bampton at the two seats,
+each seat on the hybrid angular-contact row of ``high_speed_ball_bearing.py`` (back to back, 300 N
+preload) as an isotropic spring with the row's tangent stiffness at each speed (centrifugal force
+and gyroscopic moment of the balls: the rows soften with speed): campbell_on_bearings.png.
+
 Run: python examples/rotor_campbell.py
 """
 
@@ -30,7 +35,11 @@ from fem_rings.mesh import MeshSpec  # noqa: E402
 from fem_rings.model import build_model  # noqa: E402
 from fem_rings.profile import polygon  # noqa: E402
 from foundation.materials import BEARING_STEEL  # noqa: E402
-from mbd_core.rotordynamics import campbell, held_dofs, spinning_body_of_model, supported_modes, unbalance_response  # noqa: E402
+from foundation.materials import SILICON_NITRIDE  # noqa: E402
+from mbd_core.quasistatic import BallRow, RingLoad  # noqa: E402
+from mbd_core.rotordynamics import (ball_row_spring, campbell, held_dofs, on_bearings, seat_basis,  # noqa: E402
+                                    spinning_body_of_model, statically_determinate_holds, supported_modes,
+                                    unbalance_response)
 
 out_dir = Path(os.environ.get("FLEXBEARING_EXAMPLE_OUT", "results/rotor_campbell"))
 out_dir.mkdir(parents=True, exist_ok=True)
@@ -95,4 +104,41 @@ a2.set_xlabel("speed (rev/min)")
 a1.set_title("10 g·mm at the turbine wheel, stationary damping 2 %")
 fig.tight_layout()
 fig.savefig(out_dir / "unbalance.png", dpi=120)
+plt.close(fig)
+
+# on the ball bearings: the rows' stiffness at each speed
+seats = [model.node_set("seat_turbine"), model.node_set("seat_compressor")]
+free_Hz, free_shapes = seat_basis(model, seats, 16)
+free_rotor = spinning_body_of_model(model, free_shapes, free_Hz, statically_determinate_holds(model))
+row = BallRow("hybrid", 8, 5.556e-3, 26e-3, math.radians(15), 0.52, 0.53, "inner", axial_sign=1,
+              ball_material=SILICON_NITRIDE)
+PRELOAD_N = 300.0
+anisotropy = []
+
+
+def rotor_on_bearings(speed_rad_s):
+    spring, left_out = ball_row_spring(row, RingLoad(Fz_N=PRELOAD_N), speed_rad_s)
+    anisotropy.append(left_out)
+    mirrored = type(spring)(spring.k_r_N_m, spring.k_theta_Nm_rad, -spring.k_rtheta_N_rad)
+    return on_bearings(free_rotor, free_shapes, model.nodes_m, [(seats[0], spring), (seats[1], mirrored)])
+
+
+bearing_speeds_rpm = np.linspace(0.0, 200_000.0, 21)
+on_balls = campbell(rotor_on_bearings, bearing_speeds_rpm * math.pi / 30.0, 14)
+forward_critical_on_balls_rpm = on_balls.critical_speeds_rad_s(whirl=1) * 30.0 / math.pi
+print("on the ball bearings, forward critical speeds (rev/min):",
+      ", ".join(f"{v:.0f}" for v in forward_critical_on_balls_rpm), f"(anisotropy left out ≤ {max(anisotropy):.1e})")
+fig, ax = plt.subplots(figsize=(7, 5))
+for j in range(on_balls.fixed_Hz.shape[1]):
+    for whirl, marker, colour, label in ((1, "o", "C0", "forward"), (-1, "x", "C3", "backward")):
+        y = np.where((on_balls.whirl[:, j] == whirl) & (on_balls.fixed_Hz[:, j] > 1.0), on_balls.fixed_Hz[:, j], np.nan)
+        ax.plot(bearing_speeds_rpm, y, marker, color=colour, ms=4, label=label if j == 0 else None)
+ax.plot(bearing_speeds_rpm, bearing_speeds_rpm / 60.0, "k-", lw=0.8, label="1× running speed")
+ax.legend()
+ax.set_ylim(0, 8000)
+ax.set_xlabel("speed (rev/min)")
+ax.set_ylabel("frequency in the fixed frame (Hz)")
+ax.set_title("Campbell diagram on the preloaded hybrid rows")
+fig.tight_layout()
+fig.savefig(out_dir / "campbell_on_bearings.png", dpi=120)
 plt.close(fig)

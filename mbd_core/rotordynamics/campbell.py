@@ -113,31 +113,40 @@ class CampbellDiagram:
         return self.speeds_rad_s * 30.0 / np.pi
 
     def critical_speeds_rad_s(self, whirl: int = 1, order: float = 1.0) -> np.ndarray:
-        """Speeds where a mode of the given whirl crosses the line f = order·Ω/2π (linear
-        interpolation between the diagram's speeds), ascending."""
-        out = []
+        """Speeds where a mode of the given whirl crosses the line f = order·Ω/2π, ascending.
+
+        The k-th lowest frequency of that whirl is continuous in speed even where modes cross (the
+        columns of the diagram are not: they are sorted at each speed); its crossings with the line
+        are found between neighbouring speeds and placed by linear interpolation.
+        """
         line = order * self.speeds_rad_s / (2.0 * np.pi)
-        for j in range(self.fixed_Hz.shape[1]):
-            d = np.where(self.whirl[:, j] == whirl, self.fixed_Hz[:, j] - line, np.nan)
-            for i in range(len(d) - 1):
-                if np.isfinite(d[i]) and np.isfinite(d[i + 1]) and d[i] * d[i + 1] <= 0.0 and d[i] != d[i + 1]:
-                    t = d[i] / (d[i] - d[i + 1])
+        levels = [np.sort(f[(w == whirl) & np.isfinite(f) & (f > 0.0)]) for f, w in zip(self.fixed_Hz, self.whirl)]
+        out = []
+        for i in range(len(levels) - 1):
+            for k in range(min(len(levels[i]), len(levels[i + 1]))):
+                a, b = levels[i][k] - line[i], levels[i + 1][k] - line[i + 1]
+                if a * b <= 0.0 and a != b:
+                    t = a / (a - b)
                     out.append(self.speeds_rad_s[i] + t * (self.speeds_rad_s[i + 1] - self.speeds_rad_s[i]))
         return np.sort(np.asarray(out))
 
 
-def campbell(body: SpinningBody, speeds_rad_s, n_modes: int | None = None,
+def campbell(body, speeds_rad_s, n_modes: int | None = None,
              stationary_damping_per_s: float = 0.0) -> CampbellDiagram:
     """Campbell diagram of ``body`` at ``speeds_rad_s``; the lowest ``n_modes`` modes in the
-    fixed frame (default: all) at each speed."""
+    fixed frame (default: all) at each speed. ``body``: a :class:`SpinningBody`, or a function of
+    the speed (rad/s) returning one (bearings whose stiffness changes with speed,
+    :func:`.seats.on_bearings`)."""
+    body_at = body if callable(body) else (lambda _speed: body)
     speeds = np.asarray(speeds_rad_s, dtype=float).ravel()
     if np.any(~np.isfinite(speeds)):
         raise ValueError("speeds_rad_s must be finite")
-    k = body.n_modes if n_modes is None else int(n_modes)
-    if not 1 <= k <= body.n_modes:
-        raise ValueError(f"n_modes must lie in 1…{body.n_modes}, got {n_modes}")
     rows = []
     for W in speeds:
+        body = body_at(float(W))
+        k = body.n_modes if n_modes is None else int(n_modes)
+        if not 1 <= k <= body.n_modes:
+            raise ValueError(f"n_modes must lie in 1…{body.n_modes}, got {n_modes}")
         lam, vec = _definite_orders(body, *spinning_modes(body, W, stationary_damping_per_s))
         w_r = lam.imag
         order = angular_order(body, vec)

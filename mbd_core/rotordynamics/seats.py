@@ -27,11 +27,12 @@ import scipy.linalg as sla
 from fem_rings.linalg import factorize_spd
 from fem_rings.modal_basis import rigid_body_fields
 from fem_rings.model import FEModel, vector_dofs
+from mbd_core.quasistatic import solve_high_speed_row
 
 from .spin import SpinningBody
 from .supported import supported_modes
 
-__all__ = ["BearingSpring", "isotropic_bearing", "seat_basis", "seat_motion", "on_bearings",
+__all__ = ["BearingSpring", "ball_row_spring", "isotropic_bearing", "seat_basis", "seat_motion", "on_bearings",
            "statically_determinate_holds"]
 
 
@@ -77,6 +78,19 @@ def isotropic_bearing(K5, c_r_Ns_m: float = 0.0, c_theta_Nms_rad: float = 0.0) -
                            c_r_Ns_m, c_theta_Nms_rad)
     iso, _ = spring.matrices()
     return spring, float(np.linalg.norm(L - iso) / max(np.linalg.norm(L), 1e-300))
+
+
+def ball_row_spring(row, load, speed_rad_s: float, mirrored: bool = False, control: str = "outer",
+                    c_r_Ns_m: float = 0.0, c_theta_Nms_rad: float = 0.0) -> tuple[BearingSpring, float]:
+    """The isotropic spring of a ball row at its operating point: the row's tangent stiffness from
+    its quasi-static equilibrium at speed (centrifugal force and gyroscopic moment of the balls,
+    :func:`mbd_core.quasistatic.solve_high_speed_row`) under ``load`` (a RingLoad on its inner ring),
+    and the share of anisotropy left out (:func:`isotropic_bearing`). ``mirrored``: the row faces
+    the other way along the shaft (the second row of a back-to-back pair), which turns the sign of
+    its radial–tilt coupling."""
+    quasi = solve_high_speed_row(row, load, speed_rad_s, control)
+    spring, left_out = isotropic_bearing(quasi.stiffness, c_r_Ns_m, c_theta_Nms_rad)
+    return (replace(spring, k_rtheta_N_rad=-spring.k_rtheta_N_rad) if mirrored else spring), left_out
 
 
 def seat_motion(nodes_m: np.ndarray, seat_nodes) -> tuple[np.ndarray, np.ndarray]:
