@@ -26,7 +26,7 @@ import numpy as np  # noqa: E402
 from foundation.materials import SILICON_NITRIDE  # noqa: E402
 from mbd_core.contact.friction import Coulomb  # noqa: E402
 from mbd_core.multibody import Driven, Fixed, ModelBuilder, simulate  # noqa: E402
-from mbd_core.multibody.bearings import add_ball_row, orbit_rad_s, set_rolling_velocities  # noqa: E402
+from mbd_core.multibody.bearings import add_ball_row, start_at_equilibrium  # noqa: E402
 from mbd_core.multibody.explicit import DivergenceError, stable_timestep  # noqa: E402
 from mbd_core.quasistatic import BallRow, RingLoad, solve_high_speed_row  # noqa: E402
 
@@ -51,13 +51,7 @@ def run_at(speed_rpm: float) -> dict:
     # start at the quasi-static high-speed equilibrium: ring displacement, ball centres, rolling speeds,
     # the cage at the balls' orbit speed
     quasi = solve_high_speed_row(row, RingLoad(Fz_N=preload_N), omega)
-    state.q[inner, :3] = quasi.displacement[:3]
-    for j, ball in enumerate(balls.elements):
-        r, z = quasi.ball_centre_rz_m[j]
-        state.q[ball, :3] = (r * math.cos(quasi.azimuth_rad[j]), r * math.sin(quasi.azimuth_rad[j]), z)
-    set_rolling_velocities(model, state, balls.elements, inner, other_ring=outer)
-    elements = list(balls.elements)
-    state.v[balls.cage, 5] = float(np.mean(orbit_rad_s(state.q[elements, :3], state.v[elements, :3])))
+    start_at_equilibrium(model, state, balls, inner, outer, quasi)
     limit = stable_timestep(model, state)
     out = {"speed_rpm": speed_rpm, "timestep_s": float(limit.timestep_s), "step_set_by": limit.reason,
            "quasi_static_outer_N": float(quasi.outer_load_N.mean()),

@@ -29,7 +29,7 @@ import numpy as np  # noqa: E402
 from foundation.materials import SILICON_NITRIDE  # noqa: E402
 from mbd_core.contact.friction import Coulomb  # noqa: E402
 from mbd_core.multibody import Driven, Fixed, ModelBuilder, simulate  # noqa: E402
-from mbd_core.multibody.bearings import add_ball_row, orbit_rad_s, set_rolling_velocities  # noqa: E402
+from mbd_core.multibody.bearings import add_ball_row, start_at_equilibrium  # noqa: E402
 from mbd_core.quasistatic import BallRow, RingLoad, solve_high_speed_row  # noqa: E402
 
 out_dir = Path(os.environ.get("FLEXBEARING_EXAMPLE_OUT", "results/unbalance_preload"))
@@ -56,13 +56,7 @@ def run(axial_N: float) -> dict:
     model, state = b.finalize()
     # start at the quasi-static equilibrium under the load at t = 0
     quasi = solve_high_speed_row(row, RingLoad(Fz_N=axial_N, Fx_N=unbalance_N), omega)
-    state.q[inner, :3] = quasi.displacement[:3]
-    for j, ball in enumerate(balls.elements):
-        r, z = quasi.ball_centre_rz_m[j]
-        state.q[ball, :3] = (r * math.cos(quasi.azimuth_rad[j]), r * math.sin(quasi.azimuth_rad[j]), z)
-    set_rolling_velocities(model, state, balls.elements, inner, other_ring=outer)
-    elements = list(balls.elements)
-    state.v[balls.cage, 5] = float(np.mean(orbit_rad_s(state.q[elements, :3], state.v[elements, :3])))
+    start_at_equilibrium(model, state, balls, inner, outer, quasi)
     rec = simulate(model, state, WINDOW_S, record_every=10)
     late = rec["t"] > WINDOW_S / 3               # after the start has settled
     fi = rec["fn"][late][:, list(balls.moving_pairs)]

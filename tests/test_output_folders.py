@@ -25,6 +25,12 @@ def _value(out):
     return json.loads((out / "summary.json").read_text())["value"]
 
 
+def _run_code(code: str, out: Path) -> subprocess.CompletedProcess:
+    """Run ``code`` in a fresh interpreter with the project importable and ``out`` as its argument."""
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]))
+    return subprocess.run([sys.executable, "-c", code, str(out)], env=env, capture_output=True, text=True, timeout=60)
+
+
 def _dead_pid() -> int:
     p = subprocess.Popen([sys.executable, "-c", "pass"])
     p.wait()
@@ -210,9 +216,7 @@ def test_a_stop_signal_inside_a_finaliser_still_stops_the_run(tmp_path):
         "    time.sleep(30)\n"
         "    print('not stopped')\n"
     )
-    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]))
-    proc = subprocess.run([sys.executable, "-c", code, str(tmp_path / "results")], env=env, capture_output=True,
-                          text=True, timeout=60)
+    proc = _run_code(code, tmp_path / "results")
     assert proc.returncode == -signal.SIGTERM, proc.stderr
     assert "Traceback" not in proc.stderr and "stopped by SIGTERM" in proc.stderr
     assert "not stopped" not in proc.stdout
@@ -237,9 +241,7 @@ def test_a_stop_before_the_with_block_starts_still_removes_the_temporary_folder(
         "os.kill(os.getpid(), signal.SIGTERM)\n"
         "time.sleep(30)\n"
     )
-    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]))
-    proc = subprocess.run([sys.executable, "-c", code, str(tmp_path / "results")], env=env, capture_output=True,
-                          text=True, timeout=60)
+    proc = _run_code(code, tmp_path / "results")
     assert proc.returncode == -signal.SIGTERM and "stopped by SIGTERM" in proc.stderr, proc.stderr
     assert _value(tmp_path / "results") == "old"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["results"]
@@ -263,9 +265,7 @@ def test_stop_signals_unwind_like_ctrl_c(tmp_path, name):
         f"    os.kill(os.getpid(), signal.{name})\n"
         "    time.sleep(30)\n"
     )
-    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]))
-    proc = subprocess.run([sys.executable, "-c", code, str(tmp_path / "results")], env=env, capture_output=True,
-                          text=True, timeout=60)
+    proc = _run_code(code, tmp_path / "results")
     signum = getattr(signal, name)
     if name == "SIGINT":
         assert proc.returncode in (-signum, 128 + signum, 1) and "KeyboardInterrupt" in proc.stderr

@@ -39,7 +39,7 @@ from .builder import ContactLaw, ModelBuilder, quat_z_to
 from .parts import StripTraction
 from .model import Model, State
 
-__all__ = ["RowBodies", "add_ball_row", "add_roller_row", "set_rolling_velocities", "ball_mass_kg", "roller_mass_kg",
+__all__ = ["RowBodies", "add_ball_row", "add_roller_row", "set_rolling_velocities", "start_at_equilibrium", "ball_mass_kg", "roller_mass_kg",
            "orbit_rad_s", "row_speed_rad_s"]
 
 LINE_EXPONENT = 10.0 / 9.0
@@ -362,6 +362,21 @@ def set_rolling_velocities(model: Model, state: State, elements, ring, other_rin
         omega_w = omega_c * z + sol[1] * axis if roller else sol[1:]
         state.v[e, :3] = omega_c * np.cross(z, x)
         state.v[e, 3:] = _rotate_back(state.q[e, 3:], omega_w)
+
+
+def start_at_equilibrium(model: Model, state: State, balls: RowBodies, inner: int, outer: int, quasi) -> None:
+    """Put a ball row in ``state`` at a quasi-static high-speed equilibrium ``quasi`` (the result of
+    :func:`mbd_core.quasistatic.solve_high_speed_row`): the inner ring's displacement, each ball's
+    centre, the no-slip rolling velocities (:func:`set_rolling_velocities`) and the cage at the
+    balls' mean orbit speed, so a run starts without a start-up shock."""
+    state.q[inner, :3] = quasi.displacement[:3]
+    for j, ball in enumerate(balls.elements):
+        r, z = quasi.ball_centre_rz_m[j]
+        state.q[ball, :3] = (r * math.cos(quasi.azimuth_rad[j]), r * math.sin(quasi.azimuth_rad[j]), z)
+    set_rolling_velocities(model, state, balls.elements, inner, other_ring=outer)
+    if balls.cage is not None:
+        elements = list(balls.elements)
+        state.v[balls.cage, 5] = float(np.mean(orbit_rad_s(state.q[elements, :3], state.v[elements, :3])))
 
 
 def _spin_z(state: State, body: int) -> float:
