@@ -51,8 +51,9 @@ MARKER_FORMAT = "flexbearing-results/1"
 STALE_AGE_S = 7 * 24 * 3600.0
 
 _TMP, _OLD = "fb-tmp", "fb-old"
-#: temporary folders of this process not yet swapped in or removed (:func:`_remove_unfinished`)
-_UNFINISHED: set[Path] = set()
+#: temporary folders not yet swapped in or removed, with the process that made them (a forked child
+#: inherits the parent's entries and must leave them alone; :func:`_remove_unfinished`)
+_UNFINISHED: dict[Path, int] = {}
 _LEFTOVER = re.compile(r"^\.(?P<name>.+)\.(?P<kind>fb-tmp|fb-old)-(?P<pid>\d+)-[0-9a-f]{8}$")
 
 
@@ -250,7 +251,7 @@ def atomic_folder(out_dir, name: str = "", source: str | None = None):
     out.parent.mkdir(parents=True, exist_ok=True)
     recover(out.parent)
     tmp = _leftover_name(out, _TMP)
-    _UNFINISHED.add(tmp)  # before it exists: a stop right after mkdir is still cleaned up
+    _UNFINISHED[tmp] = os.getpid()  # before it exists: a stop right after mkdir is still cleaned up
     try:
         _make_folder(tmp)
         yield tmp
@@ -261,15 +262,16 @@ def atomic_folder(out_dir, name: str = "", source: str | None = None):
             shutil.rmtree(tmp, ignore_errors=True)
         raise
     finally:
-        _UNFINISHED.discard(tmp)
+        _UNFINISHED.pop(tmp, None)
 
 
 def _remove_unfinished() -> None:
     """Delete the temporary folders of this process that no block finished: a stop signal that came
     between their creation and the ``with`` block that owns them (:func:`cases.signals.at_stop`)."""
-    for tmp in list(_UNFINISHED):
-        shutil.rmtree(tmp, ignore_errors=True)
-        _UNFINISHED.discard(tmp)
+    for tmp, pid in list(_UNFINISHED.items()):
+        if pid == os.getpid():
+            shutil.rmtree(tmp, ignore_errors=True)
+            _UNFINISHED.pop(tmp, None)
 
 
 at_stop(_remove_unfinished)
