@@ -34,9 +34,9 @@ __all__ = ["CampbellDiagram", "CLUSTER_RTOL", "ORDER_TOL", "angular_order", "cam
 #: any combination is a mode as well, and the one of definite angular order is taken
 CLUSTER_RTOL = 1e-3
 
-#: a mode whose angular order lies farther than this from an integer is reported as mixed
-#: (order NaN, fixed-frame frequency NaN): a meshed body that is not near enough to one of revolution,
-#: or two modes of different orders at nearly the same frequency
+#: a mode whose angular order lies farther than this from an integer is reported as mixed (its
+#: fixed-frame frequency NaN, whirl 0, the order as computed): a meshed body not near enough to one
+#: of revolution, or modes of different orders close in frequency but beyond ``CLUSTER_RTOL``
 ORDER_TOL = 0.2
 
 
