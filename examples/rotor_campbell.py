@@ -119,8 +119,7 @@ anisotropy = []
 def rotor_on_bearings(speed_rad_s):
     spring, left_out = ball_row_spring(row, RingLoad(Fz_N=PRELOAD_N), speed_rad_s)
     anisotropy.append(left_out)
-    mirrored = type(spring)(spring.k_r_N_m, spring.k_theta_Nm_rad, -spring.k_rtheta_N_rad)
-    return on_bearings(free_rotor, free_shapes, model.nodes_m, [(seats[0], spring), (seats[1], mirrored)])
+    return on_bearings(free_rotor, free_shapes, model.nodes_m, [(seats[0], spring), (seats[1], spring.mirrored())])
 
 
 bearing_speeds_rpm = np.linspace(0.0, 200_000.0, 21)

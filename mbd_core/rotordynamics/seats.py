@@ -58,6 +58,11 @@ class BearingSpring:
         if not math.isfinite(self.k_rtheta_N_rad):
             raise ValueError(f"bearing spring: k_rtheta_N_rad must be finite, got {self.k_rtheta_N_rad!r}")
 
+    def mirrored(self) -> "BearingSpring":
+        """The same bearing facing the other way along the shaft (the second row of a back-to-back
+        pair): its radial–tilt coupling changes sign."""
+        return replace(self, k_rtheta_N_rad=-self.k_rtheta_N_rad)
+
     def matrices(self) -> tuple[np.ndarray, np.ndarray]:
         """(K, C) 4 × 4 on (u_x, u_y, θ_x, θ_y)."""
         kr, kt, kc = self.k_r_N_m, self.k_theta_Nm_rad, self.k_rtheta_N_rad
@@ -90,7 +95,7 @@ def ball_row_spring(row, load, speed_rad_s: float, mirrored: bool = False, contr
     its radial–tilt coupling."""
     quasi = solve_high_speed_row(row, load, speed_rad_s, control)
     spring, left_out = isotropic_bearing(quasi.stiffness, c_r_Ns_m, c_theta_Nms_rad)
-    return (replace(spring, k_rtheta_N_rad=-spring.k_rtheta_N_rad) if mirrored else spring), left_out
+    return (spring.mirrored() if mirrored else spring), left_out
 
 
 def seat_motion(nodes_m: np.ndarray, seat_nodes) -> tuple[np.ndarray, np.ndarray]:
