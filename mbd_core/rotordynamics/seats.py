@@ -24,13 +24,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 import scipy.linalg as sla
 
-from fem_rings.linalg import factorize_spd
-from fem_rings.modal_basis import rigid_body_fields
+from fem_rings.linalg import shift_invert_operator
+from fem_rings.modal_basis import deflated_eigsh, rigid_body_fields
 from fem_rings.model import FEModel, vector_dofs
 from mbd_core.quasistatic import solve_high_speed_row
 
 from .spin import SpinningBody
-from .supported import supported_modes
 
 __all__ = ["BearingSpring", "ball_row_spring", "isotropic_bearing", "seat_basis", "seat_motion", "on_bearings",
            "statically_determinate_holds"]
@@ -134,21 +133,26 @@ def seat_basis(model: FEModel, seats, n_modes: int) -> tuple[np.ndarray, np.ndar
     if not seats:
         raise ValueError("seat_basis: give at least one seat")
     n = model.n_dofs
-    _, fixed = supported_modes(model, [(s, "xyz") for s in seats], n_modes)
     boundary = np.unique(np.concatenate([vector_dofs(s) for s in seats]))
     interior = np.setdiff1d(np.arange(n), boundary)
-    K = model.K.tocsr()
-    factor = factorize_spd(K[interior][:, interior])
+    K, M = model.K.tocsr(), model.M.tocsr()
+    KI = K[interior]
+    KII, MII = KI[:, interior], M[interior][:, interior]
+    # every seat held leaves no rigid motion: one factor of K_II gives the fixed-interface modes
+    # (shift 0) and the constraint shapes
+    op, factor = shift_invert_operator(KII, MII, 0.0)
+    fixed = np.zeros((n, int(n_modes)))
+    fixed[interior] = deflated_eigsh(KII, MII, int(n_modes), 0.0, op)[1]
     shapes = []
     for s in seats:
         x = model.nodes_m[s]
         ub = rigid_body_fields(x, x.mean(axis=0))            # (3k, 6)
         U = np.zeros((n, 6))
         U[vector_dofs(s)] = ub
-        U[interior] = -factor.solve(np.asarray(K[interior][:, vector_dofs(s)] @ ub))
+        U[interior] = -factor.solve(np.asarray(KI[:, vector_dofs(s)] @ ub))
         shapes.append(U)
     V = np.hstack([fixed, *shapes])
-    Kr, Mr = V.T @ (K @ V), V.T @ (model.M @ V)
+    Kr, Mr = V.T @ (K @ V), V.T @ (M @ V)
     w2, X = sla.eigh(0.5 * (Kr + Kr.T), 0.5 * (Mr + Mr.T))
     return np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * math.pi), V @ X
 

@@ -2,9 +2,9 @@
 
 An unbalance U = m_u e (kg·m) turns with the rotor: in the spinning frame its centrifugal force
 U Ω² has a fixed direction (x here), and on isotropic supports the steady response is static there
-(:mod:`.spin`, η̇ = 0):
+(:func:`.spin.spinning_matrices`, η̇ = 0):
 
-    (K − Ω² P + Ω c_s A) η = U Ω² Φ_xᵀ w,
+    K(Ω) η = U Ω² Φ_xᵀ w,     K(Ω) = K + Ω² (S − P) + Ω c_s A (+ the bearings' Ω c J),
 
 w spreading the force over the nodes of the unbalance plane (equal shares). A static deflection in
 the spinning frame is, in the fixed frame, a circular orbit at the running speed: its radius is
