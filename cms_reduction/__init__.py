@@ -13,6 +13,7 @@ from .augmentation import Augmentation
 from .craig_bampton import Interface, reduce_model
 from .invariants import Invariants, compute_invariants
 from .persist import load_body, save_body
+from .prestress import prestressed
 from .pipeline import InterfaceSpec, RacewaySpec, ReductionSpec, reduced_body
 from .stress_history import (peak_von_mises_history, render_stress_pngs, stress_at, worst_time,
                              write_stress_series)
@@ -20,6 +21,6 @@ from .stress_history import (peak_von_mises_history, render_stress_pngs, stress_
 __all__ = [
     "ReducedBody", "Interface", "Augmentation", "reduce_model",
     "Invariants", "compute_invariants", "save_body", "load_body",
-    "InterfaceSpec", "RacewaySpec", "ReductionSpec", "reduced_body",
+    "prestressed", "InterfaceSpec", "RacewaySpec", "ReductionSpec", "reduced_body",
     "peak_von_mises_history", "worst_time", "stress_at", "write_stress_series", "render_stress_pngs",
 ]

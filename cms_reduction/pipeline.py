@@ -17,6 +17,7 @@ from fem_rings.mesh import MESH_VERSION, MeshSpec
 from fem_rings.model import build_model
 from fem_rings.nodesets import patch_nodes, raceway_curve, raceway_patch
 from fem_rings.profile import Profile
+from fem_rings.spinning import centrifugal_geometric_stiffness, statically_determinate_holds
 from foundation.materials import ElasticMaterial
 from foundation.progress import phase
 
@@ -25,6 +26,7 @@ from .augmentation import Augmentation, CentrifugalAugmentation, ElementAugmenta
 from .craig_bampton import Interface, InterfaceError, reduce_model
 from .invariants import compute_invariants
 from .persist import cached_body
+from .prestress import SPIN_STIFFENING
 from .sampling import pocket_contact_points, sample_across, sample_points, sample_raceway, sample_to_arrays
 from .stress_modes import add_stress_modes
 
@@ -124,7 +126,9 @@ class RacewaySpec:
 @dataclass(frozen=True)
 class ReductionSpec:
     """What to keep of a ring: normal modes, interfaces, raceways, damping, stress modes, and (with
-    ``centrifugal``) the static shape of the ring's centrifugal stretch for bodies that spin."""
+    ``centrifugal``) the static shape of the ring's centrifugal stretch for bodies that spin; with
+    ``spin_stiffening`` the modal geometric stiffness of the centrifugal prestress at 1 rad/s about z
+    (``extras["spin_stiffening"]``, for :func:`.prestress.prestressed`)."""
 
     n_modes: int = 20
     interfaces: tuple = ()
@@ -133,6 +137,7 @@ class ReductionSpec:
     stress_modes: bool = False
     sample_pockets: bool = True
     centrifugal: bool = False
+    spin_stiffening: bool = False
 
     def __post_init__(self) -> None:
         if int(self.n_modes) < 1:
@@ -178,6 +183,10 @@ def reduced_body(profile: Profile, mesh_spec: MeshSpec, material: ElasticMateria
                             name=name or profile.name, probes=probes)
         with phase("inertia invariants"):
             extras = dict(compute_invariants(model.M, body.nodes_m, body.shapes).to_arrays())
+        if spec.spin_stiffening:
+            with phase("centrifugal stress stiffening"):
+                K_sigma, _ = centrifugal_geometric_stiffness(model, statically_determinate_holds(model))
+                extras[SPIN_STIFFENING] = body.shapes.T @ (K_sigma @ body.shapes)
         with phase("sampling raceways", total=len(spec.raceways) + (pockets is not None and spec.sample_pockets)) as p:
             for c, r, pt in zip(curves, spec.raceways, patches):
                 samples = (sample_across(body, model.ring, r.segment, r.n_theta, r.n_across) if r.n_across > 0

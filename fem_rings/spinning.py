@@ -29,7 +29,8 @@ from .assembly import _chunks, _gradients, _to_csr, lame_Pa, scalar_basis
 from .linalg import factorize_spd
 from .model import FEModel
 
-__all__ = ["centrifugal_load_N", "centrifugal_geometric_stiffness", "circumferential_derivative"]
+__all__ = ["centrifugal_load_N", "centrifugal_geometric_stiffness", "circumferential_derivative",
+           "statically_determinate_holds"]
 
 
 def centrifugal_load_N(model: FEModel) -> np.ndarray:
@@ -94,3 +95,20 @@ def circumferential_derivative(model: FEModel, density_kg_m3=None) -> sp.csr_mat
         blocks[el] = np.einsum("eaq,ebq,eq->eab", phi, dtheta, basis.dx[el] * rho[el][:, None])
     D = _to_csr(basis, blocks)
     return sp.kron(D, sp.identity(3, format="csr"), format="csr")
+
+
+def statically_determinate_holds(model: FEModel) -> np.ndarray:
+    """Six DOFs that hold a free body's rigid motions and nothing more (3-2-1): the reactions of a
+    self-equilibrated load there are zero, so they carry a free rotor's centrifugal prestress."""
+    x = model.nodes_m
+    a = int(np.argmin(np.linalg.norm(x - x.mean(axis=0), axis=1)))
+    b = int(np.argmax(np.linalg.norm(x - x[a], axis=1)))
+    ab = (x[b] - x[a]) / np.linalg.norm(x[b] - x[a])
+    off = np.linalg.norm(np.cross(x - x[a], ab), axis=1)
+    c = int(np.argmax(off))
+    n = np.cross(ab, x[c] - x[a])
+    n /= np.linalg.norm(n)
+    # a: all three; b: the two components with the least of ab; c: the one most along the normal n
+    b_comps = np.argsort(np.abs(ab))[:2]
+    c_comp = int(np.argmax(np.abs(n)))
+    return np.array([3 * a, 3 * a + 1, 3 * a + 2, *(3 * b + b_comps), 3 * c + c_comp], dtype=np.int64)

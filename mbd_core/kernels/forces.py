@@ -8,7 +8,8 @@ work ``w`` one of preallocated scratch arrays (:class:`mbd_core.multibody.model.
 State: ``q`` (n_b, 7) = position r (world, m) and unit quaternion (w, x, y, z) body → world;
 ``v`` (n_b, 6) = velocity (world, m/s) and angular velocity ω (body frame, rad/s).
 
-Stages: external loads (constant + cubic-spline histories) → bushings → fluid drag → squeeze-film
+Stages: external loads (constant + cubic-spline histories) → bushings → fluid drag → unbalances
+(:mod:`.unbalance`) → squeeze-film
 dampers (:mod:`.squeeze_film`) → contacts. Each
 contact gives a penetration δ, the unit normal m of the force on its element (body a), and a
 contact point p; then
@@ -74,6 +75,7 @@ from .point_contact import contact_force
 from .roller_pairs import _roller_raceway_pairs, _roller_rib_pairs
 from .splines import spline_value
 from .squeeze_film import _squeeze_films
+from .unbalance import _unbalances
 
 # the stages and helpers the callers (and their tests) reach through this module
 __all__ = ["compute_forces", "contact_force", "point_velocity", "rotate", "rotate_back", "BALL_BALL", "BALL_GROOVE",
@@ -190,6 +192,8 @@ def compute_forces(m, t, q, v, eta, eta_dot, w):
     w.energy[1] = _bushings(m, q, v, w) if m.bush_a.shape[0] > 0 else 0.0
     if m.drag_body.shape[0] > 0:
         _drag(m, v, w)
+    if m.unb_body.shape[0] > 0:
+        _unbalances(m, q, v, eta, w)
     if m.sfd_a.shape[0] > 0:
         j = _squeeze_films(m, q, v, w)
         if j >= 0:

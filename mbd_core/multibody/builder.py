@@ -17,7 +17,7 @@ from ..kernels.laws import NORMAL_HUNT_CROSSLEY, NORMAL_IMPACT
 from foundation.validation import check_positive
 from . import warmup
 from .builder_arrays import (_f64, _i64, _quat_conj, _quat_mul, _rotate, _rotate_back, _skew, modal_arrays,
-                             squeeze_film_arrays)
+                             squeeze_film_arrays, unbalance_arrays)
 from ..squeeze_film.force_table import FilmForceTable
 from .builder_geometry import POCKET_KINDS, GeometryMixin, _Body, _vec
 from .model import Model, ModelArrays, State
@@ -52,6 +52,7 @@ class ModelBuilder(GeometryMixin):
         self._bushings: list[dict] = []
         self._drags: list[tuple[int, float, float]] = []
         self._dampers: list[dict] = []
+        self._unbalances: list[dict] = []
         self._loads: list[tuple[int, np.ndarray, np.ndarray]] = []
 
     # -- bodies ---------------------------------------------------------------------------------
@@ -197,6 +198,29 @@ class ModelBuilder(GeometryMixin):
             if not (math.isfinite(value) and value >= 0.0):
                 raise ValueError(f"drag: {name} must be a number ≥ 0, got {value!r}")
         self._drags.append((i, float(linear_N_s_m), float(quadratic_N_s2_m2)))
+
+    def add_unbalance(self, body, point_m, unbalance_kg_m, angle_rad: float = 0.0) -> None:
+        """An unbalance of ``unbalance_kg_m`` (m_u e, kg·m) at ``point_m`` (the body's own frame; for a
+        modal body its ring frame) pointing at ``angle_rad`` about the body's z axis from its x axis:
+        the centrifugal force m_u (ω² e − (ω·e) ω) at that point, turning with the body
+        (:mod:`mbd_core.kernels.unbalance`); on a modal body it also loads the modes there."""
+        owner = "unbalance"
+        i = self._body_index(body, owner)
+        p = _vec(owner, "point_m", point_m, 3)
+        for name, value in (("unbalance_kg_m", unbalance_kg_m), ("angle_rad", angle_rad)):
+            if not (isinstance(value, (int, float)) and math.isfinite(value)):
+                raise ValueError(f"{owner}: {name} must be a finite number, got {value!r}")
+        if unbalance_kg_m < 0.0:
+            raise ValueError(f"{owner}: unbalance_kg_m must be ≥ 0, got {unbalance_kg_m}")
+        b = self._bodies[i]
+        disp = np.zeros((3, 0))
+        if b.modal is not None:
+            from cms_reduction.sampling import sample_points
+
+            disp = sample_points(b.modal["reduced"], "unbalance", p[None, :], np.zeros(1)).displacement[0]
+            p = p - b.modal["shift"]
+        u = float(unbalance_kg_m) * np.array([math.cos(angle_rad), math.sin(angle_rad), 0.0])
+        self._unbalances.append(dict(body=i, point=p, u=u, disp=disp))
 
     def add_squeeze_film(self, journal, housing, table, bore_center_m=(0, 0, 0),
                          axis=(0, 0, 1), name: str | None = None) -> int:
@@ -404,6 +428,7 @@ class ModelBuilder(GeometryMixin):
             bush_k=_f64([b["k"] for b in self._bushings], (-1, 6)), bush_c=_f64([b["c"] for b in self._bushings], (-1, 6)),
             drag_body=_i64([d[0] for d in self._drags]), drag_c=_f64([d[1:] for d in self._drags], (-1, 2)),
             **squeeze_film_arrays(self._dampers, q0),
+            **unbalance_arrays(self._unbalances, modal_arrays_["modal_I6"].shape[1]),
             pair_type=_i64([p["kind"] for p in pairs]), pair_a=_i64([p["a"] for p in pairs]),
             pair_b=_i64([p["b"] for p in pairs]), pair_geom=_i64([p["geom"] for p in pairs]),
             pair_law=_i64([NORMAL_IMPACT if l.model == "impact" else NORMAL_HUNT_CROSSLEY for l in laws]),

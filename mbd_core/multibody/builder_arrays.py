@@ -93,6 +93,15 @@ def _mode_amplitudes(body_modal, counts, sampled) -> tuple[np.ndarray, np.ndarra
     return disp_max, rot_max
 
 
+def unbalance_arrays(unbalances, n_modes_max: int) -> dict:
+    """The unb_* arrays of :class:`ModelArrays` (mode shapes zero-padded to ``n_modes_max``)."""
+    disp = np.zeros((len(unbalances), 3, n_modes_max))
+    for j, u in enumerate(unbalances):
+        disp[j, :, :u["disp"].shape[1]] = u["disp"]
+    return dict(unb_body=_i64([u["body"] for u in unbalances]), unb_point=_f64([u["point"] for u in unbalances], (-1, 3)),
+                unb_kg_m=_f64([u["u"] for u in unbalances], (-1, 3)), unb_disp=_f64(disp))
+
+
 def squeeze_film_arrays(dampers, q0) -> dict:
     """The ``sfd_*`` arrays of :class:`ModelArrays` from the builder's dampers (the journal's centre is
     its body's origin; the bore centre and axis, given in world at the start, go to the housing's frame)."""

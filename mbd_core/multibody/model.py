@@ -19,6 +19,9 @@ Bushings (:func:`mbd_core.kernels.forces._bushings`)
     relative orientation q_a⁻¹ q_b at rest; bush_k (n_u, 6) N/m, N·m/rad; bush_c (n_u, 6).
 Drag of the surrounding fluid (:func:`mbd_core.kernels.forces._drag`)
     drag_body (n_d,) int64; drag_c (n_d, 2): c₁ N·s/m and c₂ N·s²/m² of F = −(c₁ + c₂|v|) v.
+Unbalances (:mod:`mbd_core.kernels.unbalance`; n_u of them)
+    unb_body (n_u,) int64; unb_point (n_u, 3) m, body frame; unb_kg_m (n_u, 3) kg·m, body frame;
+    unb_disp (n_u, 3, M) m/√kg, the mode shapes at the point (zero on a rigid body).
 Squeeze-film dampers (:mod:`mbd_core.kernels.squeeze_film`; n_f of them)
     sfd_a (journal), sfd_b (housing) (n_f,) int64; sfd_p_a, sfd_p_b (n_f, 3) m the journal and bore
     centres in their bodies' frames; sfd_axis (n_f, 3) the bore axis, housing frame; sfd_clearance
@@ -81,7 +84,7 @@ import numpy as np
 MODEL_FIELDS = (
     "body_mass body_inertia body_free body_force body_fric_implicit "
     "load_body load_off knot_t knot_coef "
-    "bush_a bush_b bush_p_a bush_p_b bush_q_ref bush_k bush_c drag_body drag_c "
+    "bush_a bush_b bush_p_a bush_p_b bush_q_ref bush_k bush_c drag_body drag_c unb_body unb_point unb_kg_m unb_disp "
     "sfd_a sfd_b sfd_p_a sfd_p_b sfd_axis sfd_clearance sfd_eps_max sfd_table_off sfd_table_size sfd_table "
     "pair_type pair_a pair_b pair_geom pair_law pair_k pair_n pair_c pair_dmax pair_fric pair_fric_p "
     "pair_radius pair_radius_b pair_length pair_aux pair_slice_off slice_drop pair_delta_max pair_strips pair_semi_major pair_strip_curv "

@@ -31,10 +31,11 @@ __all__ = ["axial_torques", "axial_angular_momentum", "hann_spectrum", "spectrum
 
 
 def _internal(model: Model) -> Model:
-    """The model without the bodies' external loads (constant, gravity of rigid bodies, histories)."""
+    """The model without the bodies' external loads (constant, gravity of rigid bodies, histories,
+    unbalances)."""
     a = model.arrays
     arrays = a._replace(body_force=np.zeros_like(a.body_force), load_body=np.zeros(0, dtype=a.load_body.dtype),
-                        load_off=np.zeros(1, dtype=a.load_off.dtype))
+                        load_off=np.zeros(1, dtype=a.load_off.dtype), unb_body=np.zeros(0, dtype=a.unb_body.dtype))
     return dataclasses.replace(model, arrays=arrays)
 
 

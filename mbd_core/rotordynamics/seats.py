@@ -27,6 +27,7 @@ import scipy.linalg as sla
 from fem_rings.linalg import shift_invert_operator
 from fem_rings.modal_basis import deflated_eigsh, rigid_body_fields
 from fem_rings.model import FEModel, vector_dofs
+from fem_rings.spinning import statically_determinate_holds
 from mbd_core.quasistatic import solve_high_speed_row
 
 from .spin import SpinningBody
@@ -104,23 +105,6 @@ def seat_motion(nodes_m: np.ndarray, seat_nodes) -> tuple[np.ndarray, np.ndarray
     x = np.asarray(nodes_m, dtype=float)[seat]
     G = rigid_body_fields(x, x.mean(axis=0))
     return np.linalg.pinv(G), vector_dofs(seat)
-
-
-def statically_determinate_holds(model: FEModel) -> np.ndarray:
-    """Six DOFs that hold a free body's rigid motions and nothing more (3-2-1): the reactions of a
-    self-equilibrated load there are zero, so they carry a free rotor's centrifugal prestress."""
-    x = model.nodes_m
-    a = int(np.argmin(np.linalg.norm(x - x.mean(axis=0), axis=1)))
-    b = int(np.argmax(np.linalg.norm(x - x[a], axis=1)))
-    ab = (x[b] - x[a]) / np.linalg.norm(x[b] - x[a])
-    off = np.linalg.norm(np.cross(x - x[a], ab), axis=1)
-    c = int(np.argmax(off))
-    n = np.cross(ab, x[c] - x[a])
-    n /= np.linalg.norm(n)
-    # a: all three; b: the two components with the least of ab; c: the one most along the normal n
-    b_comps = np.argsort(np.abs(ab))[:2]
-    c_comp = int(np.argmax(np.abs(n)))
-    return np.array([3 * a, 3 * a + 1, 3 * a + 2, *(3 * b + b_comps), 3 * c + c_comp], dtype=np.int64)
 
 
 def seat_basis(model: FEModel, seats, n_modes: int) -> tuple[np.ndarray, np.ndarray]:
