@@ -728,3 +728,29 @@ def test_explicit_run_with_a_modal_ring_matches_twin(frame):
     inner_pairs = forces.fn[::2][:-1]                               # the last ball is apart
     assert np.all(inner_pairs > 0) and np.all(te != st.eta) and np.all(tq[ring, 3:] != st.q[ring, 3:])
     print(frame, "worst |kernel − twin| / tolerance:", {k: f"{x:.2g}" for k, x in worst.items()})
+
+
+def test_unbalance_forces_match_twin_on_rigid_and_modal_bodies():
+    """The unbalance stage (mbd_core.kernels.unbalance) against the twin's: body forces, moments about the
+    centres and modal forces, at a random pose, spin and deformation."""
+    rng = np.random.default_rng(SEED + 7)
+    mb = ModelBuilder()
+    ring = mb.add_modal_body("ring", _cloud_body(rng, [200.0, 3000.0, 7000.0]),
+                             motion=Driven(80.0, translation_free=True, tilt_free=True))
+    disc = mb.add_body("disc", 0.5, (1e-3, 1e-3, 2e-3), omega_rad_s=(3.0, -2.0, 500.0))
+    mb.add_unbalance(ring, (0.03, 0.01, 0.02), 2e-4, angle_rad=0.4, mode_shapes=rng.normal(size=(3, 3)) * 1e-2)
+    mb.add_unbalance(disc, (0.0, 0.0, 0.05), 1e-4, angle_rad=-1.0)
+    model, state = mb.finalize()
+    q, v, eta, eta_dot = _random_state(model, state, rng)
+    w = make_work(model)
+    assert FK.compute_forces(model.arrays, 0.0, q, v, eta, eta_dot, w) == (FK.STATUS_OK, -1)
+    want = ref.compute_forces(model.arrays, 0.0, q, v, eta, eta_dot)
+    _close(w.body_f, want.body_f, atol=1e-14 * want.body_f_scale[:, None])
+    _close(w.body_t, want.body_t, atol=1e-14 * want.body_t_scale[:, None])
+    _close(w.modal_f, want.modal_f, atol=1e-14 * np.abs(want.modal_f).max())
+    # the spin's centrifugal pull U Ω² on the rigid disc (its spin about z dominates)
+    assert np.linalg.norm(w.body_f[disc]) == pytest.approx(1e-4 * np.linalg.norm(v[disc, 3:]) ** 2, rel=1e-3)
+    with pytest.raises(ValueError, match="rigid; mode_shapes"):
+        mb.add_unbalance(disc, (0, 0, 0), 1e-4, mode_shapes=np.zeros((3, 1)))
+    with pytest.raises(ValueError, match=r"mode_shapes must be finite with shape \(3, 3\)"):
+        mb.add_unbalance(ring, (0, 0, 0), 1e-4, mode_shapes=np.zeros((3, 2)))

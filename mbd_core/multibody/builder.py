@@ -199,11 +199,13 @@ class ModelBuilder(GeometryMixin):
                 raise ValueError(f"drag: {name} must be a number ≥ 0, got {value!r}")
         self._drags.append((i, float(linear_N_s_m), float(quadratic_N_s2_m2)))
 
-    def add_unbalance(self, body, point_m, unbalance_kg_m, angle_rad: float = 0.0) -> None:
+    def add_unbalance(self, body, point_m, unbalance_kg_m, angle_rad: float = 0.0, mode_shapes=None) -> None:
         """An unbalance of ``unbalance_kg_m`` (m_u e, kg·m) at ``point_m`` (the body's own frame; for a
         modal body its ring frame) pointing at ``angle_rad`` about the body's z axis from its x axis:
         the centrifugal force m_u (ω² e − (ω·e) ω) at that point, turning with the body
-        (:mod:`mbd_core.kernels.unbalance`); on a modal body it also loads the modes there."""
+        (:mod:`mbd_core.kernels.unbalance`); on a modal body it also loads the modes there, through
+        ``mode_shapes`` (3, m) m/√kg at the point, or by default the body's modes interpolated on its
+        mesh (:func:`cms_reduction.sampling.sample_points`)."""
         owner = "unbalance"
         i = self._body_index(body, owner)
         p = _vec(owner, "point_m", point_m, 3)
@@ -215,10 +217,19 @@ class ModelBuilder(GeometryMixin):
         b = self._bodies[i]
         disp = np.zeros((3, 0))
         if b.modal is not None:
-            from cms_reduction.sampling import sample_points
+            reduced = b.modal["reduced"]
+            if mode_shapes is None:
+                from cms_reduction.sampling import sample_points
 
-            disp = sample_points(b.modal["reduced"], "unbalance", p[None, :], np.zeros(1)).displacement[0]
+                disp = sample_points(reduced, "unbalance", p[None, :], np.zeros(1)).displacement[0]
+            else:
+                disp = np.asarray(mode_shapes, dtype=float)
+                if disp.shape != (3, reduced.n_modes) or not np.all(np.isfinite(disp)):
+                    raise ValueError(f"{owner}: mode_shapes must be finite with shape (3, {reduced.n_modes}), "
+                                     f"got {disp.shape}")
             p = p - b.modal["shift"]
+        elif mode_shapes is not None:
+            raise ValueError(f"{owner}: body {b.name!r} is rigid; mode_shapes apply to a modal body")
         u = float(unbalance_kg_m) * np.array([math.cos(angle_rad), math.sin(angle_rad), 0.0])
         self._unbalances.append(dict(body=i, point=p, u=u, disp=disp))
 

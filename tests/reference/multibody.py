@@ -372,6 +372,24 @@ def _squeeze_films(m, bodies):
         bodies.add(b, -(fr * e_r + ft * e_t), p)
 
 
+def _unbalances(m, bodies, eta, modal_f):
+    """Centrifugal force m_u (ω² e − (ω·e) ω) of each unbalance (body frame), at its point displaced by
+    its mode shapes D η; Dᵀ F to the modes of a modal body."""
+    for j, i in enumerate(m.unb_body):
+        R = bodies.R[i]
+        omega = R.T @ bodies.omega[i]
+        u = m.unb_kg_m[j]
+        force = (omega @ omega) * u - (omega @ u) * omega
+        p = m.unb_point[j].copy()
+        mb = m.body_modal[i]
+        if mb >= 0:
+            modes = slice(m.modal_off[mb], m.modal_off[mb + 1])
+            D = m.unb_disp[j][:, :modes.stop - modes.start]
+            p += D @ eta[modes]
+            modal_f[modes] += D.T @ force
+        bodies.add(i, R @ force, bodies.to_world(i, p))
+
+
 def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
     """Twin of mbd_core.kernels.forces.compute_forces on the model arrays ``m`` at state (t, q, v, η, η̇).
 
@@ -398,6 +416,7 @@ def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
     e_bushing = _bushings(m, q, bodies)
     for j, i in enumerate(m.drag_body):        # fluid drag at the centre, F = −(c₁ + c₂|v|) v
         bodies.add(i, -(m.drag_c[j, 0] + m.drag_c[j, 1] * np.linalg.norm(bodies.v[i])) * bodies.v[i], bodies.r[i])
+    _unbalances(m, bodies, eta, modal_f)
     _squeeze_films(m, bodies)
     out = {k: np.zeros(nc) for k in ("fn", "delta", "slip", "ft", "angle", "theta")}
     point, normal_out = np.zeros((nc, 3)), np.zeros((nc, 3))
