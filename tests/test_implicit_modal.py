@@ -57,7 +57,7 @@ def twin_accelerations(model, q, v, eta, eta_dot, body_f, body_t, modal_f):
         R = matrix(q[i, 3:])
         e, u_v, omega = eta[s], R.T @ v[i, :3], v[i, 3:]
         rhs = twin.constrained_rhs(inv, e, eta_dot[s], u_v, omega, R.T @ body_f[i], R.T @ body_t[i],
-                                   R.T @ m.gravity, modal_f[s], m.modal_omega2[s], m.modal_damp[s], True)
+                                   R.T @ m.gravity, modal_f[s], m.modal_omega2[s], m.modal_damp[s], True, frozen=False)
         free = np.concatenate([m.modal_frame_free[j].astype(bool), np.ones(len(e), bool)])
         ud = np.zeros(free.size)
         ud[free] = np.linalg.solve(ref_modal.mass_matrix(*inv, e)[np.ix_(free, free)], rhs[free])

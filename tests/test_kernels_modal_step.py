@@ -239,12 +239,12 @@ def test_constrained_rhs_matches_twin_with_and_without_the_elastic_part():
             eta, eta_dot, modal_f = rng.normal(size=m) * 0.1, rng.normal(size=m), rng.normal(size=m) * 10
             v_b, omega, f_b, n_b, g_b = rng.normal(size=(5, 3)) * [[1.0], [30.0], [10.0], [0.1], [9.81]]
             omega2, damp = rng.uniform(1e4, 1e8, m), rng.uniform(0, 1e3, m)
-            for elastic in (True, False):
+            for elastic, frozen in ((True, True), (False, True), (True, False)):
                 got = np.full(6 + m, np.nan)
                 MS.constrained_rhs(*inv, eta, eta_dot, v_b, omega, f_b, n_b, g_b, modal_f, omega2, damp, elastic,
-                                   True, np.full(6 + m, np.nan), got)
+                                   True, np.full(6 + m, np.nan), got, frozen)
                 want = twin.constrained_rhs(inv, eta, eta_dot, v_b, omega, f_b, n_b, g_b, modal_f, omega2, damp,
-                                            elastic)
+                                            elastic, frozen)
                 for blk in (slice(0, 3), slice(3, 6), slice(6, None)):
                     _close_block(got[blk], want[blk])
 

@@ -90,7 +90,7 @@ def modal_accelerations(m, q, v, eta, eta_dot, w, out, out_eta):
             u[3 + c] = v[i, 3 + c]
         constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, e, eta_dot[o0:o1], u[0:3], u[3:6], vec[1], vec[2],
                         vec[3], w.modal_f[o0:o1], m.modal_omega2[o0:o1], m.modal_damp[o0:o1], True, True, w.modal_h,
-                        rhs)
+                        rhs, False)
         n = _select(m, j, mj, sel)
         for r in range(n):
             b[r] = rhs[sel[r]]

@@ -23,8 +23,11 @@ midpoint (π turned by θ/2, η advanced by h/2), which makes the drift second o
 recovered as u = M_r(η)⁻¹ (π, p_η).
 
 **Constrained frame** (fixed, or driven: some frame velocities prescribed): acceleration form. The
-integrated components f of u get u_f += (h/2) M_ff⁻¹ (rhs − h)_f (prescribed accelerations are
-zero: prescribed velocities are constant); the frame drifts by its velocity, η += h η̇. With
+integrated components f of u get u_f += (h/2) M_ff⁻¹ (rhs − h')_f (prescribed accelerations are
+zero: prescribed velocities are constant); the frame drifts by its velocity, η += h η̇. The frame's
+velocity is the world ṙ, kicked in its body components at the frame of the kick: their rate there is
+Rᵀr̈ = v̇ + ω × v, so h' is h without the terms in ω × v (:func:`constrained_rhs`; with them, a rotor
+driven at Ω whose centre of mass is off the frame origin whirls unstably above about 20 000 rev/min). With
 ``implicit`` set the linear modal part −Kη − Dη̇ is left out of the kicks and integrated in the
 drift per mode by the trapezoidal rule (Newmark average acceleration), unconditionally stable, so
 the stiffest kept mode does not limit the step (frames without free components only: then
@@ -131,8 +134,14 @@ def _reduced_block(Mfull, n, sel, A):
 
 @njit(cache=True, _nrt=False)
 def constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, eta_dot, v_b, omega, f_b, n_b, g_b,
-                    modal_f, omega2, damp, elastic, moving, hvec, rhs):
+                    modal_f, omega2, damp, elastic, moving, hvec, rhs, frozen=True):
     """Right-hand side (F, N, Q − Kη − Dη̇ + gravity) − h of a modal body into rhs (6 + m,).
+
+    ``frozen`` (the explicit kicks): for the accelerations (a = Rᵀr̈, ω̇, η̈), h without its ω × v terms
+    (m ω × v, S × (ω × v), I3ᵀ(ω × v)), which belong to the rate of the body-frame v = Rᵀṙ, not to that
+    of the world velocity's body components at a frozen frame, which the kicks integrate (the drift
+    turns the frame and keeps ṙ). Not ``frozen`` (the implicit integrator, whose unknowns are
+    (v̇, ω̇, η̈) with r̈ = R(v̇ + ω × v)): the whole h.
 
     ``elastic`` False leaves −Kη − Dη̇ out (integrated in the drift); ``moving`` False (a frame at
     rest and held there) skips the quadratic-velocity vector h, which is then zero. f_b, n_b body-frame force and
@@ -140,16 +149,30 @@ def constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, eta_dot, v_b, ome
     modal forces.
     """
     m = eta.shape[0]
-    if moving:
-        modal_velocity_terms(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, v_b, omega, eta_dot, hvec)
-    else:  # a frame at rest: no quadratic-velocity terms
-        for k in range(6 + m):
-            hvec[k] = 0.0
     sx, sy, sz = I2[0], I2[1], I2[2]
     for k in range(m):
         sx += I3[0, k] * eta[k]
         sy += I3[1, k] * eta[k]
         sz += I3[2, k] * eta[k]
+    if not moving:  # a frame at rest: no quadratic-velocity terms
+        for k in range(6 + m):
+            hvec[k] = 0.0
+    else:
+        modal_velocity_terms(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, v_b, omega, eta_dot, hvec)
+    if moving and frozen:
+        # the frame velocity is stored in the world and kicked in the frame frozen over the kick: the
+        # rate of its body components there is Rᵀr̈ = v̇ + ω × v, so the ω × v terms of h drop out
+        a0 = omega[1] * v_b[2] - omega[2] * v_b[1]
+        a1 = omega[2] * v_b[0] - omega[0] * v_b[2]
+        a2 = omega[0] * v_b[1] - omega[1] * v_b[0]
+        hvec[0] -= mass * a0
+        hvec[1] -= mass * a1
+        hvec[2] -= mass * a2
+        hvec[3] -= sy * a2 - sz * a1
+        hvec[4] -= sz * a0 - sx * a2
+        hvec[5] -= sx * a1 - sy * a0
+        for k in range(m):
+            hvec[6 + k] -= I3[0, k] * a0 + I3[1, k] * a1 + I3[2, k] * a2
     rhs[0] = f_b[0] + mass * g_b[0] - hvec[0]
     rhs[1] = f_b[1] + mass * g_b[1] - hvec[1]
     rhs[2] = f_b[2] + mass * g_b[2] - hvec[2]

@@ -54,10 +54,14 @@ def kinetic_gradient(inv, eta, u):
     return 0.5 * np.einsum("i,kij,j->k", u, mass_matrix_derivative(inv, eta), u)
 
 
-def constrained_rhs(inv, eta, eta_dot, v_b, omega, f_b, n_b, g_b, modal_f, omega2, damp, elastic):
-    """(F + m g, N + S × g, Q + I3ᵀ g [− Kη − Dη̇]) − h(η, u), body axes (the kernel's constrained_rhs)."""
+def constrained_rhs(inv, eta, eta_dot, v_b, omega, f_b, n_b, g_b, modal_f, omega2, damp, elastic, frozen=True):
+    """(F + m g, N + S × g, Q + I3ᵀ g [− Kη − Dη̇]) − h, body axes (the kernel's constrained_rhs); ``frozen``:
+    h for the rate of the world velocity's body components at a frozen frame, Rᵀr̈ = v̇ + ω × v — the
+    ω × v part of v̇ moved into that rate, i.e. h − M(η)[:, :3](ω × v)."""
     mass, I2, I3 = inv[:3]
     h = modal.velocity_terms(*inv, eta, v_b, omega, eta_dot)
+    if frozen:
+        h = h - modal.mass_matrix(*inv, eta)[:, :3] @ np.cross(omega, v_b)
     gen = np.concatenate([f_b + mass * g_b, n_b + np.cross(I2 + I3 @ eta, g_b), modal_f + I3.T @ g_b])
     if elastic:
         gen[6:] -= omega2 * eta + damp * eta_dot
