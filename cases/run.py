@@ -46,6 +46,9 @@ from .dma.case import DmaCase
 from .slewing import presets as slewing_presets
 from .slewing import studies as slewing_studies
 from .slewing.case import SlewingCase
+from .turbocharger import presets as turbocharger_presets
+from .turbocharger import studies as turbocharger_studies
+from .turbocharger.case import TurbochargerCase
 from .wind import presets as wind_presets
 from .wind import studies as wind_studies
 from .wind.case import WindCase
@@ -57,7 +60,7 @@ log = logging.getLogger(__name__)
 #: the bearings with cases: case class → (presets module, studies module)
 _FAMILIES = {SlewingCase: (slewing_presets, slewing_studies), WindCase: (wind_presets, wind_studies),
              DescribedCase: (described_presets, described_studies), DmaCase: (dma_presets, dma_studies),
-             CrbCase: (crb_presets, crb_studies)}
+             CrbCase: (crb_presets, crb_studies), TurbochargerCase: (turbocharger_presets, turbocharger_studies)}
 PRESETS = {name: c for presets, _ in _FAMILIES.values() for name, c in presets.PRESETS.items()}
 #: named cases: name → one-line description
 CASES = {name: c.description for name, c in PRESETS.items()}
@@ -66,7 +69,8 @@ CASES = {name: c.description for name, c in PRESETS.items()}
 #: tables that only one family's case files have (to read files written before ``family`` existed)
 _OWN_TABLES = {SlewingCase: {"geometry", "load", "undulation", "thermal", "top", "bottom"},
                WindCase: {"rollers", "bodies", "loads"}, DescribedCase: {"bearing", "life"},
-               DmaCase: {"operation", "traction"}, CrbCase: {"lubrication", "surfaces", "catalogue"}}
+               DmaCase: {"operation", "traction"}, CrbCase: {"lubrication", "surfaces", "catalogue"},
+               TurbochargerCase: {"rotor", "damper", "defect"}}
 
 
 def _case_class(data: dict, source: str) -> type:

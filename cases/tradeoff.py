@@ -62,6 +62,8 @@ WITHOUT_LADDER = {
     "crb": "the crb family's friction model is closed form contact by contact (roller loads from one root solve, "
            "films and losses from fitted formulas): it has no mesh, modes, slices or step to trade, and a whole "
            "speed–axial map takes about a second",
+    "turbocharger": "the turbocharger family has no fidelity ladder yet: its rotor's modes, mesh and step are set "
+                    "in the case (rotor.n_modes, rotor.mesh_size_m; the step by the stable-step guard)",
 }
 #: part of the ladder cache key: bump when what a rung measures changes
 TRADEOFF_VERSION = 4

@@ -88,11 +88,11 @@ def _law(stiffness: float, exponent: float, damping: float, d_max_m: float, fric
     return ContactLaw(stiffness, exponent, damping, d_max_m, "impact", friction, max_penetration_m, strips)
 
 
-def _cage_body(builder, name, mass_kg, radius_m, motion):
+def _cage_body(builder, name, mass_kg, radius_m, motion, height_m=0.0):
     from .builder import Free
 
     inertia = (0.5 * mass_kg * radius_m**2, 0.5 * mass_kg * radius_m**2, mass_kg * radius_m**2)
-    return builder.add_body(name, mass_kg, inertia, motion=motion or Free())
+    return builder.add_body(name, mass_kg, inertia, position_m=(0.0, 0.0, height_m), motion=motion or Free())
 
 
 def _deformed_radius_m(groove_radius_m: float, ball_radius_m: float) -> float:
@@ -104,7 +104,7 @@ def _deformed_radius_m(groove_radius_m: float, ball_radius_m: float) -> float:
 
 def _diagonal(builder: ModelBuilder, row, axial_sign: int, moving_ring, fixed_ring, damping_N_s_m: float,
               d_max_m: float, friction, moving_sample, fixed_sample, moving_groove_m, fixed_groove_m,
-              traction_strips: int = 0):
+              traction_strips: int = 0, fixed_frame_z_m: float = 0.0):
     """The moving and the fixed groove of one contact diagonal of a ball row (its curvature centres,
     module docstring) and the Hertz laws of a ball on them: (g_m, g_f, law_m, law_f). With
     ``traction_strips`` the laws integrate the friction over the Hertz ellipse of each contact."""
@@ -126,7 +126,7 @@ def _diagonal(builder: ModelBuilder, row, axial_sign: int, moving_ring, fixed_ri
         k_m, k_f = hertz_m.stiffness_N_per_m1p5, hertz_f.stiffness_N_per_m1p5
     g_m = builder.add_groove(moving_ring, c_m[0], c_m[1], row.conformity_moving * D,
                              *(moving_groove_m or (None, None)), raceway=moving_sample)
-    g_f = builder.add_groove(fixed_ring, c_f[0], c_f[1], row.conformity_fixed * D,
+    g_f = builder.add_groove(fixed_ring, c_f[0], c_f[1] - fixed_frame_z_m, row.conformity_fixed * D,
                              *(fixed_groove_m or (None, None)), raceway=fixed_sample)
     strips = [None, None]
     if traction_strips:
@@ -140,7 +140,8 @@ def add_ball_row(builder: ModelBuilder, row: BallRow | FourPointRow, moving_ring
                  damping_N_s_m: float = 0.0, d_max_m: float = 1e-6, cage_mass_kg: float | None = None,
                  pocket_clearance_m: float = 0.5e-3, cage_stiffness_N_per_m: float = 1e8,
                  pocket_friction=None, moving_sample=None, fixed_sample=None, moving_groove_m=None,
-                 fixed_groove_m=None, cage_motion=None, traction_strips: int = 0) -> RowBodies:
+                 fixed_groove_m=None, cage_motion=None, traction_strips: int = 0,
+                 fixed_frame_z_m: float = 0.0) -> RowBodies:
     """Add the balls of ``row`` with their ball–groove contacts (and a cage if ``cage_mass_kg``).
 
     A :class:`~mbd_core.quasistatic.BallRow` gives each ball two contacts, one per ring; a
@@ -160,6 +161,12 @@ def add_ball_row(builder: ModelBuilder, row: BallRow | FourPointRow, moving_ring
     model) or :class:`Driven` motion. ``traction_strips`` > 0: the raceway friction acts strip by strip
     over each contact's Hertz ellipse (:class:`~mbd_core.multibody.parts.StripTraction`, rigid rings),
     so the balls' spin gives spin moments; 0: at the contact centre.
+
+    The rings' frames are taken to coincide with the world's at the start, except that the fixed
+    ring's (and the cage's) origin may sit ``fixed_frame_z_m`` up the axis (a ring whose reference
+    point is its own centre, as one of two rows on a shaft): the row's ``axial_position_m`` is then
+    the height in the moving ring's frame, and the fixed groove and the pockets are placed below it
+    in theirs.
     """
     D, R = row.ball_diameter_m, row.pitch_diameter_m / 2
     four_point = isinstance(row, FourPointRow)
@@ -167,12 +174,12 @@ def add_ball_row(builder: ModelBuilder, row: BallRow | FourPointRow, moving_ring
     if traction_strips and friction is None:
         raise ValueError(f"ball row {row.name!r}: traction_strips integrate the raceway friction: give friction")
     diagonals = [_diagonal(builder, row, s, moving_ring, fixed_ring, damping_N_s_m, d_max_m, friction, moving_sample,
-                           fixed_sample, moving_groove_m, fixed_groove_m, traction_strips) for s in signs]
+                           fixed_sample, moving_groove_m, fixed_groove_m, traction_strips, fixed_frame_z_m) for s in signs]
     mass = ball_mass_kg(D, row.ball_material.density_kg_m3)
     inertia = 0.1 * mass * D * D
     cage = None
     if cage_mass_kg is not None:
-        cage = _cage_body(builder, f"{row.name} cage", cage_mass_kg, R, cage_motion)
+        cage = _cage_body(builder, f"{row.name} cage", cage_mass_kg, R, cage_motion, fixed_frame_z_m)
     balls, mov, fix, pockets = [], [], [], []
     for j, psi in enumerate(_azimuths(row.n_balls, row.first_azimuth_rad)):
         b = builder.add_body(f"{row.name} ball {j}", mass, (inertia,) * 3,
@@ -184,7 +191,7 @@ def add_ball_row(builder: ModelBuilder, row: BallRow | FourPointRow, moving_ring
                                                name=f"{row.name} ball {j}–moving{tag}"))
             fix.append(builder.add_ball_groove(b, fixed_ring, g_f, D / 2, law_f, name=f"{row.name} ball {j}–fixed{tag}"))
         if cage is not None:
-            p = builder.add_pocket(cage, "cylinder", psi, R, row.axial_position_m, pocket_clearance_m)
+            p = builder.add_pocket(cage, "cylinder", psi, R, row.axial_position_m - fixed_frame_z_m, pocket_clearance_m)
             pockets.append(builder.add_element_pocket(
                 b, cage, p, D / 2, _law(cage_stiffness_N_per_m, 1.0, damping_N_s_m, d_max_m, pocket_friction),
                 name=f"{row.name} ball {j}–pocket"))

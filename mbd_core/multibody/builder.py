@@ -234,15 +234,15 @@ class ModelBuilder(GeometryMixin):
         self._unbalances.append(dict(body=i, point=p, u=u, disp=disp))
 
     def add_squeeze_film(self, journal, housing, table, bore_center_m=(0, 0, 0),
-                         axis=(0, 0, 1), name: str | None = None) -> int:
+                         axis=(0, 0, 1), name: str | None = None, journal_center_m=None) -> int:
         """A squeeze-film damper between a journal (a bearing's outer race) and its housing; returns
         its index.
 
         ``table`` is the damper's :class:`mbd_core.squeeze_film.force_table.FilmForceTable`
         (:func:`~mbd_core.squeeze_film.force_table.tabulate` of a
         :class:`~mbd_core.squeeze_film.SqueezeFilmDamper`); ``bore_center_m`` the bore's centre and
-        ``axis`` its axis, world, at the start. The journal's centre is its body's reference point; it
-        gets the film force there (no moment). A journal beyond the table's eccentricity ends the run
+        ``axis`` its axis, world, at the start; ``journal_center_m`` the journal's centre, world, at the
+        start (None: its body's reference point). The journal gets the film force there. A journal beyond the table's eccentricity ends the run
         with an error naming the damper.
         """
         a, b = self._body_index(journal, "squeeze film"), self._body_index(housing, "squeeze film")
@@ -258,12 +258,14 @@ class ModelBuilder(GeometryMixin):
         name = name or f"{self._bodies[a].name}–{self._bodies[b].name} film"
         if any(d["name"] == name for d in self._dampers):
             raise ValueError(f"squeeze film: the name {name!r} is used twice")
-        d = self._bodies[a].q[:3] - center
+        journal_at = self._bodies[a].q[:3] if journal_center_m is None else _vec("squeeze film", "journal_center_m",
+                                                                                  journal_center_m, 3)
+        d = journal_at - center
         eps = float(np.linalg.norm(d - (d @ n) * n)) / table.clearance_m
         if eps > table.max_eccentricity_ratio:
             raise ValueError(f"squeeze film {name!r}: the journal starts at ε = {eps:.3g} of the clearance "
                              f"{table.clearance_m:g} m, beyond the table's {table.max_eccentricity_ratio:g}")
-        self._dampers.append(dict(a=a, b=b, table=table, center=center, axis=n, name=name))
+        self._dampers.append(dict(a=a, b=b, table=table, center=center, axis=n, name=name, journal=journal_at))
         return len(self._dampers) - 1
 
     # -- joints ---------------------------------------------------------------------------------

@@ -103,13 +103,13 @@ def unbalance_arrays(unbalances, n_modes_max: int) -> dict:
 
 
 def squeeze_film_arrays(dampers, q0) -> dict:
-    """The ``sfd_*`` arrays of :class:`ModelArrays` from the builder's dampers (the journal's centre is
-    its body's origin; the bore centre and axis, given in world at the start, go to the housing's frame)."""
+    """The ``sfd_*`` arrays of :class:`ModelArrays` from the builder's dampers (the journal's centre, the
+    bore centre and axis, given in world at the start, go to the journal's and the housing's frames)."""
     tables = [d["table"] for d in dampers]
     rows = [t.scaled_N_s_m.reshape(-1, 2) for t in tables]
     return dict(
         sfd_a=_i64([d["a"] for d in dampers]), sfd_b=_i64([d["b"] for d in dampers]),
-        sfd_p_a=_f64([np.zeros(3) for _ in dampers], (-1, 3)),
+        sfd_p_a=_f64([_rotate_back(q0[d["a"]], d["journal"]) for d in dampers], (-1, 3)),
         sfd_p_b=_f64([_rotate_back(q0[d["b"]], d["center"]) for d in dampers], (-1, 3)),
         sfd_axis=_f64([_rotate(_quat_conj(q0[d["b"], 3:]), d["axis"]) for d in dampers], (-1, 3)),
         sfd_clearance=_f64([t.clearance_m for t in tables]),

@@ -1,0 +1,1 @@
+"""The turbocharger rotor on two angular-contact ball bearings in squeeze-film dampers (:mod:`.case`)."""
