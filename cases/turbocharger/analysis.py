@@ -27,12 +27,18 @@ def axis_stations_m(case: TurbochargerCase, scene: TurboScene) -> dict[str, floa
 
 
 def defect_frequencies_Hz(scene: TurboScene) -> dict[str, float]:
-    """Shaft rotation, FTF, BPFO, BPFI and 2×BSF of a row at the running speed (rolling without slip
-    at the nominal contact angle), Hz."""
-    row = scene.specs[0]
-    k = rolling_kinematics(row.ball_diameter_m, row.pitch_diameter_m, row.contact_angle_rad, row.n_balls,
+    """Shaft rotation, FTF, BPFO, BPFI and 2×BSF of the turbine-side row at its operating point, Hz:
+    the cage at the balls' orbit speed ω_m of the row's quasi-static high-speed solution under the
+    preload (its contact angles, centrifugal force and gyroscopic moment: 1 % above the nominal
+    kinematics at 50 000 rev/min), FTF = ω_m/2π, BPFO = Z·FTF, BPFI = Z·(f_shaft − FTF); the ball spin
+    from the rolling kinematics at the mean of its operating inner and outer contact angles."""
+    row, quasi = scene.specs[0], scene.quasi[0]
+    shaft = scene.speed_rad_s / (2 * math.pi)
+    ftf = float(np.mean(quasi.orbit_speed_rad_s)) / (2 * math.pi)
+    alpha = 0.5 * float(np.mean(quasi.inner_angle_rad) + np.mean(quasi.outer_angle_rad))
+    k = rolling_kinematics(row.ball_diameter_m, row.pitch_diameter_m, alpha, row.n_balls,
                            inner_speed_rad_s=scene.speed_rad_s)
-    return {"1x": scene.speed_rad_s / (2 * math.pi), "FTF": k.ftf_Hz, "BPFO": k.bpfo_Hz, "BPFI": k.bpfi_Hz,
+    return {"1x": shaft, "FTF": ftf, "BPFO": row.n_balls * ftf, "BPFI": row.n_balls * (shaft - ftf),
             "2xBSF": 2.0 * k.bsf_Hz}
 
 
@@ -41,6 +47,12 @@ def _matrices(quats: np.ndarray) -> np.ndarray:
     return np.stack([np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
                      np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
                      np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)], 1)
+
+
+def _peaks(f: np.ndarray, amp: np.ndarray, n: int) -> list[float]:
+    """The ``n`` highest local maxima of a spectrum above its third bin, by frequency."""
+    local = [i for i in range(3, amp.size - 1) if amp[i] > amp[i - 1] and amp[i] >= amp[i + 1]]
+    return sorted(float(f[i]) for i in sorted(local, key=lambda i: -amp[i])[:n])
 
 
 @dataclass
@@ -55,7 +67,7 @@ class RunFigures:
     inner_loads_N: list       # per row (k, Z) inner contact loads
     outer_loads_N: list
     cage_whirl_m: np.ndarray  # (k, 2) cage centre's distance from its outer ring's centre
-    spectrum: tuple           # (f Hz, amplitude N) of the turbine-side housing force's x component
+    spectrum: tuple           # (f Hz, amplitude N, Hann window) of the turbine-side housing force's x component
     frequencies_Hz: dict
     summary: dict
 
@@ -87,7 +99,9 @@ def analyse(case: TurbochargerCase, scene: TurboScene, rec: dict) -> RunFigures:
     outer = [rec["fn"][keep][:, list(rb.fixed_pairs)] for rb in scene.rows]
     cage = q[:, scene.rows[0].cage, :2] - q[:, scene.outers[0], :2]
     dt = float(np.median(np.diff(t)))
-    spectrum = hann_spectrum(housing[:, 0, 0], dt)
+    f, raw = hann_spectrum(housing[:, 0, 0], dt)
+    spectrum = (f, 2.0 * raw / np.hanning(t.size).sum())    # a sine's amplitude, N
+    peaks = _peaks(*spectrum, 8)
     freqs = defect_frequencies_Hz(scene)
     radius = {name: float(np.max(np.linalg.norm(o - o.mean(axis=0), axis=1))) for name, o in orbits.items()}
     summary = {
@@ -99,6 +113,8 @@ def analyse(case: TurbochargerCase, scene: TurboScene, rec: dict) -> RunFigures:
         "inner_unloaded_share": [float(np.mean(x <= 0.0)) for x in inner],
         "cage_whirl_radius_um": 1e6 * float(np.max(np.linalg.norm(cage - cage.mean(axis=0), axis=1))),
         "defect_frequencies_Hz": freqs,
+        "spectrum_resolution_Hz": float(f[1]) if f.size > 1 else math.nan,
+        "spectrum_peaks_Hz": [float(x) for x in peaks],
         "timestep_s": float(rec.get("timestep_s", math.nan)),
     }
     return RunFigures(t, orbits, ecc, film, housing, inner, outer, cage, spectrum, freqs, summary)

@@ -64,14 +64,17 @@ def plot_damper(run: RunFigures, title: str):
 
 def plot_spectrum(run: RunFigures, title: str):
     f, amp = run.spectrum
-    top = 2.5 * max(run.frequencies_Hz.values())
+    top = 8.0 * max(run.frequencies_Hz.values())
     sel = (f > 0) & (f <= top)
-    fig, ax = plt.subplots(figsize=(8, 4), constrained_layout=True)
-    ax.semilogy(f[sel], np.maximum(amp[sel], 1e-12), lw=0.8)
+    fig, ax = plt.subplots(figsize=(9, 4), constrained_layout=True)
+    ax.semilogy(f[sel], np.maximum(amp[sel], 1e-6), lw=0.8)
     for k, (name, value) in enumerate(run.frequencies_Hz.items()):
-        ax.axvline(value, color=f"C{k + 1}", lw=0.8, ls="--", label=f"{name} {value:.0f} Hz")
+        ax.axvline(value, color=f"C{k + 1}", lw=0.9, ls="--", label=f"{name} {value:.0f} Hz")
+        if name in ("BPFO", "BPFI"):   # their harmonics, where a spall's impacts show
+            for n in range(2, int(top / value) + 1):
+                ax.axvline(n * value, color=f"C{k + 1}", lw=0.5, ls=":")
     ax.set_xlabel("frequency [Hz]")
-    ax.set_ylabel("amplitude (Hann) [N]")
+    ax.set_ylabel("amplitude [N]")
     ax.set_title(f"{title}: turbine-side housing force, x", fontsize=10)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3, which="both")
