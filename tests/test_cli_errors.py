@@ -214,7 +214,7 @@ def test_case_files_name_their_family(tmp_path):
         resolve_case(write(tmp_path, "[contact]\nmu_static = 0.3\n"))
     with pytest.raises(CaseError, match="unknown key"):
         resolve_case(write(tmp_path, "family = 'wind'\n[geometry]\nconformity = 0.53\n"))
-    with pytest.raises(CaseError, match="family: must be one of 'slewing', 'wind', 'bearing', 'dma', 'crb', got 'roller'"):
+    with pytest.raises(CaseError, match="family: must be one of 'slewing', 'wind', 'bearing', 'dma', 'crb', 'turbocharger', got 'roller'"):
         resolve_case(write(tmp_path, "family = 'roller'\n"))
     assert resolve_case(write(tmp_path, "family = 'slewing'\n")) == SlewingCase()
 

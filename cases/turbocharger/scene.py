@@ -220,7 +220,7 @@ def _whirl_start(scene: TurboScene, unbalance_kg_m: float, point_m: np.ndarray) 
     A free rigid rotor with a body-fixed force U Ω² at p turns steadily about a fixed axis: its centre of
     mass on a circle of radius U/m opposite the unbalance, its axis tilted by β = Δz U/(I_p − I_d)
     (Δz the unbalance's height above the centre of mass; Euler's equations M = ω × Iω for a steady spin
-    ω about the tilted principal axis). Started at rest instead, the rotor would drift at U/(mΩ) (a
+    ω about the tilted principal axis). Started at rest instead, the rotor would drift at UΩ/m (a
     rotating force on a mass at rest has a mean velocity) and the dampers would be pushed to their
     ends in a millisecond. At tens of thousands of rev/min the rotor runs far above its rigid modes on
     the dampers, so the free orbit is close to the steady one and the rest settles. Each bearing (outer
