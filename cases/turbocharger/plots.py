@@ -10,7 +10,8 @@ import numpy as np  # noqa: E402
 
 from .analysis import RunFigures  # noqa: E402
 
-__all__ = ["plot_ball_loads", "plot_orbits", "plot_damper", "plot_spectrum", "plot_over_speed", "plot_damper_sweep"]
+__all__ = ["plot_ball_loads", "plot_orbits", "plot_damper", "plot_spectrum", "plot_over_speed", "plot_damper_sweep",
+           "plot_waterfall"]
 
 
 def plot_ball_loads(run: RunFigures, title: str):
@@ -112,4 +113,30 @@ def plot_damper_sweep(lengths_m, clearances_m, force_N, radius_um, title: str):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     fig.suptitle(title, fontsize=10)
+    return fig
+
+
+def plot_waterfall(speeds_rpm, runs: list[RunFigures], title: str):
+    """The turbine-side housing force's spectrum at each speed (colour: log amplitude), with the orders
+    1× and 2× and each run's BPFO and BPFI."""
+    top = 1.2 * max(r.frequencies_Hz["BPFI"] for r in runs) * 4
+    f_edges = np.linspace(0.0, top, 601)
+    grid = 0.5 * (f_edges[1:] + f_edges[:-1])
+    image = np.array([np.interp(grid, r.spectrum[0], r.spectrum[1]) for r in runs])
+    fig, ax = plt.subplots(figsize=(8, 5), constrained_layout=True)
+    edges = np.concatenate([[speeds_rpm[0] - 0.5 * (speeds_rpm[1] - speeds_rpm[0]) if len(speeds_rpm) > 1
+                             else 0.9 * speeds_rpm[0]],
+                            0.5 * (np.array(speeds_rpm[1:]) + np.array(speeds_rpm[:-1])),
+                            [speeds_rpm[-1] + (0.5 * (speeds_rpm[-1] - speeds_rpm[-2]) if len(speeds_rpm) > 1
+                                               else 0.1 * speeds_rpm[-1])]])
+    mesh = ax.pcolormesh(f_edges / 1e3, edges, np.log10(np.maximum(image, 1e-3)), shading="flat", cmap="viridis")
+    fig.colorbar(mesh, ax=ax, label="log10 amplitude [N]")
+    for key, style in (("1x", "w-"), ("BPFO", "r--"), ("BPFI", "m--")):
+        ax.plot([r.frequencies_Hz[key] / 1e3 for r in runs], speeds_rpm, style, lw=0.9, label=key)
+    ax.plot([2 * r.frequencies_Hz["1x"] / 1e3 for r in runs], speeds_rpm, "w:", lw=0.9, label="2x")
+    ax.set_xlabel("frequency [kHz]")
+    ax.set_ylabel("speed [rev/min]")
+    ax.set_xlim(0, top / 1e3)
+    ax.legend(fontsize=8, loc="lower right")
+    ax.set_title(f"{title}: turbine-side housing force, x", fontsize=10)
     return fig

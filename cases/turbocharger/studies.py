@@ -7,42 +7,24 @@ import dataclasses
 import math
 
 
-from mbd_core.multibody import DivergenceError, StepTooLargeError
+from mbd_core.multibody import DivergenceError, StepTooLargeError, stable_timestep
 
 from ..config import CaseError
 from ..integrate import integrate
 from ..overrides import StudyEntry, unused_keys
 from .analysis import RunFigures, analyse
 from .case import TurbochargerCase
-from .plots import plot_ball_loads, plot_damper, plot_damper_sweep, plot_orbits, plot_over_speed, plot_spectrum
+from .plots import (plot_ball_loads, plot_damper, plot_damper_sweep, plot_orbits, plot_over_speed, plot_spectrum,
+                    plot_waterfall)
 from .scene import build_scene, with_speed
 
 __all__ = ["STUDIES", "case_unused_keys", "run_study", "uses_dynamics", "simulate_case"]
 
 
-#: share of the start's stable step the runs take, beyond the share of the load growth (_load_ratio)
+#: share of the start's stable step a run takes first; a run whose loads outgrow it (the friction law's
+#: slope sets the limit, and it falls as the load grows) runs again at half the step, at most STEP_RETRIES times
 STEP_MARGIN = 0.7
-
-
-def _load_ratio(case: TurbochargerCase, scene) -> float:
-    """The largest ball load at the start (the preload alone) over the largest under the preload and the
-    whole unbalance force U Ω² on one bearing (quasi-static): the explicit step is kept for the whole
-    run (evenly spaced samples for the spectra), and its friction limit falls as the load grows."""
-    from mbd_core.quasistatic import RingLoad, solve_high_speed_row
-    from mbd_core.quasistatic.results import LoadDistributionError
-
-    force = case.operation.unbalance_g_mm * 1e-6 * scene.speed_rad_s ** 2
-    start = max(max(q.inner_load_N.max(), q.outer_load_N.max()) for q in scene.quasi)
-    if force <= 0.0:
-        return 1.0
-    peak = 0.0
-    for row, sign in zip(scene.specs, (1.0, -1.0)):
-        try:
-            q = solve_high_speed_row(row, RingLoad(Fz_N=sign * case.bearings.preload_N, Fx_N=force), scene.speed_rad_s)
-        except LoadDistributionError:   # no equilibrium under the whole force: take it on one ball
-            return min(1.0, start / force)
-        peak = max(peak, q.inner_load_N.max(), q.outer_load_N.max())
-    return min(1.0, start / peak)
+STEP_RETRIES = 3
 
 
 def _key_of(message: str) -> str:
@@ -59,22 +41,20 @@ def simulate_case(case: TurbochargerCase, speed_rpm: float | None = None, progre
     stops (a damper at the end of its table, a contact beyond its bound) raises :class:`CaseError`
     naming the key to change."""
     scene = build_scene(case, speed_rpm)
-    from mbd_core.multibody.explicit import stable_timestep
-
     margin = STEP_MARGIN
-    for attempt in range(3):
+    for attempt in range(STEP_RETRIES + 1):
         try:
-            h = margin * stable_timestep(scene.model, scene.state).timestep_s * _load_ratio(case, scene)
+            # one step for the whole run: evenly spaced samples for the spectra
+            h = margin * stable_timestep(scene.model, scene.state).timestep_s
             every = max(1, int(round(case.run.sample_s / h)))
             rec = integrate(scene.model, scene.state.copy(), case.run.duration_s, every, progress, chunks=20,
                             timestep_s=h)
             break
-        except StepTooLargeError:
-            if attempt == 2:   # the friction law's slope sets the step of these runs
-                raise CaseError(f"bearings.friction: the run at {scene.speed_rad_s * 30 / math.pi:.0f} rev/min needs a "
-                                f"step below {h / 4:.3g} s as its loads grow; the explicit step is not reached "
-                                "within a factor 4 of the start's (a load far beyond the unbalance's)") from None
-            margin *= 0.5          # the loads grew beyond the estimate: the same run at half the step
+        except StepTooLargeError as exc:
+            if attempt == STEP_RETRIES:   # the friction law's slope sets the step of these runs
+                raise CaseError(f"bearings.friction: the run at {scene.speed_rad_s * 30 / math.pi:.0f} rev/min "
+                                f"outgrew {2 ** STEP_RETRIES} times a smaller step than the start's: {exc}") from None
+            margin *= 0.5          # the loads grew: the same run at half the step
         except DivergenceError as exc:
             speed = scene.speed_rad_s * 30 / math.pi
             raise CaseError(f"{_key_of(str(exc))}: the run at {speed:.0f} rev/min stopped: {exc}") from None
@@ -137,11 +117,12 @@ def _point(out, case: TurbochargerCase, label: str) -> RunFigures | None:
 
 def _run_up(case: TurbochargerCase, out, progress=None) -> None:
     speeds = case.study.speeds_rpm
-    rows, radius, min_load = [], {}, []
+    rows, radius, min_load, runs = [], {}, [], []
     for n in (progress(speeds, "speeds") if progress else speeds):
         run = _point(out, with_speed(case, n), f"{n:.0f} rev/min")
         if run is None:
             continue
+        runs.append(run)
         s = run.summary
         for name, r in s["orbit_radius_um"].items():
             radius.setdefault(name, []).append(r)
@@ -162,6 +143,7 @@ def _run_up(case: TurbochargerCase, out, progress=None) -> None:
     out.save_figure(plot_over_speed(list(speeds), radius, min_load,
                                     f"{case.name}: {op.unbalance_g_mm:g} g·mm at the {op.unbalance_at}, preload "
                                     f"{case.bearings.preload_N:g} N, steady runs"), "run_up.png")
+    out.save_figure(plot_waterfall(speeds, runs, case.name), "waterfall.png")
     out.summary.update(points=[dict(speed_rpm=r[0], orbit_radius_um=dict(zip(radius, r[1:5])),
                                     damper_max_eccentricity=list(r[5:7]), housing_force_amplitude_N=list(r[7:9]),
                                     inner_load_min_N=list(r[9:11]), inner_unloaded_share=list(r[11:13]),
