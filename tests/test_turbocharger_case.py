@@ -49,7 +49,7 @@ def test_preload_keeps_every_ball_loaded_and_its_mean_is_the_quasi_static_preloa
 
 
 def test_without_preload_the_balls_lose_contact_periodically():
-    """The study's Fig. 8: 10 N of axial load only; measured 65 % and 24 % of the time unloaded (inner
+XX
     contacts of the turbine- and compressor-side rows)."""
     _, run = simulate_case(presets.quick(PRESETS["turbocharger-no-preload"]))
     share = run.summary["inner_unloaded_share"]
@@ -67,7 +67,7 @@ def test_a_spalled_outer_race_rings_at_multiples_of_bpfo():
     top = f[sorted(peaks, key=lambda i: -amp[i])[:5]]
     off = np.abs(top - bpfo * np.round(top / bpfo))
     # each of the five strongest peaks within one resolution bin (200 Hz) of a multiple of BPFO;
-    # measured 6, 60, 72, 75 and 9 Hz off (5× … 9× BPFO)
+    # measured 18, 46, 82, 91 and 27 Hz off (5× … 9× BPFO)
     assert np.all(off <= resolution), (top, bpfo)
     _, intact = simulate_case(presets.quick(PRESETS["turbocharger"]))
     assert intact.spectrum[1][high].max() < 0.05 * amp[high].max()
