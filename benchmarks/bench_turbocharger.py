@@ -4,8 +4,8 @@ The ``turbocharger`` preset (a 10-mode flexible rotor with its stress stiffening
 two hybrid angular-contact rows of 8 balls with their cages, the outer rings in squeeze-film dampers,
 10 g·mm of unbalance), built (the rotor's reduction cached in ``FLEXBEARING_CACHE``) and run for
 0.1 s of simulated time from its start on the unbalance orbit (:func:`cases.turbocharger.studies.simulate_case`).
-Printed: the CPU time of building and of the run, the step, the steps per second, the wall time, and
-the time per step; the target is 0.1 s simulated in under 2 minutes of wall time on a 2-core laptop-class
+Printed: the CPU time of building and of the run (which builds its scene again and analyses the
+record), the step and the number of steps, the wall time, and the CPU time per step without the build; the target is 0.1 s simulated in under 2 minutes of wall time on a 2-core laptop-class
 machine. ``--quick``: 5 ms of the quick variant (6 modes).
 
 Run::
@@ -41,10 +41,12 @@ def main() -> None:
     _, run = simulate_case(case)
     run_cpu, run_wall = time.process_time() - cpu1, time.perf_counter() - wall1
     steps = duration / run.summary["timestep_s"]
+    step_cpu = max(run_cpu - build_cpu, 0.0)      # the run rebuilds its scene (cached reduction) first
     print(f"turbocharger{' (quick)' if args.quick else ''}: {scene.model.n_bodies} bodies, {scene.model.n_pairs} "
           f"contacts, {scene.body.n_modes} rotor modes; build {build_cpu:.2f} s CPU")
     print(f"{duration:g} s simulated at step {run.summary['timestep_s']:.3g} s ({steps:.0f} steps): "
-          f"{run_cpu:.1f} s CPU, {run_wall:.1f} s wall, {1e6 * run_cpu / steps:.1f} µs/step; "
+          f"{run_cpu:.1f} s CPU and {run_wall:.1f} s wall with the build and the analysis, "
+          f"{1e6 * step_cpu / steps:.1f} µs/step without the build; "
           f"target 120 s wall for 0.1 s: {'met' if args.quick or run_wall < 120.0 else 'NOT met'} "
           f"(building and a 2 ms warm-up run with any compiling: {wall1 - wall0:.1f} s wall)")
 
