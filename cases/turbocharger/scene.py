@@ -14,6 +14,7 @@ import math
 from dataclasses import dataclass, replace
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from cms_reduction import prestressed
 from cms_reduction.pipeline import RacewaySpec, ReductionSpec, reduced_body
@@ -236,14 +237,15 @@ def _whirl_start(scene: TurboScene, unbalance_kg_m: float, point_m: np.ndarray) 
     I_p, I_d = float(inv.I7[2, 2]), float(inv.I7[0, 0] - m * z_g * z_g)
     beta = (float(point_m[2]) - z_g) * unbalance_kg_m / (I_p - I_d)
     q, v = scene.state.q, scene.state.v
-    rot = np.array([[math.cos(beta), 0.0, math.sin(beta)], [0.0, 1.0, 0.0], [-math.sin(beta), 0.0, math.cos(beta)]])
+    tilt = Rotation.from_rotvec([0.0, beta, 0.0])
+    rot = tilt.as_matrix()
     rotor = scene.rotor
     base = q[rotor, :3].copy()
     origin = np.array([-unbalance_kg_m / m, 0.0, base[2] + z_g]) - rot @ np.array([0.0, 0.0, z_g])
     spin = np.array([0.0, 0.0, W])
     tilt_rate = np.cross(spin, [0.0, beta, 0.0])             # the tilt (about y) precessing at Ω
     q[rotor, :3] = origin
-    q[rotor, 3:] = (math.cos(beta / 2), 0.0, math.sin(beta / 2), 0.0)
+    q[rotor, 3:] = tilt.as_quat(scalar_first=True)
     v[rotor, :3] = np.cross(spin, origin)
     v[rotor, 3:] = (-W * math.sin(beta), 0.0, W)
     bearing_bodies = [[outer, rb.cage, *rb.elements] for outer, rb in zip(scene.outers, scene.rows)]
@@ -255,23 +257,9 @@ def _whirl_start(scene: TurboScene, unbalance_kg_m: float, point_m: np.ndarray) 
             x = q[body, :3].copy()
             q[body, :3] = centre + rot @ (x - centre_old)
             v[body, :3] += whirl + np.cross(tilt_rate, q[body, :3] - centre)
-            qb = q[body, 3:].copy()
-            q[body, 3:] = _quat_mul((math.cos(beta / 2), 0.0, math.sin(beta / 2), 0.0), qb)
-            v[body, 3:] += _rotate_back(q[body, 3:], tilt_rate)
-
-
-def _quat_mul(a, b) -> np.ndarray:
-    aw, ax, ay, az = a
-    bw, bx, by, bz = b
-    return np.array([aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
-                     aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw])
-
-
-def _rotate_back(quat, x) -> np.ndarray:
-    w, u = quat[0], np.asarray(quat[1:])
-    x = np.asarray(x, float)
-    # R(q)ᵀ x for a unit quaternion q = (w, u)
-    return x + 2.0 * np.cross(u, np.cross(u, x) - w * x)
+            turned = tilt * Rotation.from_quat(q[body, 3:], scalar_first=True)
+            q[body, 3:] = turned.as_quat(scalar_first=True)
+            v[body, 3:] += turned.inv().apply(tilt_rate)     # the precession, in the body's axes
 
 
 def with_speed(case: TurbochargerCase, speed_rpm: float) -> TurbochargerCase:
