@@ -11,7 +11,7 @@ import numpy as np  # noqa: E402
 from .analysis import RunFigures  # noqa: E402
 
 __all__ = ["plot_ball_loads", "plot_orbits", "plot_damper", "plot_spectrum", "plot_over_speed", "plot_damper_sweep",
-           "plot_waterfall"]
+           "plot_waterfall", "plot_cage"]
 
 
 def plot_ball_loads(run: RunFigures, title: str):
@@ -139,4 +139,26 @@ def plot_waterfall(speeds_rpm, runs: list[RunFigures], title: str):
     ax.set_xlim(0, top / 1e3)
     ax.legend(fontsize=8, loc="lower right")
     ax.set_title(f"{title}: turbine-side housing force, x", fontsize=10)
+    return fig
+
+
+def plot_cage(run: RunFigures, pocket_clearance_m: float, title: str):
+    """The turbine-side cage's centre relative to its outer ring: its whirl orbit and its distance
+    over time, beside the pocket play."""
+    xy = run.cage_whirl_m * 1e6
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True,
+                                 gridspec_kw={"width_ratios": [1, 1.6]})
+    a1.plot(xy[:, 0], xy[:, 1], lw=0.6)
+    a1.set_aspect("equal")
+    a1.set_xlabel("x [µm]")
+    a1.set_ylabel("y [µm]")
+    a1.set_title("cage centre whirl", fontsize=9)
+    a2.plot(run.t_s * 1e3, np.linalg.norm(xy, axis=1), lw=0.8, label="cage centre off the ring's")
+    a2.axhline(pocket_clearance_m * 1e6, color="k", ls="--", lw=0.7, label="pocket play")
+    a2.set_xlabel("time [ms]")
+    a2.set_ylabel("distance [µm]")
+    a2.legend(fontsize=8)
+    for ax in (a1, a2):
+        ax.grid(alpha=0.3)
+    fig.suptitle(f"{title}: turbine-side cage", fontsize=10)
     return fig

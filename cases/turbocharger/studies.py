@@ -6,7 +6,6 @@ from __future__ import annotations
 import dataclasses
 import math
 
-
 from mbd_core.multibody import DivergenceError, StepTooLargeError, stable_timestep
 
 from ..config import CaseError
@@ -14,8 +13,8 @@ from ..integrate import integrate
 from ..overrides import StudyEntry, unused_keys
 from .analysis import RunFigures, analyse
 from .case import TurbochargerCase
-from .plots import (plot_ball_loads, plot_damper, plot_damper_sweep, plot_orbits, plot_over_speed, plot_spectrum,
-                    plot_waterfall)
+from .plots import (plot_ball_loads, plot_cage, plot_damper, plot_damper_sweep, plot_orbits, plot_over_speed,
+                    plot_spectrum, plot_waterfall)
 from .scene import build_scene, with_speed
 
 __all__ = ["STUDIES", "case_unused_keys", "run_study", "uses_dynamics", "simulate_case"]
@@ -74,6 +73,7 @@ def _run(case: TurbochargerCase, out, progress=None) -> None:
     out.save_figure(plot_orbits(run, case.damper.clearance_m, title), "orbits.png")
     out.save_figure(plot_damper(run, title), "dampers.png")
     out.save_figure(plot_spectrum(run, title), "spectrum.png")
+    out.save_figure(plot_cage(run, case.bearings.pocket_clearance_m, title), "cage.png")
     stations = list(run.orbits_m)
     header = ["t_s"] + [f"{n.replace(' ', '_')}_{c}_m" for n in stations for c in "xy"] + \
         ["turbine_damper_eps", "compressor_damper_eps", "turbine_housing_force_x_N", "turbine_housing_force_y_N",
@@ -97,6 +97,20 @@ def _run(case: TurbochargerCase, out, progress=None) -> None:
              + f"; dampers ε ≤ {max(s['damper_max_eccentricity']):.2f}, into the housing ≤ "
              f"{max(s['housing_force_amplitude_N']):.0f} N; step {s['timestep_s']:.3g} s")
     _validity(out, s)
+
+
+#: land length over diameter beyond which the short-damper closed form is refused as the film model
+#: without a warning: against the grid solver at ε = 0.4 (circular whirl) it overestimates the film's
+#: tangential and radial force by 3.5 % and 8 % at L/D = 0.23, 14 % and 27 % at L/D = 0.5
+SHORT_DAMPER_MAX_L_D = 0.3
+
+
+def _damper_validity(out, case: TurbochargerCase) -> None:
+    d = case.damper
+    ratio = d.length_m / (2.0 * d.journal_radius_m)
+    if d.method == "short" and ratio > SHORT_DAMPER_MAX_L_D:
+        out.warn([f"damper L/D = {ratio:.2f} > {SHORT_DAMPER_MAX_L_D}: the short-damper closed form overestimates "
+                  "the film force there (14 % tangential, 27 % radial at L/D = 0.5); set damper.method = \"grid\""])
 
 
 def _validity(out, s: dict) -> None:
@@ -212,5 +226,8 @@ def uses_dynamics(case: TurbochargerCase) -> bool:
 
 
 def run_study(case: TurbochargerCase, out, progress=None) -> None:
+    lengths = case.study.damper_lengths_m if case.study.kind == "damper" else (case.damper.length_m,)
+    for length in lengths:
+        _damper_validity(out, dataclasses.replace(case, damper=dataclasses.replace(case.damper, length_m=length)))
     STUDIES[case.study.kind].run(case, out, progress)
     out.summary["integrator"] = {"kind": "explicit, at the automatic stable step"}
