@@ -18,6 +18,7 @@ from scipy.spatial.transform import Rotation
 
 from cms_reduction import prestressed
 from cms_reduction.pipeline import RacewaySpec, ReductionSpec, reduced_body
+from fem_rings.cache import input_hash, load_arrays, save_arrays
 from fem_rings.mesh import MeshSpec
 from fem_rings.profile import polygon
 from foundation.materials import BEARING_STEEL, SILICON_NITRIDE
@@ -26,8 +27,8 @@ from mbd_core.contact.friction import Coulomb
 from mbd_core.multibody import Driven, Fixed, Free, ModelBuilder
 from mbd_core.multibody.bearings import add_ball_row, orbit_rad_s, set_rolling_velocities
 from mbd_core.quasistatic import BallRow, RingLoad, solve_high_speed_row
-from mbd_core.squeeze_film import SqueezeFilmDamper
-from mbd_core.squeeze_film.force_table import tabulate
+from mbd_core.squeeze_film import FilmGrid, SqueezeFilmDamper
+from mbd_core.squeeze_film.force_table import TABLE_VERSION, FilmForceTable, tabulate
 
 from .case import Damper, TurbochargerCase
 
@@ -115,11 +116,18 @@ def wheel_points_m(case: TurbochargerCase) -> dict[str, np.ndarray]:
 
 
 def film_table(damper: Damper):
-    """The damper's force table (``damper.method``)."""
+    """The damper's force table (``damper.method``), cached by its inputs in ``FLEXBEARING_CACHE`` (the
+    grid solver's table takes about two minutes)."""
     sfd = SqueezeFilmDamper(damper.journal_radius_m, damper.length_m, damper.clearance_m, damper.viscosity_Pa_s,
                             damper.cavitation)
-    return tabulate(sfd, damper.method, n_eps=41 if damper.method == "grid" else 61,
-                    n_psi=96 if damper.method == "grid" else 288, max_eccentricity_ratio=damper.max_eccentricity_ratio)
+    size = dict(n_eps=41, n_psi=96) if damper.method == "grid" else dict(n_eps=61, n_psi=288)
+    key = input_hash("sfd-table", TABLE_VERSION, sfd, damper.method, size, damper.max_eccentricity_ratio, FilmGrid())
+    stored = load_arrays("sfd-table", key)
+    if stored is not None:
+        return FilmForceTable(stored["scaled_N_s_m"], damper.max_eccentricity_ratio, damper.method, damper.clearance_m)
+    table = tabulate(sfd, damper.method, max_eccentricity_ratio=damper.max_eccentricity_ratio, **size)
+    save_arrays("sfd-table", key, {"scaled_N_s_m": np.asarray(table.scaled_N_s_m)})
+    return table
 
 
 def _outer_ring(case: TurbochargerCase, row: BallRow):

@@ -23,7 +23,10 @@ import numpy as np
 from .limits import LIMITS, limit_force_N
 from .reynolds_grid import FilmGrid, SqueezeFilmDamper, film_force_of_fields, film_pressure_fields
 
-__all__ = ["FilmForceTable", "tabulate", "TABLE_METHODS"]
+__all__ = ["FilmForceTable", "tabulate", "TABLE_METHODS", "TABLE_VERSION"]
+
+#: part of a stored table's cache key: bump when what :func:`tabulate` computes changes
+TABLE_VERSION = 1
 
 #: how a table's entries are computed: the grid solver, or one of the closed-form limits
 TABLE_METHODS = ("grid",) + LIMITS
