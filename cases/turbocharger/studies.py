@@ -32,7 +32,9 @@ def _key_of(message: str) -> str:
         return "damper.clearance_m"
     if "pocket" in message:
         return "bearings.pocket_clearance_m"
-    return "run.duration_s"
+    if "penetration" in message:          # a ball contact beyond its bound: a load the row cannot carry
+        return "operation.unbalance_g_mm"
+    return "operation.speed_rpm"
 
 
 def simulate_case(case: TurbochargerCase, speed_rpm: float | None = None, progress=None) -> tuple[object, RunFigures]:
