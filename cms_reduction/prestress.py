@@ -6,8 +6,8 @@ geometric stiffness adds Ω² S to the modal stiffness, S = Φᵀ K_σ Φ at 1 r
 with ``ReductionSpec(spin_stiffening=True)`` as ``extras["spin_stiffening"]``). The floating frame's
 inertia terms carry the spin softening of a body that turns (the −ωᵀ G_k ω of
 :mod:`.invariants`) but not this stiffening, which comes from the stress state, not from the motion;
-without it a disc's tilt softens with speed although a rigid disc's tilt does not (percent at
-1 000 rad/s, tens of percent at a turbocharger's 5 000 rad/s).
+without it a disc's tilt softens with speed although a rigid disc's tilt does not (1–2 % of a
+whirl frequency at 1 000 rad/s in ``tests/test_rotordynamics.py``, growing with Ω²).
 
 :func:`prestressed` folds Ω² S into the basis: the symmetric eigenproblem
 
@@ -18,7 +18,7 @@ the multibody kernels take the body unchanged (K.-J. Bathe, *Finite Element Proc
 2014, §6.3.2 for the initial-stress stiffness; the same change of basis as a prestressed modal
 analysis). Every extra that is linear in the modes turns with Ψ (invariants I3, I4, I8 once, I5, I6,
 I9 twice; raceway samples; stress modes; S itself). The stiffening is that of one speed: it fits a
-run at (or near) that speed; it grows with Ω², so at 0.9 Ω it is 19 % too high.
+run at (or near) that speed; it grows with Ω², so at 0.9 Ω it is 23 % too high.
 
 Modal damping diag(2ζω) does not stay diagonal under Ψ; each new mode takes the ζ of the old modes
 weighted by its share Ψ_kj² of each (exact for a uniform ζ in the ratio, not in 2ζω).
