@@ -8,6 +8,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from cms_reduction.sampling import sample_points
 from mbd_core.bearing.kinematics import rolling_kinematics
@@ -42,13 +43,6 @@ def defect_frequencies_Hz(scene: TurboScene) -> dict[str, float]:
             "2xBSF": 2.0 * k.bsf_Hz}
 
 
-def _matrices(quats: np.ndarray) -> np.ndarray:
-    w, x, y, z = quats.T
-    return np.stack([np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
-                     np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
-                     np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)], 1)
-
-
 def _peaks(f: np.ndarray, amp: np.ndarray, n: int) -> list[float]:
     """The ``n`` highest local maxima of a spectrum above its third bin, by frequency."""
     local = [i for i in range(3, amp.size - 1) if amp[i] > amp[i - 1] and amp[i] >= amp[i + 1]]
@@ -77,7 +71,7 @@ def analyse(case: TurbochargerCase, scene: TurboScene, rec: dict) -> RunFigures:
     keep = t >= t[0] + case.run.settle_s
     q, v, eta = rec["q"][keep], rec["v"][keep], rec["eta"][keep]
     t = t[keep]
-    R = _matrices(q[:, scene.rotor, 3:])
+    R = Rotation.from_quat(q[:, scene.rotor, 3:], scalar_first=True).as_matrix()
     stations = axis_stations_m(case, scene)
     pts = np.array([[0.0, 0.0, z] for z in stations.values()])
     D = sample_points(scene.body, "axis", pts, np.zeros(len(pts))).displacement        # (n, 3, m)

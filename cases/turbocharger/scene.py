@@ -25,7 +25,7 @@ from foundation.materials import BEARING_STEEL, SILICON_NITRIDE
 from mbd_core.bearing.spall import spall_radial_offset_m
 from mbd_core.contact.friction import Coulomb
 from mbd_core.multibody import Driven, Fixed, Free, ModelBuilder
-from mbd_core.multibody.bearings import add_ball_row, orbit_rad_s, set_rolling_velocities
+from mbd_core.multibody.bearings import add_ball_row, place_balls
 from mbd_core.quasistatic import BallRow, RingLoad, solve_high_speed_row
 from mbd_core.squeeze_film import FilmGrid, SqueezeFilmDamper
 from mbd_core.squeeze_film.force_table import TABLE_VERSION, FilmForceTable, tabulate
@@ -214,13 +214,7 @@ def _start(model, state, rotor, outers, rows, quasi, zs) -> None:
     outer_z = (0.0, rotor_z - float(quasi[1].displacement[2]))
     state.q[outers[1], 2] += outer_z[1]
     for rb, qs, dz, outer in zip(rows, quasi, outer_z, outers):
-        for j, ball in enumerate(rb.elements):
-            r, z = qs.ball_centre_rz_m[j]
-            state.q[ball, :3] = (r * math.cos(qs.azimuth_rad[j]), r * math.sin(qs.azimuth_rad[j]), z + dz)
-        set_rolling_velocities(model, state, rb.elements, rotor, other_ring=outer)
-        elements = list(rb.elements)
-        state.q[rb.cage, 2] += dz
-        state.v[rb.cage, 5] = float(np.mean(orbit_rad_s(state.q[elements, :3], state.v[elements, :3])))
+        place_balls(model, state, rb, rotor, outer, qs, dz)
 
 
 def _whirl_start(scene: TurboScene, unbalance_kg_m: float, point_m: np.ndarray) -> None:

@@ -39,7 +39,7 @@ from .builder import ContactLaw, ModelBuilder, quat_z_to
 from .parts import StripTraction
 from .model import Model, State
 
-__all__ = ["RowBodies", "add_ball_row", "add_roller_row", "set_rolling_velocities", "start_at_equilibrium", "ball_mass_kg", "roller_mass_kg",
+__all__ = ["RowBodies", "add_ball_row", "add_roller_row", "set_rolling_velocities", "start_at_equilibrium", "place_balls", "ball_mass_kg", "roller_mass_kg",
            "orbit_rad_s", "row_speed_rad_s"]
 
 LINE_EXPONENT = 10.0 / 9.0
@@ -373,16 +373,25 @@ def set_rolling_velocities(model: Model, state: State, elements, ring, other_rin
 
 def start_at_equilibrium(model: Model, state: State, balls: RowBodies, inner: int, outer: int, quasi) -> None:
     """Put a ball row in ``state`` at a quasi-static high-speed equilibrium ``quasi`` (the result of
-    :func:`mbd_core.quasistatic.solve_high_speed_row`): the inner ring's displacement, each ball's
-    centre, the no-slip rolling velocities (:func:`set_rolling_velocities`) and the cage at the
-    balls' mean orbit speed, so a run starts without a start-up shock."""
+    :func:`mbd_core.quasistatic.solve_high_speed_row`): the inner ring's displacement, then the balls
+    and cage as :func:`place_balls`, so a run starts without a start-up shock."""
     state.q[inner, :3] = quasi.displacement[:3]
+    place_balls(model, state, balls, inner, outer, quasi)
+
+
+def place_balls(model: Model, state: State, balls: RowBodies, inner: int, outer: int, quasi,
+                shift_z_m: float = 0.0) -> None:
+    """Each ball of a row at its centre in ``quasi`` (:func:`mbd_core.quasistatic.solve_high_speed_row`,
+    given in the outer ring's frame; ``shift_z_m`` moves them and the cage up the axis with an outer
+    ring that is not where the solution has it), the no-slip rolling velocities
+    (:func:`set_rolling_velocities`) and the cage at the balls' mean orbit speed."""
     for j, ball in enumerate(balls.elements):
         r, z = quasi.ball_centre_rz_m[j]
-        state.q[ball, :3] = (r * math.cos(quasi.azimuth_rad[j]), r * math.sin(quasi.azimuth_rad[j]), z)
+        state.q[ball, :3] = (r * math.cos(quasi.azimuth_rad[j]), r * math.sin(quasi.azimuth_rad[j]), z + shift_z_m)
     set_rolling_velocities(model, state, balls.elements, inner, other_ring=outer)
     if balls.cage is not None:
         elements = list(balls.elements)
+        state.q[balls.cage, 2] += shift_z_m
         state.v[balls.cage, 5] = float(np.mean(orbit_rad_s(state.q[elements, :3], state.v[elements, :3])))
 
 
