@@ -51,6 +51,7 @@ from mbd_core.kernels import explicit as EX
 from mbd_core.kernels import flexible_surface as FS
 from mbd_core.kernels import forces as FK
 from mbd_core.kernels import modal_step as MS
+from mbd_core.kernels.modal import eta_terms
 from mbd_core.kernels.raceway import interp_index
 from mbd_core.multibody import ContactLaw, Driven, Fixed, Free, ModelBuilder
 from mbd_core.multibody.model import make_record_buffers, make_work
@@ -210,6 +211,14 @@ def _random_invariants(rng, m):
             rng.standard_normal((3, 3, m)), I9 + I9.transpose(1, 0, 3, 2))
 
 
+def _eta_terms(inv, eta):
+    """S, J, G, I4(η) of the kernel's η-terms at η."""
+    m = eta.size
+    S, J, G, I4e = np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3, m)), np.zeros((3, m))
+    eta_terms(*inv[1:5], *inv[6:9], eta, S, J, G, I4e)
+    return S, J, G, I4e
+
+
 @pytest.mark.parametrize("m", [1, 2, 5])
 def test_inertia_force_is_the_eta_gradient_of_the_kinetic_energy(m):
     # the kernel's ωᵀG_kω + Σ_l ω·I5[:, k, l] η̇_l against ½ uᵀ (∂M/∂η_k) u with v = 0 (the twin), and that
@@ -217,17 +226,17 @@ def test_inertia_force_is_the_eta_gradient_of_the_kinetic_energy(m):
     rng = np.random.default_rng(SEED + m)
     for _ in range(20):
         inv = _random_invariants(rng, m)
-        I5, I8, I9 = inv[4], inv[7], inv[8]
+        I5 = inv[4]
         eta, omega, eta_dot = rng.normal(size=m) * rng.choice([1e-3, 1.0]), rng.normal(size=3), rng.normal(size=m)
         got = np.full(m, np.nan)
-        MS.inertia_force(I5, I8, I9, eta, omega, eta_dot, got)
+        MS.inertia_force(I5, _eta_terms(inv, eta)[2], omega, eta_dot, got)
         u = np.concatenate([np.zeros(3), omega, eta_dot])
         want = twin.kinetic_gradient(inv, eta, u)
         _close_block(got, want)
         diff = np.array([0.5 * u @ (ref_modal.mass_matrix(*inv, eta + e) - ref_modal.mass_matrix(*inv, eta - e)) @ u
                          for e in np.eye(m)]) / 2.0
         np.testing.assert_allclose(want, diff, rtol=1e-12, atol=1e-12 * np.abs(want).max())
-    MS.inertia_force(I5, I8, I9, eta, np.zeros(3), eta_dot, got)
+    MS.inertia_force(I5, _eta_terms(inv, eta)[2], np.zeros(3), eta_dot, got)
     assert np.all(got == 0.0)                                  # every term carries ω
 
 
@@ -241,8 +250,9 @@ def test_constrained_rhs_matches_twin_with_and_without_the_elastic_part():
             omega2, damp = rng.uniform(1e4, 1e8, m), rng.uniform(0, 1e3, m)
             for elastic, frozen in ((True, True), (False, True), (True, False)):
                 got = np.full(6 + m, np.nan)
-                MS.constrained_rhs(*inv, eta, eta_dot, v_b, omega, f_b, n_b, g_b, modal_f, omega2, damp, elastic,
-                                   True, np.full(6 + m, np.nan), got, frozen)
+                S, J, G, _ = _eta_terms(inv, eta)
+                MS.constrained_rhs(inv[0], inv[2], inv[4], S, J, G, eta, eta_dot, v_b, omega, f_b, n_b, g_b, modal_f,
+                                   omega2, damp, elastic, True, np.full(6 + m, np.nan), got, frozen)
                 want = twin.constrained_rhs(inv, eta, eta_dot, v_b, omega, f_b, n_b, g_b, modal_f, omega2, damp,
                                             elastic, frozen)
                 for blk in (slice(0, 3), slice(3, 6), slice(6, None)):
@@ -483,7 +493,8 @@ def _kernel_step(m, g, eta_ring, x, th):
     FS._groove_rows(m.samp_disp[s0:s1], m.samp_rot[s0:s1], i0, i1, np.ascontiguousarray(eta_ring), rows)
     cx, cy, cz, tx, ty, tz = FS._deformed_groove_centre(
         theta, periodic, m.samp_point[s0:s1], rows, m.groove_rc[g], m.groove_zc[g], m.groove_h, m.groove_h_off[g],
-        m.groove_h_off[g + 1], m.groove_dr, m.groove_dr_off[g], m.groove_dr_off[g + 1], thw, i0, i1, w0, w1)
+        m.groove_h_off[g + 1], m.groove_dr, m.groove_dr_off[g], m.groove_dr_off[g + 1], thw, np.cos(thw), np.sin(thw),
+        i0, i1, w0, w1)
     return th + ((x[0] - cx) * tx + (x[1] - cy) * ty + (x[2] - cz) * tz) / (tx * tx + ty * ty + tz * tz)
 
 

@@ -67,9 +67,11 @@ def groove_point_in(x0, x1, x2, r_c, z_c, clearance_radius, h_all, h0, h1, dr_al
         th += TWO_PI
     if th >= TWO_PI:
         th -= TWO_PI
+    rho = math.sqrt(x0 * x0 + x1 * x1)  # cos θ = x0/ρ, sin θ = x1/ρ
+    cs, sn = (x0 / rho, x1 / rho) if rho > 0.0 else (1.0, 0.0)
     r = r_c + periodic_lookup_range(dr_all, dr0, dr1, th)
-    dx = x0 - r * math.cos(th)
-    dy = x1 - r * math.sin(th)
+    dx = x0 - r * cs
+    dy = x1 - r * sn
     dz = x2 - (z_c + periodic_lookup_range(h_all, h0, h1, th))
     d = math.sqrt(dx * dx + dy * dy + dz * dz)
     if d > 0.0:

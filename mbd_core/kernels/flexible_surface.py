@@ -99,9 +99,10 @@ def _groove_rows(disp, rot, i0, i1, e_j, out):
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def _deformed_groove_centre(theta, periodic, pts, rows, rc, zc, h_all, h0, h1, dr_all, dr0, dr1, th, i0, i1, w0, w1):
+def _deformed_groove_centre(theta, periodic, pts, rows, rc, zc, h_all, h0, h1, dr_all, dr0, dr1, th, cs, sn, i0, i1,
+                            w0, w1):
     """Deformed curvature centre c'(θ) = c(θ) + u + ψ × (c − p_s) of a groove at angle θ ∈ [0, 2π) (ring
-    frame) between samples i0, i1 (weights w0, w1; ``rows`` from :func:`_groove_rows`), and its
+    frame; cs, sn = cos θ, sin θ) between samples i0, i1 (weights w0, w1; ``rows`` from :func:`_groove_rows`), and its
     θ-derivative. The derivative leaves out ψ × ∂(c − p_s)/∂θ, which turns the normal at the nearest
     point by about |ψ|·|c − p_s|/r (7e-5 of the force in the kernel tests); beyond the ends of a
     raceway sampled on an arc the deformation is held, so its slope there is zero."""
@@ -111,7 +112,6 @@ def _deformed_groove_centre(theta, periodic, pts, rows, rc, zc, h_all, h0, h1, d
     dr, dr_s = _table_slope(dr_all, dr0, dr1, th)
     h, h_s = _table_slope(h_all, h0, h1, th)
     r = rc + dr
-    cs, sn = math.cos(th), math.sin(th)
     cx, cy, cz = r * cs, r * sn, zc + h
     ax = cx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
     ay = cy - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
@@ -142,8 +142,13 @@ def _nearest_deformed_centre(theta, periodic, disp, rot, pts, e_j, rows, rc, zc,
     the ball, a deflection slope does, as on an undulated groove. The caller returns the force to the
     modes through the transpose of the interpolation at θ*, Q += Dᵀf + Ωᵀ((p − p_s) × f) for the force
     f on the ring at the contact point p (work-consistent). The sample products D η, Ω η are formed
-    once per pair of samples (``rows``, scratch (4, 3)). Returns (c'(θ*), i0, i1, w0, w1)."""
+    once per pair of samples (``rows``, scratch (4, 3)). θ is the ball's angle atan2(l_y, l_x), whose cosine
+    and sine are l_x/ρ, l_y/ρ; a step d turns them by the rotation (cos d, sin d), taken from their
+    Taylor series to d⁵ when |d| < 1e-4 (truncation below 2e-27), so that the iteration needs no cos and sin
+    (:func:`_turn`). Returns (c'(θ*), i0, i1, w0, w1)."""
     ts = th
+    rho = math.sqrt(lx * lx + ly * ly)
+    cs, sn = (lx / rho, ly / rho) if rho > 0.0 else (math.cos(th), math.sin(th))
     r0, r1 = -1, -1
     for it in range(3):
         ts = ts % TWO_PI
@@ -152,10 +157,24 @@ def _nearest_deformed_centre(theta, periodic, disp, rot, pts, e_j, rows, rc, zc,
             _groove_rows(disp, rot, i0, i1, e_j, rows)
             r0, r1 = i0, i1
         cx, cy, cz, tx, ty, tz = _deformed_groove_centre(theta, periodic, pts, rows, rc, zc, h_all, h0, h1, dr_all,
-                                                         dr0, dr1, ts, i0, i1, w0, w1)
+                                                         dr0, dr1, ts, cs, sn, i0, i1, w0, w1)
         if it < 2:
-            ts += ((lx - cx) * tx + (ly - cy) * ty + (lz - cz) * tz) / (tx * tx + ty * ty + tz * tz)
+            d = ((lx - cx) * tx + (ly - cy) * ty + (lz - cz) * tz) / (tx * tx + ty * ty + tz * tz)
+            ts += d
+            cs, sn = _turn(cs, sn, d, ts)
     return cx, cy, cz, i0, i1, w0, w1
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _turn(cs, sn, d, th):
+    """(cos, sin) of θ = θ₀ + d from those of θ₀: by the rotation through d (series to d⁵ for |d| < 1e-4),
+    else cos θ, sin θ."""
+    if abs(d) < 1e-4:
+        d2 = d * d
+        cd = 1.0 - d2 * (0.5 - d2 / 24.0)
+        sd = d * (1.0 - d2 * (1.0 / 6.0 - d2 / 120.0))
+        return cs * cd - sn * sd, sn * cd + cs * sd
+    return math.cos(th), math.sin(th)
 
 
 @njit(cache=True, inline="always", _nrt=False)

@@ -34,9 +34,7 @@ from __future__ import annotations
 from numba import njit
 
 from .forces import STATUS_MODAL, STATUS_OK, compute_forces, rotate, rotate_back
-from .modal import modal_mass_matrix
-from .modal_step import (_body_vectors, _invariants, _reduced_block, _select, cholesky_in_place, cholesky_solve,
-                         constrained_rhs)
+from .modal_step import _body_vectors, _factor, _select, _solve, _terms, constrained_rhs
 from .rigid import turn_quaternion
 
 SQRT_EPS = 1.4901161193847656e-08
@@ -82,24 +80,22 @@ def modal_accelerations(m, q, v, eta, eta_dot, w, out, out_eta):
         i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
         mj = o1 - o0
         e = eta[o0:o1]
-        mass, I2, I3, I4, I5, I6, I7, I8, I9 = _invariants(m, j)
         _body_vectors(m, q, v, w, i)
-        vec, u, ud, rhs, b, sel, L = w.modal_vec, w.modal_u, w.modal_u0, w.modal_rhs, w.modal_b, w.modal_sel, w.modal_L
+        vec, u, ud, rhs, b, sel = w.modal_vec, w.modal_u, w.modal_u0, w.modal_rhs, w.modal_b, w.modal_sel
         for c in range(3):
             u[c] = vec[0, c]
             u[3 + c] = v[i, 3 + c]
-        constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, e, eta_dot[o0:o1], u[0:3], u[3:6], vec[1], vec[2],
-                        vec[3], w.modal_f[o0:o1], m.modal_omega2[o0:o1], m.modal_damp[o0:o1], True, True, w.modal_h,
-                        rhs, False)
+        _terms(m, j, e, w)
+        constrained_rhs(m.modal_mass[j], m.modal_I3[j], m.modal_I5[j], w.modal_S[j], w.modal_J[j], w.modal_G[j], e,
+                        eta_dot[o0:o1], u[0:3], u[3:6], vec[1], vec[2], vec[3], w.modal_f[o0:o1], m.modal_omega2[o0:o1],
+                        m.modal_damp[o0:o1], True, True, w.modal_h, rhs, False)
         n = _select(m, j, mj, sel)
         for r in range(n):
             b[r] = rhs[sel[r]]
         if not (n == mj and m.modal_unit[j] == 1):  # else M_ff = I6 = 1
-            modal_mass_matrix(mass, I2, I3, I4, I5, I6, I7, I8, I9, e, w.modal_M)
-            _reduced_block(w.modal_M, n, sel, L)
-            if not cholesky_in_place(L, n):
+            if not _factor(m, j, e, w, n, sel):
                 return j
-            cholesky_solve(L, n, b)
+            _solve(m, w, j, mj, n, sel, b)
         for c in range(6 + mj):
             ud[c] = 0.0
         for r in range(n):

@@ -53,7 +53,7 @@ import math
 from numba import njit
 
 from .forces import rotate, rotate_back
-from .modal import modal_mass_matrix, modal_velocity_terms
+from .modal import _first_moment, eta_terms, mass_matrix, velocity_terms
 from .rigid import turn_quaternion
 
 
@@ -108,17 +108,14 @@ def cholesky_solve(L, n, b):
 
 
 @njit(cache=True, _nrt=False)
-def inertia_force(I5, I8, I9, eta, omega, eta_dot, out):
-    """∂T/∂η at fixed velocities into out (m,): ωᵀG_kω + Σ_l ω·I5[:, k, l] η̇_l, √kg·m/s² (module doc)."""
-    m = eta.shape[0]
+def inertia_force(I5, G, omega, eta_dot, out):
+    """∂T/∂η at fixed velocities into out (m,): ωᵀG_kω + Σ_l ω·I5[:, k, l] η̇_l, √kg·m/s² (module doc),
+    with G_k = G[:, :, k] of :func:`.modal.eta_terms`."""
+    m = eta_dot.shape[0]
     for k in range(m):
         s = 0.0
         for i in range(3):
-            for j in range(3):
-                g = I8[i, j, k]
-                for l in range(m):
-                    g += I9[i, j, l, k] * eta[l]
-                s += omega[i] * g * omega[j]
+            s += omega[i] * (G[i, 0, k] * omega[0] + G[i, 1, k] * omega[1] + G[i, 2, k] * omega[2])
         for l in range(m):
             s += (omega[0] * I5[0, k, l] + omega[1] * I5[1, k, l] + omega[2] * I5[2, k, l]) * eta_dot[l]
         out[k] = s
@@ -133,8 +130,8 @@ def _reduced_block(Mfull, n, sel, A):
 
 
 @njit(cache=True, _nrt=False)
-def constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, eta_dot, v_b, omega, f_b, n_b, g_b,
-                    modal_f, omega2, damp, elastic, moving, hvec, rhs, frozen=True):
+def constrained_rhs(mass, I3, I5, S, J, G, eta, eta_dot, v_b, omega, f_b, n_b, g_b, modal_f, omega2, damp, elastic,
+                    moving, hvec, rhs, frozen=True):
     """Right-hand side (F, N, Q − Kη − Dη̇ + gravity) − h of a modal body into rhs (6 + m,).
 
     ``frozen`` (the explicit kicks): for the accelerations (a = Rᵀr̈, ω̇, η̈), h without its ω × v terms
@@ -146,19 +143,16 @@ def constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, eta_dot, v_b, ome
     ``elastic`` False leaves −Kη − Dη̇ out (integrated in the drift); ``moving`` False (a frame at
     rest and held there) skips the quadratic-velocity vector h, which is then zero. f_b, n_b body-frame force and
     moment about the frame origin (N, N·m); g_b gravity in body axes (m/s²); modal_f (m,) contact
-    modal forces.
+    modal forces. S (3,), J, G: the η-terms of :func:`.modal.eta_terms` at η (J and G are not read
+    when ``moving`` is False).
     """
     m = eta.shape[0]
-    sx, sy, sz = I2[0], I2[1], I2[2]
-    for k in range(m):
-        sx += I3[0, k] * eta[k]
-        sy += I3[1, k] * eta[k]
-        sz += I3[2, k] * eta[k]
+    sx, sy, sz = S[0], S[1], S[2]
     if not moving:  # a frame at rest: no quadratic-velocity terms
         for k in range(6 + m):
             hvec[k] = 0.0
     else:
-        modal_velocity_terms(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, v_b, omega, eta_dot, hvec)
+        velocity_terms(mass, I3, I5, S, J, G, m, v_b, omega, eta_dot, hvec)
     if moving and frozen:
         # the frame velocity is stored in the world and kicked in the frame frozen over the kick: the
         # rate of its body components there is Rᵀr̈ = v̇ + ω × v, so the ω × v terms of h drop out
@@ -186,10 +180,112 @@ def constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta, eta_dot, v_b, ome
         rhs[6 + k] = r
 
 
+@njit(cache=True, _nrt=False)
+def _keep_terms(I2, I3, I4, I5, I7, I8, I9, e, at, level, j, S, J, G, I4e):
+    """The η-terms (:func:`.modal.eta_terms`) of modal body j at η = e into S, J, G, I4e, formed only when e
+    differs from ``at``, the η they were formed for (then ``at`` = e, ``level[j]`` = 2; module docstring)."""
+    mj = e.shape[0]
+    if level[j] >= 2:
+        k = 0
+        while k < mj and at[k] == e[k]:
+            k += 1
+        if k == mj:
+            return
+    eta_terms(I2, I3, I4, I5, I7, I8, I9, e, S, J, G, I4e)
+    for k in range(mj):
+        at[k] = e[k]
+    level[j] = 2
+
+
+@njit(cache=True, _nrt=False)
+def _schur_factor(M, sel, nf, mj, L):
+    """Unit modal mass (I6 = 1): the block of M on the nf frame components ``sel[:nf]`` and the mj modes is
+    [[A, B], [Bᵀ, 1]]; the Cholesky factor of the frame's Schur complement A − B Bᵀ into L[:nf, :nf]
+    (O(nf² m) instead of O((nf + m)³)). False if it is not positive definite (nor is the block, then)."""
+    for r in range(nf):
+        for c in range(r + 1):
+            s = M[sel[r], sel[c]]
+            for k in range(mj):
+                s -= M[sel[r], 6 + k] * M[sel[c], 6 + k]
+            L[r, c] = s
+            L[c, r] = s
+    return cholesky_in_place(L, nf)
+
+
+@njit(cache=True, _nrt=False)
+def _schur_solve(M, L, sel, nf, mj, b):
+    """Solve [[A, B], [Bᵀ, 1]] x = b in place on b[:nf + mj] with the factor of :func:`_schur_factor`:
+    x_f = (A − B Bᵀ)⁻¹ (b_f − B b_η), x_η = b_η − Bᵀ x_f."""
+    for r in range(nf):
+        s = b[r]
+        for k in range(mj):
+            s -= M[sel[r], 6 + k] * b[nf + k]
+        b[r] = s
+    cholesky_solve(L, nf, b)
+    for r in range(nf):
+        x = b[r]
+        for k in range(mj):
+            b[nf + k] -= M[sel[r], 6 + k] * x
+
+
+@njit(cache=True, _nrt=False)
+def _keep_factor(mass, I3, I6, m, unit, level, nfac, j, S, J, I4e, M, L, n, sel):
+    """M(η) from the η-terms into M (``level[j]`` 3) and the factor of its block on ``sel[:n]`` (frame
+    components first, then the m modes) into L (``level[j]`` 4, ``nfac[j]`` = n): with unit modal mass
+    that of the frame's Schur complement (:func:`_schur_factor`), else the block's Cholesky factor. Each
+    only when not formed since the η-terms; False if the block is not positive definite."""
+    if level[j] < 3:
+        mass_matrix(mass, I3, I6, S, J, I4e, m, M)
+        level[j] = 3
+    if level[j] < 4 or nfac[j] != n:
+        if unit:
+            ok = _schur_factor(M, sel, n - m, m, L)
+        else:
+            _reduced_block(M, n, sel, L)
+            ok = cholesky_in_place(L, n)
+        if not ok:
+            return False
+        level[j] = 4
+        nfac[j] = n
+    return True
+
+
 @njit(cache=True, inline="always", _nrt=False)
-def _invariants(m, j):
-    return (m.modal_mass[j], m.modal_I2[j], m.modal_I3[j], m.modal_I4[j], m.modal_I5[j], m.modal_I6[j],
-            m.modal_I7[j], m.modal_I8[j], m.modal_I9[j])
+def _terms(m, j, e, w):
+    """The η-terms of modal body j at η = e in w.modal_S/J/G/I4e[j] (kept while η stays)."""
+    _keep_terms(m.modal_I2[j], m.modal_I3[j], m.modal_I4[j], m.modal_I5[j], m.modal_I7[j], m.modal_I8[j],
+                m.modal_I9[j], e, w.modal_eta_at[j], w.modal_level, j, w.modal_S[j], w.modal_J[j], w.modal_G[j],
+                w.modal_I4e[j])
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _factor(m, j, e, w, n, sel):
+    """M(η) of modal body j at η = e in w.modal_M[j] and the Cholesky factor of its block on the components
+    ``sel[:n]`` in w.modal_L[j] (kept while η stays; a body always integrates the same components); False if
+    not positive definite."""
+    _terms(m, j, e, w)
+    return _keep_factor(m.modal_mass[j], m.modal_I3[j], m.modal_I6[j], e.shape[0], m.modal_unit[j] == 1,
+                        w.modal_level, w.modal_nfac, j, w.modal_S[j], w.modal_J[j], w.modal_I4e[j], w.modal_M[j],
+                        w.modal_L[j], n, sel)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _solve(m, w, j, mj, n, sel, b):
+    """Solve M(η)_ff x = b in place on b[:n] with the factor :func:`_factor` left for modal body j."""
+    if m.modal_unit[j] == 1:
+        _schur_solve(w.modal_M[j], w.modal_L[j], sel, n - mj, mj, b)
+    else:
+        cholesky_solve(w.modal_L[j], n, b)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _mass(m, j, e, w):
+    """M(η) of modal body j at η = e in w.modal_M[j] (kept while η stays)."""
+    _terms(m, j, e, w)
+    if w.modal_level[j] < 3:
+        mass_matrix(m.modal_mass[j], m.modal_I3[j], m.modal_I6[j], w.modal_S[j], w.modal_J[j], w.modal_I4e[j],
+                    e.shape[0], w.modal_M[j])
+        w.modal_level[j] = 3
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -229,10 +325,9 @@ def _constrained_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
     mj = o1 - o0
     e, qf = eta[o0:o1], w.modal_f[o0:o1]
     om2, dmp = m.modal_omega2[o0:o1], m.modal_damp[o0:o1]
-    mass, I2, I3, I4, I5, I6, I7, I8, I9 = _invariants(m, j)
     elastic = m.modal_implicit[j] == 0
     _body_vectors(m, q, v, w, i)
-    vec, u, u0, rhs, hv, sel, L = w.modal_vec, w.modal_u, w.modal_u0, w.modal_rhs, w.modal_h, w.modal_sel, w.modal_L
+    vec, u, u0, rhs, hv, sel = w.modal_vec, w.modal_u, w.modal_u0, w.modal_rhs, w.modal_h, w.modal_sel
     for c in range(3):
         u[c] = vec[0, c]
         u[3 + c] = v[i, 3 + c]
@@ -248,19 +343,22 @@ def _constrained_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
         v[i, 4] != 0.0 or v[i, 5] != 0.0
     if not moving and not elastic:
         correct = False
-    if not unit:
-        modal_mass_matrix(mass, I2, I3, I4, I5, I6, I7, I8, I9, e, w.modal_M)
-        _reduced_block(w.modal_M, n, sel, L)
-        if not cholesky_in_place(L, n):
+    S = w.modal_s
+    if moving or not unit:  # the η-terms (and M's factor) at this η, formed once per η
+        _terms(m, j, e, w)
+        S = w.modal_S[j]
+        if not unit and not _factor(m, j, e, w, n, sel):
             return False
+    else:  # a held frame at rest with unit modal mass: the first moment alone (its weight)
+        S[0], S[1], S[2] = _first_moment(m.modal_I2[j], m.modal_I3[j], e)
     for it in range(2 if correct else 1):
-        constrained_rhs(mass, I2, I3, I4, I5, I6, I7, I8, I9, e, u[6:6 + mj], u[0:3], u[3:6], vec[1], vec[2],
-                        vec[3], qf, om2, dmp, elastic, moving, hv, rhs)
+        constrained_rhs(m.modal_mass[j], m.modal_I3[j], m.modal_I5[j], S, w.modal_J[j], w.modal_G[j], e,
+                        u[6:6 + mj], u[0:3], u[3:6], vec[1], vec[2], vec[3], qf, om2, dmp, elastic, moving, hv, rhs)
         b = w.modal_b
         for r in range(n):
             b[r] = rhs[sel[r]]
         if not unit:
-            cholesky_solve(L, n, b)
+            _solve(m, w, j, mj, n, sel, b)
         for r in range(n):
             u[sel[r]] = u0[sel[r]] + hh * b[r]
     if m.modal_frame_free[j, 0]:
@@ -274,18 +372,9 @@ def _constrained_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def _momenta(m, j, e, w, n, sel):
-    """Factor M_r(η) into w.modal_L and return False if it is not positive definite."""
-    mass, I2, I3, I4, I5, I6, I7, I8, I9 = _invariants(m, j)
-    modal_mass_matrix(mass, I2, I3, I4, I5, I6, I7, I8, I9, e, w.modal_M)
-    _reduced_block(w.modal_M, n, sel, w.modal_L)
-    return cholesky_in_place(w.modal_L, n)
-
-
-@njit(cache=True, inline="always", _nrt=False)
 def _rotational_momenta(m, j, v, eta_dot, w, i, o0, mj, e, p):
     """(π, p_η) = M_r(η)(ω, η̇) of free modal body j into p, with u = (ω, η̇) in w.modal_u, the selection
-    of the (ω, η) block in w.modal_sel and M_r(η) factored in w.modal_L; False if not positive definite."""
+    of the (ω, η) block in w.modal_sel and M_r(η) factored in w.modal_L[j]; False if not positive definite."""
     u, sel = w.modal_u, w.modal_sel
     n = 3 + mj
     for c in range(3):
@@ -294,9 +383,9 @@ def _rotational_momenta(m, j, v, eta_dot, w, i, o0, mj, e, p):
     for k in range(mj):
         sel[3 + k] = 6 + k
         u[3 + k] = eta_dot[o0 + k]
-    if not _momenta(m, j, e, w, n, sel):
+    if not _factor(m, j, e, w, n, sel):
         return False
-    M = w.modal_M
+    M = w.modal_M[j]
     for r in range(n):
         s = 0.0
         for c in range(n):
@@ -312,7 +401,7 @@ def _free_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
     n = 3 + mj
     e, qf = eta[o0:o1], w.modal_f[o0:o1]
     om2, dmp = m.modal_omega2[o0:o1], m.modal_damp[o0:o1]
-    mass, I5, I8, I9 = m.modal_mass[j], m.modal_I5[j], m.modal_I8[j], m.modal_I9[j]
+    mass = m.modal_mass[j]
     inv_m = hh / mass
     for c in range(3):
         v[i, c] += inv_m * (w.body_f[i, c] + mass * m.gravity[c])
@@ -323,12 +412,12 @@ def _free_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
     for c in range(3):
         p0[c] += hh * w.modal_vec[2, c]
     for it in range(2 if correct else 1):
-        inertia_force(I5, I8, I9, e, u[0:3], u[3:n], dT)
+        inertia_force(m.modal_I5[j], w.modal_G[j], u[0:3], u[3:n], dT)
         for c in range(3):
             b[c] = p0[c]
         for k in range(mj):
             b[3 + k] = p0[3 + k] + hh * (qf[k] - om2[k] * e[k] - dmp[k] * u[3 + k] + dT[k])
-        cholesky_solve(w.modal_L, n, b)
+        _solve(m, w, j, mj, n, w.modal_sel, b)
         for c in range(n):
             u[c] = b[c]
     for c in range(3):
@@ -364,19 +453,19 @@ def _free_drift(m, q, v, eta, eta_dot, w, j, h):
     for k in range(mj):
         b[3 + k] = p[3 + k]
         e_mid[k] = e[k] + 0.5 * h * u[3 + k]
-    if not _momenta(m, j, e_mid, w, n, sel):
+    if not _factor(m, j, e_mid, w, n, sel):
         return False
-    cholesky_solve(w.modal_L, n, b)
+    _solve(m, w, j, mj, n, sel, b)
     ox, oy, oz = h * b[0], h * b[1], h * b[2]
     q[i, 3], q[i, 4], q[i, 5], q[i, 6] = turn_quaternion(q[i, 3], q[i, 4], q[i, 5], q[i, 6], ox, oy, oz)
     p[0], p[1], p[2] = _turn_back(p[0], p[1], p[2], ox, oy, oz)
     for k in range(mj):
         e[k] += h * b[3 + k]
-    if not _momenta(m, j, e, w, n, sel):
+    if not _factor(m, j, e, w, n, sel):
         return False
     for c in range(n):
         b[c] = p[c]
-    cholesky_solve(w.modal_L, n, b)
+    _solve(m, w, j, mj, n, sel, b)
     for c in range(3):
         v[i, 3 + c] = b[c]
     for k in range(mj):
@@ -430,8 +519,8 @@ def modal_energy(m, q, v, eta, eta_dot, w):
     for j in range(m.modal_body.shape[0]):
         i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
         mj = o1 - o0
-        mass, I2, I3, I4, I5, I6, I7, I8, I9 = _invariants(m, j)
-        modal_mass_matrix(mass, I2, I3, I4, I5, I6, I7, I8, I9, eta[o0:o1], w.modal_M)
+        _mass(m, j, eta[o0:o1], w)
+        M = w.modal_M[j]
         _body_vectors(m, q, v, w, i)
         u = w.modal_u
         for c in range(3):
@@ -442,5 +531,5 @@ def modal_energy(m, q, v, eta, eta_dot, w):
             pot += 0.5 * m.modal_omega2[o0 + k] * eta[o0 + k] ** 2
         for r in range(6 + mj):
             for c in range(6 + mj):
-                kin += 0.5 * u[r] * w.modal_M[r, c] * u[c]
+                kin += 0.5 * u[r] * M[r, c] * u[c]
     return kin, pot

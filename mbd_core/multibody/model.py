@@ -108,8 +108,13 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: point (like slip and angle), for a pair without load those of its deepest point; energy (2,) J: contact
 #: and bushing potential; type_count (5,) the number of pairs of each kind; modal_f (n_η,) the
 #: contacts' modal forces, √kg·m/s²; the modal_* rest is scratch of the modal step (M the largest
-#: number of modes of a body): modal_M, modal_L (6 + M, 6 + M), modal_u, modal_u0, modal_rhs,
-#: modal_h, modal_b (6 + M,), modal_sel (6 + M,) int64, modal_vec (4, 3), modal_eta (M,).
+#: number of modes of a body): modal_u, modal_u0, modal_rhs, modal_h, modal_b (6 + M,), modal_sel
+#: (6 + M,) int64, modal_vec (4, 3), modal_eta (M,), modal_s (3,); per modal body, the terms at the η
+#: they were formed for (kept while η stays, :mod:`mbd_core.kernels.modal_step`): modal_eta_at (n_mb, M),
+#: modal_level (n_mb,) int64 (0 none, 2 η-terms, 3 and M, 4 and its factor), modal_S (n_mb, 3),
+#: modal_J (n_mb, 3, 3), modal_G (n_mb, 3, 3, M), modal_I4e (n_mb, 3, M) (:func:`mbd_core.kernels.modal.eta_terms`),
+#: modal_M (n_mb, 6 + M, 6 + M) M(η), modal_L (n_mb, 6 + M, 6 + M) the Cholesky factor of its block of
+#: integrated components, modal_nfac (n_mb,) int64 that block's size.
 #: Sampled surfaces of modal bodies (:mod:`mbd_core.kernels.forces`): flex_row (FLEX_ROWS,) int64 the
 #: cached sample rows, flex_field (FLEX_ROWS, 18) their D η, Ω η, D η̇, Ω η̇ and gathered force and
 #: moment on the ring (ring frame); flex_corner (4, 2) int64 row and cache slot, flex_weight (4,) the
@@ -131,7 +136,8 @@ WorkArrays = namedtuple(
     "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta contact_point "
     "contact_normal energy "
     "load pi center axis point slice_delta slice_point slice_normal type_count "
-    "modal_f modal_M modal_L modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta "
+    "modal_f modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta modal_s modal_eta_at "
+    "modal_level modal_S modal_J modal_G modal_I4e modal_M modal_L modal_nfac "
     "flex_row flex_field flex_corner flex_weight groove_rows fric_c fric_v fric_pts fric_n fric_a fric_r fric_g "
     "fric_rot fric_idx flex_skip flex_bound",
 )
@@ -230,6 +236,7 @@ def make_work(model: Model) -> WorkArrays:
     ns = int(np.max(np.diff(a.pair_slice_off))) if nc else 0
     ns = max(ns, 1)
     n6 = 6 + a.modal_I6.shape[1]
+    nm = a.modal_body.size
     return WorkArrays(
         body_f=np.zeros((nb, 3)), body_t=np.zeros((nb, 3)),
         contact_fn=np.zeros(nc), contact_delta=np.zeros(nc), contact_slip=np.zeros(nc),
@@ -239,10 +246,13 @@ def make_work(model: Model) -> WorkArrays:
         point=np.zeros(3), slice_delta=np.zeros(ns), slice_point=np.zeros((ns, 3)),
         slice_normal=np.zeros((ns, 3)),
         type_count=np.bincount(a.pair_type, minlength=5).astype(np.int64),
-        modal_f=np.zeros(model.n_modal), modal_M=np.zeros((n6, n6)), modal_L=np.zeros((n6, n6)),
+        modal_f=np.zeros(model.n_modal),
         modal_u=np.zeros(n6), modal_u0=np.zeros(n6), modal_rhs=np.zeros(n6), modal_h=np.zeros(n6),
         modal_b=np.zeros(n6), modal_sel=np.zeros(n6, dtype=np.int64), modal_vec=np.zeros((4, 3)),
-        modal_eta=np.zeros(n6 - 6),
+        modal_eta=np.zeros(n6 - 6), modal_s=np.zeros(3), modal_eta_at=np.zeros((nm, n6 - 6)),
+        modal_level=np.zeros(nm, dtype=np.int64), modal_S=np.zeros((nm, 3)), modal_J=np.zeros((nm, 3, 3)),
+        modal_G=np.zeros((nm, 3, 3, n6 - 6)), modal_I4e=np.zeros((nm, 3, n6 - 6)), modal_M=np.zeros((nm, n6, n6)),
+        modal_L=np.zeros((nm, n6, n6)), modal_nfac=np.zeros(nm, dtype=np.int64),
         flex_row=np.zeros(FLEX_ROWS, dtype=np.int64), flex_field=np.zeros((FLEX_ROWS, 18)),
         flex_corner=np.zeros((4, 2), dtype=np.int64), flex_weight=np.zeros(4), groove_rows=np.zeros((4, 3)),
         fric_c=np.zeros((nb, 6, 6)), fric_v=np.zeros((nb, 6)),

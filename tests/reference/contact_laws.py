@@ -58,7 +58,10 @@ def ball_groove(x, r_c, z_c, clearance_radius, h_table, dr_table):
         return np.interp(th, grid, np.append(t, t[0]))
 
     r = r_c + lookup(dr_table)
-    c = np.column_stack((r * np.cos(th), r * np.sin(th), z_c + lookup(h_table)))
+    rho = np.hypot(x[:, 0], x[:, 1])  # cos θ = x/ρ, sin θ = y/ρ
+    safe = np.where(rho > 0, rho, 1.0)
+    cs, sn = np.where(rho > 0, x[:, 0] / safe, 1.0), np.where(rho > 0, x[:, 1] / safe, 0.0)
+    c = np.column_stack((r * cs, r * sn, z_c + lookup(h_table)))
     d = x - c
     dist = np.linalg.norm(d, axis=1)
     n = np.divide(d, dist[:, None], out=np.zeros_like(d), where=dist[:, None] > 0)
