@@ -44,6 +44,15 @@ about (θ − ½)h²ω².) They respond quasi-statically, all they can do at tha
 The second kick of both forms depends on the new velocities through the quadratic-velocity terms and
 the modal damping; one fixed-point correction (predict, re-evaluate those terms, kick again) keeps
 the scheme second order. The contact forces stay at the half-step velocity as for rigid bodies.
+
+**What is kept between kicks.** η changes only in the drift, so the second kick of a step and the
+first of the next see the same η. Per body the work arrays keep the η-terms of :func:`.modal.eta_terms`
+(S, J(η), G_k, I4(η): the nine O(m²) sums), M(η) and the factor of its integrated block, with the η
+they were formed for; a kick forms them again only when η differs from it in any bit, so a run
+resumed from its state continues bit for bit. With unit modal mass (I6 = 1) the block
+[[A, B], [Bᵀ, 1]] of the frame's integrated components and the modes is solved through the Schur
+complement A − B Bᵀ of the frame (:func:`_schur_factor`): O(n_f² m) instead of a Cholesky factor of
+order n_f + m.
 """
 
 from __future__ import annotations
