@@ -238,14 +238,20 @@ def _schur_solve(M, L, sel, nf, mj, b):
 
 
 @njit(cache=True, _nrt=False)
-def _keep_factor(mass, I3, I6, m, unit, level, nfac, j, S, J, I4e, M, L, n, sel):
-    """M(η) from the η-terms into M (``level[j]`` 3) and the factor of its block on ``sel[:n]`` (frame
-    components first, then the m modes) into L (``level[j]`` 4, ``nfac[j]`` = n): with unit modal mass
-    that of the frame's Schur complement (:func:`_schur_factor`), else the block's Cholesky factor. Each
-    only when not formed since the η-terms; False if the block is not positive definite."""
+def _keep_mass(mass, I3, I6, m, level, j, S, J, I4e, M):
+    """M(η) from the η-terms into M (``level[j]`` 3), only when not formed since the η-terms."""
     if level[j] < 3:
         mass_matrix(mass, I3, I6, S, J, I4e, m, M)
         level[j] = 3
+
+
+@njit(cache=True, _nrt=False)
+def _keep_factor(mass, I3, I6, m, unit, level, nfac, j, S, J, I4e, M, L, n, sel):
+    """M(η) (:func:`_keep_mass`) and the factor of its block on ``sel[:n]`` (frame components first, then
+    the m modes) into L (``level[j]`` 4, ``nfac[j]`` = n): with unit modal mass that of the frame's Schur
+    complement (:func:`_schur_factor`), else the block's Cholesky factor; only when not formed since the
+    η-terms. False if the block is not positive definite."""
+    _keep_mass(mass, I3, I6, m, level, j, S, J, I4e, M)
     if level[j] < 4 or nfac[j] != n:
         if unit:
             ok = _schur_factor(M, sel, n - m, m, L)
@@ -269,9 +275,9 @@ def _terms(m, j, e, w):
 
 @njit(cache=True, inline="always", _nrt=False)
 def _factor(m, j, e, w, n, sel):
-    """M(η) of modal body j at η = e in w.modal_M[j] and the Cholesky factor of its block on the components
-    ``sel[:n]`` in w.modal_L[j] (kept while η stays; a body always integrates the same components); False if
-    not positive definite."""
+    """M(η) of modal body j at η = e in w.modal_M[j] and the factor of its block on the components ``sel[:n]``
+    in w.modal_L[j] (:func:`_keep_factor`; kept while η stays, a body always integrates the same components);
+    False if not positive definite."""
     _terms(m, j, e, w)
     return _keep_factor(m.modal_mass[j], m.modal_I3[j], m.modal_I6[j], e.shape[0], m.modal_unit[j] == 1,
                         w.modal_level, w.modal_nfac, j, w.modal_S[j], w.modal_J[j], w.modal_I4e[j], w.modal_M[j],
@@ -291,10 +297,8 @@ def _solve(m, w, j, mj, n, sel, b):
 def _mass(m, j, e, w):
     """M(η) of modal body j at η = e in w.modal_M[j] (kept while η stays)."""
     _terms(m, j, e, w)
-    if w.modal_level[j] < 3:
-        mass_matrix(m.modal_mass[j], m.modal_I3[j], m.modal_I6[j], w.modal_S[j], w.modal_J[j], w.modal_I4e[j],
-                    e.shape[0], w.modal_M[j])
-        w.modal_level[j] = 3
+    _keep_mass(m.modal_mass[j], m.modal_I3[j], m.modal_I6[j], e.shape[0], w.modal_level, j, w.modal_S[j],
+               w.modal_J[j], w.modal_I4e[j], w.modal_M[j])
 
 
 @njit(cache=True, inline="always", _nrt=False)
