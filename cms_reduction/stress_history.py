@@ -156,6 +156,25 @@ def _checked_t(t_s, n_t: int) -> np.ndarray:
     return t
 
 
+def _checked_offset(body: ReducedBody, offset_Pa) -> np.ndarray:
+    off = np.asarray(offset_Pa, dtype=float)
+    if off.shape != (len(body.nodes_m), 6) or not np.all(np.isfinite(off)):
+        raise ValueError(f"offset_Pa must be finite with shape ({len(body.nodes_m)}, 6), one Voigt stress per node "
+                         f"of body {body.name!r}, got shape {off.shape}")
+    return off
+
+
+def _checked_nodes(body: ReducedBody, nodes) -> np.ndarray:
+    idx = np.asarray(nodes)
+    n = len(body.nodes_m)
+    if idx.ndim != 1 or idx.size == 0 or not np.issubdtype(idx.dtype, np.integer):
+        raise ValueError(f"nodes must be a non-empty 1-D sequence of node indices of body {body.name!r}")
+    if idx.min() < 0 or idx.max() >= n:
+        raise ValueError(f"nodes must lie in 0 … {n - 1} (body {body.name!r} has {n} nodes), got "
+                         f"{int(idx.min())} … {int(idx.max())}")
+    return idx
+
+
 def _checked_history(body: ReducedBody, t_s, eta_t) -> tuple[np.ndarray, np.ndarray]:
     eta = _checked_eta(body, eta_t)
     return _checked_t(t_s, len(eta)), eta
@@ -192,7 +211,8 @@ def _stress_of(modes: np.ndarray, eta: np.ndarray) -> np.ndarray:
     return (eta @ modes.T).reshape(len(eta), -1, 6)
 
 
-def peak_von_mises_history(body: ReducedBody, eta_t, *, block_bytes: int = BLOCK_BYTES) -> PeakHistory:
+def peak_von_mises_history(body: ReducedBody, eta_t, *, block_bytes: int = BLOCK_BYTES,
+                           nodes=None, offset_Pa=None) -> PeakHistory:
     """Largest nodal von Mises stress, and where it occurs, at each recorded time.
 
     The record is cut into chunks of times and the nodes into blocks; each block's stresses
@@ -207,6 +227,11 @@ def peak_von_mises_history(body: ReducedBody, eta_t, *, block_bytes: int = BLOCK
         Modal coordinates at each recorded time.
     block_bytes : int, optional
         Memory for the stresses of one block, bytes.
+    nodes : sequence of int, optional
+        The nodes (rows of ``body.nodes_m``) to search; default all.
+    offset_Pa : (N, 6) float64, Pa, optional
+        A stress field added at every instant (Voigt order; e.g. a static correction for a load
+        the modal model carries otherwise).
 
     Returns
     -------
@@ -216,7 +241,12 @@ def peak_von_mises_history(body: ReducedBody, eta_t, *, block_bytes: int = BLOCK
     """
     modes = _stress_modes(body)
     eta = _checked_eta(body, eta_t)
-    n_t, n_nodes = len(eta), len(body.nodes_m)
+    offset = None if offset_Pa is None else _checked_offset(body, offset_Pa)
+    if nodes is not None:
+        nodes = _checked_nodes(body, nodes)
+        modes = modes.reshape(-1, 6, body.n_modes)[nodes].reshape(-1, body.n_modes)
+        offset = None if offset is None else offset[nodes]
+    n_t, n_nodes = len(eta), len(modes) // 6
     chunk, block = _blocks(n_nodes, n_t, block_bytes)
     peak = np.full(n_t, -np.inf)
     node = np.zeros(n_t, dtype=np.int64)
@@ -227,6 +257,8 @@ def peak_von_mises_history(body: ReducedBody, eta_t, *, block_bytes: int = BLOCK
         for n0 in range(0, n_nodes, block):
             n1 = min(n0 + block, n_nodes)
             stress = (modes[6 * n0:6 * n1] @ eta_chunk_T).reshape(n1 - n0, 6, -1)
+            if offset is not None:
+                stress += offset[n0:n1, :, None]
             vm = von_mises_Pa(stress.transpose(0, 2, 1))                # (nodes, nt)
             arg = np.argmax(vm, axis=0)
             top = vm[arg, columns]
@@ -235,7 +267,7 @@ def peak_von_mises_history(body: ReducedBody, eta_t, *, block_bytes: int = BLOCK
             node_c[better] = arg[better] + n0
     logger.debug("peak von Mises of %r: %d times in chunks of %d, %d nodes in blocks of %d",
                  body.name, n_t, chunk, n_nodes, block)
-    return PeakHistory(peak, node)
+    return PeakHistory(peak, node if nodes is None else nodes[node])
 
 
 def worst_time(body: ReducedBody, t_s, eta_t, *, block_bytes: int = BLOCK_BYTES) -> WorstInstant:

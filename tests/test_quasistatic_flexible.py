@@ -382,6 +382,47 @@ def test_undulated_flexible_race_differs_from_rigid_race(race):
     assert np.abs(q_flex - q_rigid).max() > 0.3 * q_rigid.max()
 
 
+def test_balls_off_even_spacing_equal_rows_of_one_ball(race):
+    """A row whose balls sit off the even spacing (``azimuth_offsets_rad``, as a dynamic run has
+    them) against the same balls as 16 rows of one ball each, each at its own azimuth: the same
+    equations, built another way (each one-ball row has its own groove offset and raceway map), so
+    the loads and modal coordinates must agree to the solver tolerance — on rigid rings and on the
+    flexible race under the wave h(θ) = 0.1 mm·cos 2θ, where a ball's place changes its load."""
+    _, body = race
+    case = slewing_ring("1m")
+    row = case.bearing.rows[0]
+    Z = row.n_balls
+    offsets = 0.9 * (math.pi / Z) * np.sin(np.arange(Z) * 2.3)  # up to 0.9 of half a spacing
+    shifted = replace(row, azimuth_offsets_rad=tuple(offsets))
+    psi = 2.0 * math.pi * np.arange(Z) / Z + offsets
+    singles = tuple(replace(row, name=f"ball {j}", n_balls=1, first_azimuth_rad=float(p)) for j, p in enumerate(psi))
+    np.testing.assert_allclose(shifted.azimuths_rad(), psi, rtol=0, atol=1e-15)
+
+    def wave(name):
+        return GrooveOffset(name, "fixed", axial_m=lambda t: 1e-4 * np.cos(2 * t))
+
+    for flexible in (False, True):
+        one = build_flexible_model(Bearing("shifted", (shifted,)),
+                                   (flexible_bottom(body),) if flexible else (), (wave(ROW),))
+        rings = (FlexibleRing("bottom race", body, "fixed", {r.name: "groove" for r in singles}),) if flexible else ()
+        many = build_flexible_model(Bearing("singles", singles), rings, tuple(wave(r.name) for r in singles))
+        a = solve_flexible_load_distribution(one, case.default_load)
+        b = solve_flexible_load_distribution(many, case.default_load)
+        np.testing.assert_allclose(a.row(ROW).load_N, [r.load_N[0] for r in b.rows], rtol=1e-8)
+        np.testing.assert_allclose(a.row(ROW).azimuth_rad, psi, atol=1e-15)
+        if flexible:
+            np.testing.assert_allclose(a.modal("bottom race"), b.modal("bottom race"), rtol=1e-7,
+                                       atol=1e-9 * np.abs(a.modal("bottom race")).max())
+    # the offsets matter: evenly spaced balls carry other loads on the wave
+    even = solve_flexible_load_distribution(build_flexible_model(case.bearing, (flexible_bottom(body),), (wave(ROW),)),
+                                            case.default_load)
+    assert np.abs(even.row(ROW).load_N - a.row(ROW).load_N).max() > 0.05 * a.row(ROW).load_N.max()
+    with pytest.raises(ValueError, match=r"azimuth_offsets_rad must hold one value per ball \(16\)"):
+        replace(row, azimuth_offsets_rad=(0.0,) * 3)
+    with pytest.raises(ValueError, match=r"below half the spacing"):
+        replace(row, azimuth_offsets_rad=(math.pi / Z,) + (0.0,) * (Z - 1))
+
+
 # --- offsets on rigid rings against closed-form single-ball solutions ------------------------------
 
 def _axial_ball_reference(row, Fa: float, radial_offset_m: float) -> tuple[float, float]:

@@ -115,6 +115,17 @@ def test_peak_history_equals_brute_force_per_time(ring):
         np.testing.assert_allclose(history.von_mises_Pa, peak_ref, rtol=1e-10)
         # the reported node carries the peak
         np.testing.assert_allclose(vm_ref[np.arange(len(t_s)), history.node], peak_ref, rtol=1e-10)
+        # the peak over a subset of the nodes (every third, from node 1) is the subset's own maximum
+        subset = np.arange(1, len(body.nodes_m), 3)
+        part = peak_von_mises_history(body, eta_t, block_bytes=block_bytes, nodes=subset)
+        np.testing.assert_allclose(part.von_mises_Pa, vm_ref[:, subset].max(axis=1), rtol=1e-10)
+        assert np.all(np.isin(part.node, subset))
+        # a constant stress field added at every instant (a static correction)
+        offset = 1e6 * np.random.default_rng(3).standard_normal((len(body.nodes_m), 6))
+        vm_off = np.array([von_mises_Pa(_fe_stress_Pa(model, body, eta) + offset) for eta in eta_t])
+        shifted = peak_von_mises_history(body, eta_t, block_bytes=block_bytes, nodes=subset, offset_Pa=offset)
+        np.testing.assert_allclose(shifted.von_mises_Pa, vm_off[:, subset].max(axis=1), rtol=1e-10)
+        np.testing.assert_allclose(vm_ref[np.arange(len(t_s)), part.node], part.von_mises_Pa, rtol=1e-10)
     worst = worst_time(body, t_s, eta_t)
     assert np.sort(peak_ref)[-2] < (1 - 1e-6) * peak_ref.max()      # a clear maximum
     assert worst.index == int(np.argmax(peak_ref))
@@ -278,4 +289,10 @@ def test_bad_input_names_the_field(ring, tmp_path):
         write_stress_series(tmp_path, body, t_s, eta_t, [0.0], every=2)
     with pytest.raises(ValueError, match=r"method must be"):
         stress_at(body, t_s, eta_t, 0.0, method="cubic")
+    with pytest.raises(ValueError, match=r"nodes must lie in 0 … "):
+        peak_von_mises_history(body, eta_t, nodes=[0, len(body.nodes_m)])
+    with pytest.raises(ValueError, match=r"nodes must be a non-empty 1-D sequence"):
+        peak_von_mises_history(body, eta_t, nodes=[])
+    with pytest.raises(ValueError, match=r"offset_Pa must be finite with shape"):
+        peak_von_mises_history(body, eta_t, offset_Pa=np.zeros((3, 6)))
     assert list(tmp_path.iterdir()) == []                            # nothing written

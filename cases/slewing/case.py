@@ -244,7 +244,10 @@ class BodyFidelity:
     contact point, and spreads the load shapes' line loads over it (:class:`cms_reduction.RacewaySpec`);
     0 samples on the contact line itself. ``ball_load_shapes`` (needs a spread) adds the static
     shapes of radial and axial forces at the load balls' places of the first position: with them an
-    equilibrium there is the finite-element solution of the ring under the ball forces."""
+    equilibrium there is the finite-element solution of the ring under the ball forces.
+    ``stress_modes`` (dynamic runs, :mod:`.dynamic_stress`): the reduction also recovers each mode's
+    nodal stress, and the run reports the ring's largest von Mises stress over time and the instant
+    of its peak."""
 
     kind: Literal["rigid", "modal", "auto"] = "rigid"
     n_modes: int = 20
@@ -256,6 +259,7 @@ class BodyFidelity:
     bolts: int = 12               # bottom race only: bolt patches on the support when modal
     raceway_spread_m: float = 0.0
     ball_load_shapes: bool = False
+    stress_modes: bool = False
 
     def __post_init__(self) -> None:
         if self.n_modes < 1:

@@ -42,6 +42,7 @@ from . import scene
 from .case import THESIS_CONTACT_DAMPING_N_S_PER_M, THESIS_CONTACT_STIFFNESS_N_PER_M1P5, SlewingCase
 from .quasistatic import analytic_ball_load_N
 from .dynamic_reference import compare_with_quasistatic, plot_comparison
+from .dynamic_stress import write_race_stresses
 
 __all__ = ["DynamicScene", "build_scene", "state_from_quasistatic", "start_state", "run_dynamic", "ball_columns", "spacer_columns",
            "start_up_window", "spacer_force_figures"]
@@ -330,13 +331,16 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
     cmp = compare_with_quasistatic(case, bodies, run, sc.top, sc.balls, sc.ball_pairs_top, settled,
                                    a.reference_samples, progress)
     if cmp is not None:
-        out.summary["quasistatic_comparison"] = {k: cmp[k] for k in ("time_s", "top_rotation_deg", "max_deviation",
-                                                                     "max_deviation_loaded", "loaded_share",
-                                                                     "max_ball_offset_deg")}
-        out.note(f"against the quasi-static equilibrium at {len(cmp['time_s'])} positions: largest deviation "
-                 f"{100 * cmp['max_deviation']:.2f} % of the largest load, {100 * cmp['max_deviation_loaded']:.2f} % "
-                 f"of its own load for balls above {100 * cmp['loaded_share']:.0f} % of the largest; balls up to "
-                 f"{cmp['max_ball_offset_deg']:.3f}° from even spacing")
+        out.summary["quasistatic_comparison"] = {k: v for k, v in cmp.items() if not k.endswith("_load_N")}
+        out.note(f"against the quasi-static equilibrium at {len(cmp['time_s'])} positions, each ball where the run has "
+                 f"it: largest deviation {100 * cmp['max_deviation']:.2f} % of the largest load, "
+                 f"{100 * cmp['max_deviation_loaded']:.2f} % of its own load for balls above "
+                 f"{100 * cmp['loaded_share']:.0f} % of the largest (balls up to {cmp['max_ball_offset_deg']:.3f}° from "
+                 f"even spacing; against the evenly spaced row {100 * cmp['even_spacing_deviation']:.2f} % / "
+                 f"{100 * cmp['even_spacing_deviation_loaded']:.2f} %)")
+        if cmp["samples_at_even_spacing"]:
+            out.warn([f"{cmp['samples_at_even_spacing']} compared samples had a ball half a spacing or more off its "
+                      "place; there the reference row is evenly spaced"], "quasi-static comparison")
         out.write_csv("quasistatic_comparison.csv", ["t_s", "top_rotation_deg", "ball", "run_load_N",
                                                      "quasistatic_load_N"],
                       ([t, ang, j + 1, g, w] for t, ang, gs, ws in zip(cmp["time_s"], cmp["top_rotation_deg"],
@@ -346,6 +350,7 @@ def run_dynamic(case: SlewingCase, out, progress=None) -> None:
     write_ring_torque(sc.model, run, {"top": sc.top, "bottom": sc.bottom}, settled_from_s, out,
                       f"{case.name}: torque of the balls{' and spacers' if sc.spacer_pairs else ''} on the races "
                       "about the axis", friction=case.contact.friction_law())
+    write_race_stresses(out, case, bodies, run, settled)
     out.write_timeseries(sc.model, run, case=case.name, study=case.study.kind)
     out.write_csv("ball_loads_time.csv", ["t_s"] + ball_columns(q.shape[1]),
                   (np.concatenate([[ti], qi]) for ti, qi in zip(t, q)))

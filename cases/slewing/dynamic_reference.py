@@ -3,14 +3,16 @@
 At ``analysis.reference_samples`` recorded samples after the start-up window, the load balls'
 normal loads on the top race are compared with the quasi-static equilibrium
 (:func:`.quasistatic.equilibrium`: rigid or flexible rings, undulation and thermal offsets as in the
-run) solved at the run's top rotation and ball phase at that sample. The balls of the run and of the
-quasi-static row are the same balls in the same order; the phase is the circular mean of the balls'
-angles from their nominal positions, so a slow drift of the balls against the kinematic orbit does
-not count as an error. What the quasi-static model leaves out shows as the difference: inertia,
-damping, friction, the spacer balls and the balls' weight, and the balls' own spacing (the
-quasi-static row keeps them 2π/Z apart; in the run the spacers push them apart unevenly), which
-matters where the races change steeply along the circumference (the thermal sectors' 5° edges):
-``max_ball_offset_deg`` reports the largest angle of a ball from its place in the reference.
+run) solved at the run's top rotation and with every ball at its azimuth in the run at that sample
+(the phase, the circular mean of the balls' angles from their nominal positions, plus each ball's
+angle from it). The balls of the run and of the quasi-static row are the same balls in the same
+order. What the quasi-static model leaves out shows as the difference: inertia, damping, friction,
+the spacer balls' forces and the balls' weight. ``max_ball_offset_deg`` reports the largest angle of
+a ball from the even spacing: where the races change steeply along the circumference (undulation
+flanks, the thermal sectors' 5° edges) a ball 1° off its place carries another load, and a
+reference at even spacing would count that as an error of the run. ``even_spacing_deviation*``
+give that comparison as well (the quasi-static row evenly spaced at the phase), to show how much
+of a difference is the balls' spacing.
 """
 
 from __future__ import annotations
@@ -30,14 +32,22 @@ __all__ = ["LOADED_SHARE", "compare_with_quasistatic", "sample_position"]
 LOADED_SHARE = 0.25
 
 
-def sample_position(q: np.ndarray, top: int, balls) -> tuple[float, float, float]:
-    """(top rotation about z, ball phase, largest angle of a ball from phase + 2πj/Z) of one recorded
+def sample_position(q: np.ndarray, top: int, balls) -> tuple[float, float, np.ndarray]:
+    """(top rotation about z, ball phase, (Z,) each ball's angle from phase + 2πj/Z) of one recorded
     pose array (n_b, 7), rad."""
     top_rad = 2.0 * math.atan2(q[top, 6], q[top, 3])
     balls = list(balls)
     psi = np.arctan2(q[balls, 1], q[balls, 0]) - 2.0 * math.pi * np.arange(len(balls)) / len(balls)
     phase = math.atan2(float(np.sin(psi).mean()), float(np.cos(psi).mean()))
-    return top_rad, phase, float(np.abs(np.angle(np.exp(1j * (psi - phase)))).max())
+    return top_rad, phase, np.angle(np.exp(1j * (psi - phase)))
+
+
+def _deviations(got: np.ndarray, want: np.ndarray) -> tuple[float, float]:
+    """Largest |run − reference| over all balls relative to the largest reference load, and over the
+    balls above :data:`LOADED_SHARE` of it relative to their own reference load."""
+    largest = float(want.max())
+    loaded = want >= LOADED_SHARE * largest
+    return float(np.abs(got - want).max() / largest), float((np.abs(got - want)[loaded] / want[loaded]).max())
 
 
 def compare_with_quasistatic(case: SlewingCase, bodies: Bodies, run: dict, top: int, balls, pairs,
@@ -48,28 +58,37 @@ def compare_with_quasistatic(case: SlewingCase, bodies: Bodies, run: dict, top: 
     Returns None for ``n_samples`` = 0, else the samples' times, top rotations (deg), the run's and
     the reference's loads (samples × balls), and the largest deviations relative to the largest
     reference load: over all balls and over the balls above :data:`LOADED_SHARE` of it (relative to
-    their own reference load).
+    their own reference load); the same against the evenly spaced row (``even_spacing_*``). A
+    sample where a ball has moved half a spacing or more from its place (possible without spacers)
+    is compared with the evenly spaced row (counted in ``samples_at_even_spacing``).
     """
     if n_samples <= 0:
         return None
     index = np.flatnonzero(settled)
     picks = index[np.unique(np.linspace(0, index.size - 1, n_samples).round().astype(int))]
     pairs = list(pairs)
-    times, angles, got, want, offset = [], [], [], [], 0.0
+    times, angles, got, want, even, offset, at_even = [], [], [], [], [], 0.0, 0
     for k in (progress(picks, "quasi-static references") if progress else picks):
         top_rad, phase, off = sample_position(run["q"][k], top, balls)
-        offset = max(offset, off)
-        want.append(equilibrium(case, bodies, top_rotation_rad=top_rad, ball_phase_rad=phase).rows[0].load_N)
+        offset = max(offset, float(np.abs(off).max()))
+        res = equilibrium(case, bodies, top_rotation_rad=top_rad, ball_phase_rad=phase)
+        even.append(res.rows[0].load_N)
+        if np.abs(off).max() < math.pi / off.size:
+            want.append(equilibrium(case, bodies, top_rotation_rad=top_rad, ball_phase_rad=phase,
+                                    initial_displacement=res.displacement, ball_offsets_rad=off).rows[0].load_N)
+        else:  # a ball half a spacing off (no spacers): the row has no order to keep; evenly spaced
+            want.append(res.rows[0].load_N)
+            at_even += 1
         got.append(run["fn"][k, pairs])
         times.append(float(run["t"][k]))
         angles.append(math.degrees(top_rad))
-    got, want = np.array(got), np.array(want)
-    largest = float(want.max())
-    loaded = want >= LOADED_SHARE * largest
+    got, want, even = np.array(got), np.array(want), np.array(even)
+    dev, dev_loaded = _deviations(got, want)
+    even_dev, even_loaded = _deviations(got, even)
     return {"time_s": times, "top_rotation_deg": angles, "run_load_N": got, "quasistatic_load_N": want,
-            "max_deviation": float(np.abs(got - want).max() / largest),
-            "max_deviation_loaded": float((np.abs(got - want)[loaded] / want[loaded]).max()),
-            "loaded_share": LOADED_SHARE, "max_ball_offset_deg": math.degrees(offset)}
+            "max_deviation": dev, "max_deviation_loaded": dev_loaded, "loaded_share": LOADED_SHARE,
+            "max_ball_offset_deg": math.degrees(offset), "even_spacing_deviation": even_dev,
+            "even_spacing_deviation_loaded": even_loaded, "samples_at_even_spacing": at_even}
 
 
 def plot_comparison(cmp: dict, case: SlewingCase):

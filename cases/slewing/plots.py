@@ -135,3 +135,29 @@ def _start_up(ax, t_s, settled_from_s: float, peak_N: float | None = None) -> No
     if settled_from_s > t_s[0]:
         peak = "" if peak_N is None else f", peak {newtons(peak_N)}"
         ax.axvspan(t_s[0], settled_from_s, color="0.88", label=f"start-up{peak}: not drawn, not in the summary's figures")
+
+
+def plot_race_stress(t_s, histories: dict, case: SlewingCase, settled_from_s: float):
+    """Per race with stress modes (:mod:`.dynamic_stress`): its largest nodal von Mises stress over
+    time, away from the groove (ring) and within one element of it (groove, dashed), and the stress
+    at the node of the ring's peak (dotted), MPa; the start-up window shaded and not drawn."""
+    t_s = np.asarray(t_s)
+    keep = t_s >= settled_from_s
+    fig, ax = plt().subplots(figsize=(9, 4.0), constrained_layout=True)
+    _start_up(ax, t_s, settled_from_s)
+    for k, (name, h) in enumerate(histories.items()):
+        ax.plot(t_s[keep], h["ring"].von_mises_Pa[keep] / 1e6, color=f"C{k}", lw=1.0,
+                label=f"{name}: ring (beyond {1e3 * h['groove_zone_m']:.0f} mm of the groove)")
+        ax.plot(t_s[keep], h["groove"].von_mises_Pa[keep] / 1e6, color=f"C{k}", lw=0.8, ls="--",
+                label=f"{name}: groove zone (line loads: mesh-dependent)")
+        if "at_peak_node" in h:
+            ax.plot(t_s[keep], h["at_peak_node"][keep] / 1e6, color=f"C{k}", lw=0.8, ls=":",
+                    label=f"{name}: at the node of the ring peak")
+    ax.set_xlabel("time t (s)")
+    ax.set_ylabel("largest nodal von Mises stress (MPa)")
+    ax.set_xlim(t_s[0], t_s[-1])
+    ax.set_ylim(bottom=0.0)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, loc="best")
+    ax.set_title(f"{case.geometry.variant} ring, top race at {case.analysis.speed_rpm:g} r/min: race stress over time")
+    return fig

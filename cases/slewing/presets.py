@@ -14,6 +14,8 @@ from .case import REDUCED_E_PA, SlewingCase
 __all__ = ["PRESETS", "preset", "quick"]
 
 _MODAL = {"kind": "modal"}
+#: the dynamic runs with a modal top structure report its stress over time (:mod:`.dynamic_stress`)
+_MODAL_STRESS = {"kind": "modal", "stress_modes": True}
 #: top structure mesh of (c), the README's first command: 0.1 m instead of the 2 m ring's 0.07 m
 #: keeps a cold run within minutes on the default install (cholespy); the case's max ball loads
 #: stay within 1.5 % of the 0.07 m mesh's and its unloaded-ball counts are the same (case README)
@@ -55,34 +57,35 @@ _PRESET_TABLES = {
     "slewing-rotation-modal": dict(
         name="slewing-rotation-modal", description="(b) dynamic with a modal top structure (top race + TMR): the "
         "1 m ring turning at 6.55 r/min with friction and spacer balls, against the rigid top's uniform load",
-        study={"kind": "rotation"}, geometry={"variant": "1m"}, top=_MODAL,
+        study={"kind": "rotation"}, geometry={"variant": "1m"}, top=_MODAL_STRESS,
         analysis={"type": "dynamic_explicit", "duration_s": 4.6}),
     "slewing-spacers-modal": dict(
         name="slewing-spacers-modal", description="(c) dynamic with a modal top structure: the 2 m ring, bottom race "
         "undulated ×1, turning for 1 s: ball loads against the quasi-static ones, spacer–load ball forces "
         "(thesis ≤ 625 N)",
         study={"kind": "rotation"}, geometry={"variant": "2m"}, undulation={"scale": 1.0},
-        top={"kind": "modal", "element_size_m": UNDULATION_TOP_ELEMENT_SIZE_M},
+        top={**_MODAL_STRESS, "element_size_m": UNDULATION_TOP_ELEMENT_SIZE_M},
         analysis={"type": "dynamic_explicit", "duration_s": 1.0}),
     "slewing-thermal-modal": dict(
         name="slewing-thermal-modal", description="(d) dynamic with a modal top structure: the 2 m ring with the "
         "thermal offset Δ = 0.4 mm (top race 80–100°, turning with it; bottom race 260–280°), turning for 1 s",
         study={"kind": "rotation"}, geometry={"variant": "2m"}, thermal={"offset_m": 0.4e-3},
-        top={"kind": "modal", "element_size_m": UNDULATION_TOP_ELEMENT_SIZE_M},
+        top={**_MODAL_STRESS, "element_size_m": UNDULATION_TOP_ELEMENT_SIZE_M},
         analysis={"type": "dynamic_explicit", "duration_s": 1.0}),
     "slewing-combined-modal": dict(
         name="slewing-combined-modal", description="(e) dynamic with a modal top structure at the reduced modulus "
         "1.5975 GPa: the 2 m ring undulated ×1 with Δ = 0.4 mm, turning for 1 s",
         study={"kind": "rotation"}, geometry={"variant": "2m"}, undulation={"scale": 1.0},
         thermal={"offset_m": 0.4e-3},
-        top={"kind": "modal", "element_size_m": UNDULATION_TOP_ELEMENT_SIZE_M, "E_Pa": REDUCED_E_PA},
+        top={**_MODAL_STRESS, "element_size_m": UNDULATION_TOP_ELEMENT_SIZE_M, "E_Pa": REDUCED_E_PA},
         analysis={"type": "dynamic_explicit", "duration_s": 1.0}),
     "slewing-full-scale-turning": dict(
         name="slewing-full-scale-turning", description="(g) dynamic: the Ø6.69 m ring (116 load + 116 spacer balls) "
         "with a modal top structure (top race + TMR, E = 200 GPa), bottom race undulated ×1, turning one revolution "
         "of the top race at 6.55 r/min: ball loads and spacer forces over time against the quasi-static ones",
-        study={"kind": "rotation"}, geometry={"variant": "full"}, undulation={"scale": 1.0}, top=_MODAL,
-        analysis={"type": "dynamic_explicit", "duration_s": 60.0 / 6.55, "record_every": 100}),
+        study={"kind": "rotation"}, geometry={"variant": "full"}, undulation={"scale": 1.0}, top=_MODAL_STRESS,
+        analysis={"type": "dynamic_explicit", "duration_s": 60.0 / 6.55, "record_every": 100,
+                  "reference_samples": 24}),
 }
 
 PRESETS = {name: from_mapping(SlewingCase, tables) for name, tables in _PRESET_TABLES.items()}

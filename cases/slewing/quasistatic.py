@@ -65,9 +65,10 @@ def analytic_ball_load_N(case: SlewingCase) -> tuple[float, float]:
 
 
 def equilibrium(case: SlewingCase, bodies: scene.Bodies, top_rotation_rad: float = 0.0, ball_phase_rad: float = 0.0,
-                initial_displacement=None):
-    """The equilibrium at one position (a :class:`FlexibleLoadDistribution`)."""
-    model = build_flexible_model(Bearing(case.name, (scene.ball_row(case, ball_phase_rad),)),
+                initial_displacement=None, ball_offsets_rad=()):
+    """The equilibrium at one position (a :class:`FlexibleLoadDistribution`); ``ball_offsets_rad``:
+    each ball's angle from the even spacing (default: evenly spaced)."""
+    model = build_flexible_model(Bearing(case.name, (scene.ball_row(case, ball_phase_rad, ball_offsets_rad),)),
                                  scene.flexible_rings(bodies, top_rotation_rad),
                                  scene.groove_offsets(case, top_rotation_rad))
     return solve_flexible_load_distribution(model, RingLoad(Fz_N=-case.dead_load_N),

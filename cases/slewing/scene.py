@@ -53,14 +53,16 @@ N_THETA = 720
 BOLT_HALF_WIDTH_M = 0.03
 
 
-def ball_row(case: SlewingCase, phase_rad: float = 0.0) -> BallRow:
-    """The load balls (top race = moving ring, its contact the "inner" raceway, load downwards)."""
+def ball_row(case: SlewingCase, phase_rad: float = 0.0, offsets_rad=()) -> BallRow:
+    """The load balls (top race = moving ring, its contact the "inner" raceway, load downwards), ball
+    j at ``phase_rad`` + 2πj/Z (+ ``offsets_rad[j]``, when given)."""
     g = case.geometry
     stiffness = None
     if case.contact.preset == "thesis":
         stiffness = THESIS_CONTACT_STIFFNESS_N_PER_M1P5 / 2.0**1.5  # two equal contacts in series
     return BallRow("load balls", g.n_balls, g.ball_diameter_m, g.pitch_diameter_m, math.radians(g.contact_angle_deg),
                    g.conformity, g.conformity, "inner", axial_sign=-1, first_azimuth_rad=phase_rad,
+                   azimuth_offsets_rad=tuple(offsets_rad),
                    stiffness_N_per_m1p5=stiffness, ball_material=BEARING_STEEL, race_material=BEARING_STEEL)
 
 
@@ -151,23 +153,28 @@ def _groove_spec(case: SlewingCase, race: str, harmonics: int, probe_all_balls: 
                        probe_angles_deg=ball_angles_deg(case) if probe_all_balls else (0.0,))
 
 
+def top_model_inputs(case: SlewingCase):
+    """(profile, mesh spec, material) of the top structure's finite-element model: steel whose
+    density is raised until the structure's weight is the dead load (module docstring)."""
+    f, g = case.top, case.geometry
+    make = slewing_top_structure if f.include_tmr else slewing_top_race
+    profile = make(g.pitch_diameter_m, g.section(), "top structure" if f.include_tmr else "top race")
+    mass_kg = profile.revolved_properties(DENSITY_KG_M3)["mass_kg"]
+    density = DENSITY_KG_M3 * 1000.0 * case.dead_load_t / mass_kg
+    log.info("top structure: %.1f t of steel carrying %.1f t (density ×%.2f)", mass_kg / 1e3, case.dead_load_t,
+             density / DENSITY_KG_M3)
+    return profile, _mesh(case, f), ElasticMaterial("steel carrying the dead load", REFERENCE_E_PA, NU, density)
+
+
 def top_body(case: SlewingCase, probe_all_balls: bool = False):
     """The reduced top structure (floating), or None when the case keeps it rigid; ``probe_all_balls``:
     its probe at every ball (:func:`_groove_spec`)."""
     f = case.top
     if f.kind != "modal":
         return None
-    g = case.geometry
-    make = slewing_top_structure if f.include_tmr else slewing_top_race
-    profile = make(g.pitch_diameter_m, g.section(), "top structure" if f.include_tmr else "top race")
-    mass_kg = profile.revolved_properties(DENSITY_KG_M3)["mass_kg"]
-    density = DENSITY_KG_M3 * 1000.0 * case.dead_load_t / mass_kg  # weight = dead load (module docstring)
-    material = ElasticMaterial("steel carrying the dead load", REFERENCE_E_PA, NU, density)
     spec = ReductionSpec(n_modes=f.n_modes, raceways=(_groove_spec(case, "top", f.groove_harmonics, probe_all_balls),),
-                         damping_ratio=f.damping_ratio)
-    log.info("top structure: %.1f t of steel carrying %.1f t (density ×%.2f)", mass_kg / 1e3, case.dead_load_t,
-             density / DENSITY_KG_M3)
-    body = reduced_body(profile, _mesh(case, f), material, spec)
+                         damping_ratio=f.damping_ratio, stress_modes=f.stress_modes)
+    body = reduced_body(*top_model_inputs(case), spec)
     return with_modulus(body, f.E_Pa)
 
 
@@ -180,7 +187,8 @@ def bottom_body(case: SlewingCase, probe_all_balls: bool = False):
     g = case.geometry
     bolts = tuple(360.0 * (k + 0.5) / f.bolts for k in range(f.bolts))
     spec = ReductionSpec(n_modes=f.n_modes, interfaces=(InterfaceSpec("bolt_face", bolts, BOLT_HALF_WIDTH_M),),
-                         raceways=(_groove_spec(case, "bottom", f.groove_harmonics, probe_all_balls),), damping_ratio=f.damping_ratio)
+                         raceways=(_groove_spec(case, "bottom", f.groove_harmonics, probe_all_balls),),
+                         damping_ratio=f.damping_ratio, stress_modes=f.stress_modes)
     material = ElasticMaterial("steel", REFERENCE_E_PA, NU, DENSITY_KG_M3)
     body = reduced_body(slewing_bottom_race(g.pitch_diameter_m, g.section()), _mesh(case, f), material, spec)
     return with_modulus(body, f.E_Pa)

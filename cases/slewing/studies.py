@@ -372,7 +372,7 @@ STUDIES = {
 
 #: fidelity keys of a ring that only a modal ring reads
 _MODAL_KEYS = ("n_modes", "groove_harmonics", "E_Pa", "damping_ratio", "element_size_m", "raceway_spread_m",
-               "ball_load_shapes")
+               "ball_load_shapes", "stress_modes")
 
 
 def modal_top(case: SlewingCase) -> bool:
@@ -416,6 +416,10 @@ def runs_of(case: SlewingCase) -> tuple[str, ...]:
 def case_unused_keys(case: SlewingCase) -> dict[str, str]:
     """Every key of ``case`` its study does not read → what does its job."""
     out = {**_fidelity_unused(case), **unused_keys(case.study.kind, STUDIES, RUN_KEYS, runs_of(case))}
+    if STUDIES[case.study.kind].runs not in (None, ("dynamic",)) or runs_of(case) != ("dynamic",):
+        for race in ("top", "bottom"):
+            out.setdefault(f"{race}.stress_modes", 'the stress over time is a result of dynamic runs only '
+                           '(study.kind = "rotation", or "single" with a dynamic analysis.type)')
     if "dynamic" in runs_of(case) and case.analysis.type != "dynamic_implicit":
         out.setdefault("analysis.rho_inf", 'read by implicit runs only (analysis.type = "dynamic_implicit")')
     return out

@@ -79,10 +79,6 @@ def row_speed_rad_s(rows: RowBodies, q: np.ndarray, v: np.ndarray) -> np.ndarray
     return orbit_rad_s(q[:, idx, :3], v[:, idx, :3]).mean(axis=1)
 
 
-def _azimuths(n: int, first_rad: float) -> np.ndarray:
-    return first_rad + 2.0 * math.pi * np.arange(n) / n
-
-
 def _law(stiffness: float, exponent: float, damping: float, d_max_m: float, friction,
          max_penetration_m=None, strips=None) -> ContactLaw:
     return ContactLaw(stiffness, exponent, damping, d_max_m, "impact", friction, max_penetration_m, strips)
@@ -181,7 +177,7 @@ def add_ball_row(builder: ModelBuilder, row: BallRow | FourPointRow, moving_ring
     if cage_mass_kg is not None:
         cage = _cage_body(builder, f"{row.name} cage", cage_mass_kg, R, cage_motion, fixed_frame_z_m)
     balls, mov, fix, pockets = [], [], [], []
-    for j, psi in enumerate(_azimuths(row.n_balls, row.first_azimuth_rad)):
+    for j, psi in enumerate(row.azimuths_rad()):
         b = builder.add_body(f"{row.name} ball {j}", mass, (inertia,) * 3,
                              position_m=(R * math.cos(psi), R * math.sin(psi), row.axial_position_m))
         balls.append(b)
@@ -269,7 +265,7 @@ def add_roller_row(builder: ModelBuilder, row: RollerRow, moving_ring, fixed_rin
     i_trans = mass * (3 * (D / 2) ** 2 + L * L) / 12
     rib_friction = friction if ribs_on == "moving" else pocket_friction
     rollers, mov, fix, pockets, other = [], [], [], [], []
-    for j, psi in enumerate(_azimuths(row.n_rollers, row.first_azimuth_rad)):
+    for j, psi in enumerate(row.azimuths_rad()):
         e = np.array([math.cos(psi), math.sin(psi), 0.0])
         axis = (0.0, 0.0, 1.0) if row.orientation == "radial" else e
         b = builder.add_body(f"{row.name} roller {j}", mass, (i_trans, i_trans, i_axis),

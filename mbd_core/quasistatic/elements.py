@@ -78,10 +78,6 @@ class SliceGroup:
     slice: np.ndarray
 
 
-def _azimuths(n: int, first_rad: float) -> np.ndarray:
-    return first_rad + 2.0 * np.pi * np.arange(n) / n
-
-
 def _frame(psi: np.ndarray):
     c, s = np.cos(psi), np.sin(psi)
     z = np.zeros_like(psi)
@@ -124,7 +120,7 @@ def _ball_arrays(i_row: int, row: BallRow | FourPointRow) -> dict[str, np.ndarra
     """One entry per ball of a :class:`BallRow`; two per ball of a :class:`FourPointRow`, one per
     diagonal (+α, −α), interleaved ball by ball."""
     n = row.n_balls
-    psi = _azimuths(n, row.first_azimuth_rad)
+    psi = row.azimuths_rad()
     if isinstance(row, FourPointRow):
         k = len(row.DIAGONAL_SIGNS)
         return _ball_pair_arrays(i_row, row, np.repeat(psi, k), np.tile(np.array(row.DIAGONAL_SIGNS, float), n),
@@ -135,7 +131,7 @@ def _ball_arrays(i_row: int, row: BallRow | FourPointRow) -> dict[str, np.ndarra
 def _slice_arrays(i_row: int, row: RollerRow) -> dict[str, np.ndarray]:
     """Slices of a roller row: centres along each roller's axis, its normal (:meth:`RollerRow.roller_frames`)."""
     n, ns = row.n_rollers, row.n_slices
-    e_r, _ = _frame(_azimuths(n, row.first_azimuth_rad))
+    e_r, _ = _frame(row.azimuths_rad())
     axis, normal = (np.repeat(v, ns, axis=0) for v in row.roller_frames(e_r))
     L = row.roller_length_m
     x = np.tile(-0.5 * L + (np.arange(ns) + 0.5) * L / ns, n)  # slice centres along the roller

@@ -276,10 +276,8 @@ def _row_index(bearing: Bearing, row: str, who: str) -> int:
 
 def _azimuths(bearing: Bearing, group, mask: np.ndarray) -> np.ndarray:
     """Azimuth (rad) of the element of every selected ball or slice of a group."""
-    rows = group.row[mask]
-    n = np.array([bearing.rows[i].n_elements for i in rows])
-    first = np.array([bearing.rows[i].first_azimuth_rad for i in rows])
-    return first + 2.0 * np.pi * group.element[mask] / n
+    table = {i: bearing.rows[i].azimuths_rad() for i in np.unique(group.row[mask])}
+    return np.array([table[i][e] for i, e in zip(group.row[mask], group.element[mask])], dtype=float)
 
 
 def _rotate_z(v: np.ndarray, angle_rad: float) -> np.ndarray:
@@ -360,7 +358,7 @@ def _slice_coupling(bearing: Bearing, slices: SliceGroup, ring: FlexibleRing, i_
     who = f"flexible ring {ring.name!r}, row {row.name!r}"
     mask = slices.row == i_row
     ns = row.n_slices
-    psi = row.first_azimuth_rad + 2.0 * np.pi * np.arange(row.n_rollers) / row.n_rollers
+    psi = row.azimuths_rad()
     p, D, W, p_near = _ring_fields(ring, sample_name, psi, who)
     normal = slices.normal[mask]
     # the raceway lies half a roller diameter from the roller axis: beyond it along n on the fixed

@@ -155,7 +155,7 @@ def _geometry(row: BallRow) -> _Geometry:
     centre = np.array([0.5 * row.pitch_diameter_m, row.axial_position_m])
     mass = ball_mass_kg(D, row.ball_material.density_kg_m3)
     K_i, K_o = ball_contact_stiffnesses(row)
-    return _Geometry(row.first_azimuth_rad + 2.0 * np.pi * np.arange(Z) / Z, e_r, p_inner,
+    return _Geometry(row.azimuths_rad(), e_r, p_inner,
                      displacement_matrix(p_inner), rz(p_inner - balls.s0_m), np.tile(centre, (Z, 1)),
                      (row.conformity_moving - 0.5) * D, (row.conformity_fixed - 0.5) * D, K_i, K_o, mass,
                      0.1 * mass * D * D, 0.5 * (1.0 - D * math.cos(row.contact_angle_rad) / row.pitch_diameter_m),

@@ -4,11 +4,14 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from foundation.validation import check_positive
 
 from ..contact.hertz import ball_on_groove, series_stiffness
 
-__all__ = ["BallRowGeometry", "check_finite", "check_count", "check_sign", "check_ball_row", "settled_clearance", "ball_pair_stiffness"]
+__all__ = ["BallRowGeometry", "check_finite", "check_count", "check_sign", "check_ball_row", "settled_clearance", "ball_pair_stiffness",
+           "element_azimuths_rad"]
 
 
 def check_finite(owner: str, **values: float) -> None:
@@ -43,6 +46,7 @@ def check_ball_row(who: str, row) -> None:
     if row.moving_raceway not in ("inner", "outer"):
         raise ValueError(f"{who}: moving_raceway must be 'inner' or 'outer', got {row.moving_raceway!r}")
     check_finite(who, axial_position_m=row.axial_position_m, first_azimuth_rad=row.first_azimuth_rad)
+    _check_offsets(who, row.azimuth_offsets_rad, row.n_balls)
     if row.stiffness_N_per_m1p5 is not None:
         check_positive(who, stiffness_N_per_m1p5=row.stiffness_N_per_m1p5)
     if row.n_balls * row.ball_diameter_m > math.pi * row.pitch_diameter_m * (1 + 1e-9):
@@ -84,6 +88,25 @@ def settled_clearance(who: str, diametral_m: float | None, radial_m: float | Non
     return float(d), float(r)
 
 
+def _check_offsets(who: str, offsets_rad, n: int) -> None:
+    """Per-element offsets from the even spacing: none, or one finite value per element, each less
+    than half a spacing (π/n), so the elements keep their order round the row."""
+    if len(offsets_rad) == 0:
+        return
+    o = np.asarray(offsets_rad, dtype=float)
+    if o.shape != (n,):
+        raise ValueError(f"{who}: azimuth_offsets_rad must hold one value per ball ({n}), got {o.shape[0]}")
+    if not np.all(np.isfinite(o)) or np.abs(o).max() >= math.pi / n:
+        raise ValueError(f"{who}: azimuth_offsets_rad must be finite and below half the spacing "
+                         f"(π/{n} = {math.pi / n:.6g} rad) each, got up to {np.abs(o).max():.6g}")
+
+
+def element_azimuths_rad(n: int, first_rad: float, offsets_rad=()) -> np.ndarray:
+    """Azimuths ψ_j = ψ_0 + 2πj/n (+ the per-element offsets, if any) of the n elements of a row, rad."""
+    psi = first_rad + 2.0 * np.pi * np.arange(n) / n
+    return psi + np.asarray(offsets_rad, dtype=float) if len(offsets_rad) else psi
+
+
 def ball_mass_kg(diameter_m: float, density_kg_m3: float) -> float:
     """Mass of a ball, kg."""
     return density_kg_m3 * math.pi * diameter_m**3 / 6.0
@@ -111,6 +134,9 @@ def ball_pair_stiffness(row) -> float:
 class BallRowGeometry:
     """Groove geometry every ball row derives from its fields (those of :class:`.rows.BallRow`):
     a base of the ball row dataclasses."""
+
+    #: a row whose dataclass has no ``azimuth_offsets_rad`` field keeps its balls evenly spaced
+    azimuth_offsets_rad: tuple = ()
 
     @property
     def radial_sign(self) -> int:
@@ -141,6 +167,10 @@ class BallRowGeometry:
     @property
     def n_elements(self) -> int:
         return self.n_balls
+
+    def azimuths_rad(self) -> np.ndarray:
+        """(Z,) ball azimuths, rad: evenly spaced from ``first_azimuth_rad``, plus the row's offsets."""
+        return element_azimuths_rad(self.n_balls, self.first_azimuth_rad, self.azimuth_offsets_rad)
 
     def contact_stiffness(self) -> float:
         """K of Q = K·δ^1.5 of one ball (of one diagonal of a four-point ball): moving and fixed

@@ -65,7 +65,8 @@ from ..contact.line import LINE_EXPONENT, iso16281_stiffness, palmgren_stiffness
 from foundation.materials import BEARING_STEEL, ElasticMaterial, effective_modulus_Pa
 from foundation.validation import check_positive
 
-from .row_common import BallRowGeometry, check_ball_row, check_count, check_finite, check_sign, settled_clearance
+from .row_common import (BallRowGeometry, check_ball_row, check_count, check_finite, check_sign,
+                         element_azimuths_rad, settled_clearance)
 from .rows_four_point import FourPointRow
 
 __all__ = ["BallRow", "FourPointRow", "RollerRow", "Bearing", "roller_drop_m", "ISO16281_LOG_RELIEF_PER_D"]
@@ -125,6 +126,9 @@ class BallRow(BallRowGeometry):
         z of the ball centres, m.
     first_azimuth_rad : float
         Azimuth of ball 0, rad; the others follow at 2π/Z spacing.
+    azimuth_offsets_rad : tuple of float
+        Each ball's angle from its place in the even spacing, rad (Z values, each below π/Z); empty:
+        evenly spaced. For balls that a cage's play or spacers have moved, as a dynamic run has them.
     stiffness_N_per_m1p5 : float or None
         Override of the ball's load–deflection constant (both contacts in series), N/m^1.5.
     ball_material, race_material : ElasticMaterial
@@ -143,12 +147,14 @@ class BallRow(BallRowGeometry):
     radial_clearance_m: float | None = None
     axial_position_m: float = 0.0
     first_azimuth_rad: float = 0.0
+    azimuth_offsets_rad: tuple[float, ...] = ()
     stiffness_N_per_m1p5: float | None = None
     ball_material: ElasticMaterial = field(default=BEARING_STEEL)
     race_material: ElasticMaterial = field(default=BEARING_STEEL)
 
     def __post_init__(self) -> None:
         who = f"ball row {self.name!r}"
+        object.__setattr__(self, "azimuth_offsets_rad", tuple(float(x) for x in self.azimuth_offsets_rad))
         check_ball_row(who, self)
         if not 0.0 <= self.contact_angle_rad <= math.pi / 2 + 1e-12:
             raise ValueError(
@@ -371,6 +377,10 @@ class RollerRow:
     @property
     def n_elements(self) -> int:
         return self.n_rollers
+
+    def azimuths_rad(self) -> np.ndarray:
+        """(Z,) roller azimuths, rad, evenly spaced from ``first_azimuth_rad``."""
+        return element_azimuths_rad(self.n_rollers, self.first_azimuth_rad)
 
     def contact_stiffness(self) -> float:
         """c_L of Q = c_L·δ^(10/9) for the whole roller between both raceways, N/m^(10/9)."""

@@ -430,7 +430,7 @@ def row_loads(bearing: Bearing, bg: BallGroup, sg: SliceGroup, balls, slices) ->
     Qs, ds = slices
     rows = []
     for i, row in enumerate(bearing.rows):
-        psi = row.first_azimuth_rad + 2.0 * np.pi * np.arange(row.n_elements) / row.n_elements
+        psi = row.azimuths_rad()
         if isinstance(row, FourPointRow):
             m = bg.row == i
             rows.append(_four_point_loads(row, psi, Qb[m], db[m], _ball_angles(bg, m, s)))
