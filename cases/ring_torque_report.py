@@ -15,7 +15,7 @@ TORQUE_SAMPLES = 4000
 
 
 def write_ring_torque(model, run: dict, rings: dict, settled_from_s: float, out, title: str,
-                      friction: str | object = "not checked") -> dict:
+                      friction: str | object = "not checked", label: str = "") -> dict:
     """``rings``: key (``moving``, ``fixed``) → body index. The torque the rolling elements, cages and
     drag put on each ring about the axis at up to :data:`TORQUE_SAMPLES` recorded samples; means and
     ripple over t ≥ ``settled_from_s``. When the bodies between the rings are rigid, their angular
@@ -23,7 +23,10 @@ def write_ring_torque(model, run: dict, rings: dict, settled_from_s: float, out,
 
     ``friction``: the contacts' friction law, None for frictionless contacts, or "not checked". A
     regularised Coulomb law is its own model only above its transition speed; when the loaded contacts slip slower (median), the
-    torque is that of the regularisation, and the run says so in its warnings."""
+    torque is that of the regularisation, and the run says so in its warnings.
+
+    ``label``: one of several runs in the folder: its files are ``ring_torque_<label>.csv`` and
+    ``.png`` and its figures ``ring_torque[label]`` in the summary."""
     from .torque_plots import plot_ring_torque
 
     keys, bodies = list(rings), list(rings.values())
@@ -44,13 +47,17 @@ def write_ring_torque(model, run: dict, rings: dict, settled_from_s: float, out,
         momentum = axial_angular_momentum(model, {"q": run["q"][keep], "v": run["v"][keep]}, between)
         rate = (momentum[-1] - momentum[0]) / (ts[keep][-1] - ts[keep][0])
         figures["balance_residual_Nm"] = float(torque[settled].sum(axis=1).mean() + rate)
-    out.summary["ring_torque"] = figures
+    if label:
+        out.summary.setdefault("ring_torque", {})[label] = figures
+    else:
+        out.summary["ring_torque"] = figures
     _validity(run, settled_from_s, friction, out)
-    out.write_csv("ring_torque.csv", ["t_s"] + [f"{k}_ring_torque_Nm" for k in keys],
+    stem = f"ring_torque_{label}" if label else "ring_torque"
+    out.write_csv(f"{stem}.csv", ["t_s"] + [f"{k}_ring_torque_Nm" for k in keys],
                   (np.concatenate([[ti], row]) for ti, row in zip(t, torque)))
     out.save_figure(plot_ring_torque(t, {f"{k} ring": torque[:, j] for j, k in enumerate(keys)}, settled, title),
-                    "ring_torque.png")
-    out.note("friction torque about the axis: " + ", ".join(
+                    f"{stem}.png")
+    out.note(f"{label + ' ' if label else ''}friction torque about the axis: " + ", ".join(
         f"{k} ring {figures[f'{k}_ring_Nm']:.4g} N·m (ripple {figures[f'{k}_ring_ripple_Nm']:.2g})" for k in keys))
     return figures
 

@@ -116,9 +116,21 @@ def _one_run(case: WindCase, progress=None, out=None, label: str = "") -> tuple[
                                    "slices": dynamic.slice_error(case, sc.modal)},
                "wall_time_s": time.perf_counter() - t0}
     if out is not None:
+        _ring_torque(case, out, sc, rec, label)
         out.write_timeseries(sc.model, rec, f"timeseries_{label}.nc" if label else "timeseries.nc", case=case.name,
                              study=case.study.kind, **({"variant": label} if label else {}))
     return figures, sc, rec
+
+
+def _ring_torque(case: WindCase, out, sc, rec: dict, label: str = "") -> dict:
+    """The friction torque of the rollers, cages and drag on both rings about the shaft axis
+    (:func:`cases.ring_torque_report.write_ring_torque`), after the settling time."""
+    from ..ring_torque_report import write_ring_torque
+
+    title = (f"{case.name}{' (' + label + ')' if label else ''}: torque of the rollers and cages on the rings "
+             f"about the shaft axis, {case.analysis.speed_rpm:g} r/min")
+    return write_ring_torque(sc.model, rec, {"inner": sc.inner, "outer": sc.outer}, case.analysis.settle_s, out,
+                             title, friction=case.contact.friction_law(), label=label)
 
 
 def _speed_notes(out, fig: dict, label: str = "") -> None:
