@@ -95,14 +95,21 @@ def roller_speed_figures(runs: dict) -> dict:
 
 
 def sweep_figure(results: dict, xlabel: str):
+    """Mean and peak roller–cage force per row, and the rings' friction torque (mean ± ripple), over
+    the swept values."""
     p = plt()
-    fig, (a, b) = p.subplots(1, 2, figsize=(10, 4))
+    fig, (a, b, c) = p.subplots(1, 3, figsize=(14, 4))
     keys = list(results)
     x = np.arange(len(keys))
     for name in ("radial", "front thrust", "rear thrust"):
         a.plot(x, [results[k]["cage_forces"][name]["mean_N"] for k in keys], marker="o", label=name)
         b.plot(x, [results[k]["cage_forces"][name]["peak_N"] for k in keys], marker="o", label=name)
-    for ax, what in ((a, "mean roller–cage force, N"), (b, "peak roller–cage force, N")):
+    for ring in ("inner", "outer"):
+        c.errorbar(x, [results[k]["ring_torque"][f"{ring}_ring_Nm"] for k in keys],
+                   yerr=[results[k]["ring_torque"][f"{ring}_ring_ripple_Nm"] for k in keys], marker="o", capsize=3,
+                   label=f"{ring} ring (± ripple)")
+    for ax, what in ((a, "mean roller–cage force, N"), (b, "peak roller–cage force, N"),
+                     (c, "friction torque about the axis, N·m")):
         ax.set_xticks(x, [str(k) for k in keys])
         ax.set_xlabel(xlabel)
         ax.set_ylabel(what)

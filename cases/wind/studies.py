@@ -213,7 +213,8 @@ def _sweep(case: WindCase, out, variants, label: str, progress=None) -> dict:
         cf = fig["cage_forces"]
         out.note(f"{label} {key}: mean roller–cage force radial {cf['radial']['mean_N']:.1f} N, front "
                  f"{cf['front thrust']['mean_N']:.1f} N, rear {cf['rear thrust']['mean_N']:.1f} N; peak "
-                 f"{max(v['peak_N'] for v in cf.values()):.0f} N (run in {folder}/)")
+                 f"{max(v['peak_N'] for v in cf.values()):.0f} N; inner ring torque "
+                 f"{fig['ring_torque']['inner_ring_Nm']:.1f} N·m (run in {folder}/)")
     return results
 
 
@@ -223,6 +224,7 @@ def study_driving_speed(case: WindCase, out, progress=None) -> None:
     res = _sweep(case, out, variants, "speed (r/min)", progress)
     ratio = {s: r["cage_forces"]["front thrust"]["mean_N"] / r["cage_forces"]["rear thrust"]["mean_N"] for s, r in res.items()}
     out.summary.update(by_speed_rpm={str(s): r["cage_forces"] for s, r in res.items()},
+                       ring_torque_by_speed_rpm={str(s): r["ring_torque"] for s, r in res.items()},
                        front_rear_cage_force_ratio={str(s): v for s, v in ratio.items()})
     out.save_figure(plots.sweep_figure(res, "driving speed, r/min"), "cage_forces_vs_speed.png")
     out.note("front/rear thrust cage force ratio: " + ", ".join(f"{s:g} r/min {v:.2f}" for s, v in ratio.items()))
@@ -237,7 +239,8 @@ def study_friction(case: WindCase, out, progress=None) -> None:
     hi = max(keys, key=lambda k: float(k.split("/")[0]))
     lo = min(keys, key=lambda k: float(k.split("/")[0]))
     drop = {n: 1.0 - res[lo]["cage_forces"][n]["mean_N"] / res[hi]["cage_forces"][n]["mean_N"] for n in res[hi]["cage_forces"]}
-    out.summary.update(by_friction={k: r["cage_forces"] for k, r in res.items()}, cage_force_drop=drop)
+    out.summary.update(by_friction={k: r["cage_forces"] for k, r in res.items()}, cage_force_drop=drop,
+                       ring_torque_by_friction={k: r["ring_torque"] for k, r in res.items()})
     out.save_figure(plots.sweep_figure(res, "friction μd/μs"), "cage_forces_vs_friction.png")
     out.note("drop of the mean cage force from μd " + f"{hi} to {lo}: " + ", ".join(f"{n} {100 * v:.0f} %" for n, v in drop.items()))
 
