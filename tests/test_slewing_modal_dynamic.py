@@ -84,8 +84,9 @@ def test_the_top_structures_stress_matches_the_fe_model_under_its_real_loads(the
     load as a uniform pressure on the TMR's top face (where the plug rests), and each ball's recorded
     normal force (``timeseries.nc``: contact point, normal and force, turned into the structure's
     frame) as a point load; held at six DOFs (3-2-1) whose reactions the run's inertia leaves at
-    1.8 kN of 1.37 MN. Compared over the nodes beyond one element of the groove (near it the point
-    loads and the modal basis' smooth load shapes differ by construction). Measured: largest von Mises
+    1.8 kN of 1.37 MN. Compared over the nodes beyond the groove zone, an element (0.12 m) or a ball
+    diameter, the larger (near the groove the point loads and the modal basis' smooth load shapes
+    differ by construction). Measured: largest von Mises
     stress 4.43 MPa against 4.61 MPa (−3.9 %), RMS of the nodal difference 1.5 % of that peak;
     without the dead load's seat correction (the model's body force as is) −9.0 % and 3.1 %.
     Tolerances 6 % and 2.5 %; the correction must halve the RMS difference."""
@@ -122,7 +123,7 @@ def test_the_top_structures_stress_matches_the_fe_model_under_its_real_loads(the
     res = static_solve(model, load, [Support(np.array([d // 3]), (int(d % 3),)) for d in holds])
     assert np.abs(res.reaction_N).max() < 2e-3 * case.dead_load_N
     reference = von_mises_Pa(nodal_stress_Pa(model, res.u))
-    far = groove_distance_m(case, "top", model.nodes_m) >= mesh.size_m
+    far = groove_distance_m(case, "top", model.nodes_m) >= max(mesh.size_m, case.geometry.ball_diameter_m)
     ref_peak = reference[far].max()
     corrected = von_mises_Pa(modal_stress_Pa(body, eta) + seat_correction_Pa(case))[far]
     as_modelled = von_mises_Pa(modal_stress_Pa(body, eta))[far]

@@ -23,11 +23,13 @@ the ball loads do not see it.
 
 Two regions are reported apart. The ball forces reach a modal race as loads on its groove's contact
 line (the raceway load shapes), whose nodal stress right at the line grows as the mesh is refined
-(a line load on an elastic body has unbounded stress under it); the real stress there is the Hertz
-contact stress of study (f). So the *ring* stress is the largest nodal von Mises stress of the nodes
-farther than one element size from the groove surface (the bending and hoop stress of the race and
-the structure), and the *groove* stress, of the nodes within it, is given for completeness with
-that caveat.
+(a line load on an elastic body has unbounded stress under it); the real stress there is the
+field of each ball's own force, which decays over about a ball diameter (Boussinesq) and which
+the smooth load shapes do not hold, and at the contact the Hertz stress of study (f). So the
+*ring* stress is the largest nodal von Mises stress of the nodes farther than the groove zone
+from the groove surface, one ball diameter or one element size, whichever is larger (the bending,
+twisting and hoop stress of the race and the structure, and the dead load's path); the *groove*
+stress, of the nodes within it, is given for completeness with that caveat.
 
 Per race, after the start-up window: the peak of each over time, where the ring peak sits (radius,
 height, azimuth in the race's own frame), the von Mises stress over time at that node (the cycle a
@@ -44,10 +46,15 @@ import numpy as np
 
 from .case import SlewingCase
 
-__all__ = ["RACES", "groove_distance_m", "race_stress_histories", "write_race_stresses"]
+__all__ = ["RACES", "groove_zone_m", "groove_distance_m", "race_stress_histories", "write_race_stresses"]
 
 #: race key of the case → the name of its modal body in the scene
 RACES = {"top": "top structure", "bottom": "bottom race"}
+
+
+def groove_zone_m(case: SlewingCase, body) -> float:
+    """Depth of the groove zone (module docstring): max(ball diameter, the body's element size), m."""
+    return max(case.geometry.ball_diameter_m, float(body.metadata["element_size_m"]))
 
 
 def groove_distance_m(case: SlewingCase, race: str, nodes_m: np.ndarray) -> np.ndarray:
@@ -120,11 +127,11 @@ def seat_correction_Pa(case: SlewingCase) -> np.ndarray:
 
 def race_stress_histories(case: SlewingCase, race: str, body, eta_t: np.ndarray) -> dict:
     """``ring`` and ``groove`` :class:`cms_reduction.stress_history.PeakHistory` of a race over the
-    samples of ``eta_t`` (n_t, m), the element size that separates them, m, and the constant stress
+    samples of ``eta_t`` (n_t, m), the depth of the groove zone that separates them, m, and the constant stress
     added to the modal one (``offset_Pa``: the top structure's seat correction; None for the bottom race)."""
     from cms_reduction.stress_history import peak_von_mises_history
 
-    size = float(body.metadata["element_size_m"])
+    size = groove_zone_m(case, body)
     near = groove_distance_m(case, race, np.asarray(body.nodes_m)) < size
     offset = seat_correction_Pa(case) if race == "top" else None
     return {"ring": peak_von_mises_history(body, eta_t, nodes=np.flatnonzero(~near), offset_Pa=offset),
@@ -177,7 +184,8 @@ def write_race_stresses(out, case: SlewingCase, bodies, run: dict, settled: np.n
             "groove_zone_m": h["groove_zone_m"],
             "dead_load": ("on the seat (" + seat_face(case) + "): the model's body force moved there by a static "
                           "correction" if offset is not None else "not carried by this race's body"),
-            "what": "largest nodal von Mises stress after the start-up: 'ring' beyond groove_zone_m (one element) "
+            "what": "largest nodal von Mises stress after the start-up: 'ring' beyond groove_zone_m (a ball diameter "
+                    "or an element, the larger) "
                     "from the groove surface; 'groove' within it, where the ball forces' line loads make it "
                     "mesh-dependent (the contact stress is Hertz', study life)"}
         out.write_csv(f"{slug}_stress_time.csv", ["t_s", "ring_von_mises_Pa", "ring_node", "ring_radius_m",

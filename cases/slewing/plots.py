@@ -139,7 +139,7 @@ def _start_up(ax, t_s, settled_from_s: float, peak_N: float | None = None) -> No
 
 def plot_race_stress(t_s, histories: dict, case: SlewingCase, settled_from_s: float):
     """Per race with stress modes (:mod:`.dynamic_stress`): its largest nodal von Mises stress over
-    time, away from the groove (ring) and within one element of it (groove, dashed), and the stress
+    time, away from the groove (ring) and within its zone (groove, dashed), and the stress
     at the node of the ring's peak (dotted), MPa; the start-up window shaded and not drawn."""
     t_s = np.asarray(t_s)
     keep = t_s >= settled_from_s
