@@ -416,7 +416,7 @@ def runs_of(case: SlewingCase) -> tuple[str, ...]:
 def case_unused_keys(case: SlewingCase) -> dict[str, str]:
     """Every key of ``case`` its study does not read → what does its job."""
     out = {**_fidelity_unused(case), **unused_keys(case.study.kind, STUDIES, RUN_KEYS, runs_of(case))}
-    if STUDIES[case.study.kind].runs not in (None, ("dynamic",)) or runs_of(case) != ("dynamic",):
+    if runs_of(case) != ("dynamic",):  # run_dynamic alone reads them (the undulation study's spacer run does not)
         for race in ("top", "bottom"):
             out.setdefault(f"{race}.stress_modes", 'the stress over time is a result of dynamic runs only '
                            '(study.kind = "rotation", or "single" with a dynamic analysis.type)')

@@ -126,12 +126,12 @@ class BallRow(BallRowGeometry):
         z of the ball centres, m.
     first_azimuth_rad : float
         Azimuth of ball 0, rad; the others follow at 2π/Z spacing.
-    azimuth_offsets_rad : tuple of float
-        Each ball's angle from its place in the even spacing, rad (Z values, each below π/Z); empty:
-        evenly spaced. For balls that a cage's play or spacers have moved, as a dynamic run has them.
     stiffness_N_per_m1p5 : float or None
         Override of the ball's load–deflection constant (both contacts in series), N/m^1.5.
     ball_material, race_material : ElasticMaterial
+    azimuth_offsets_rad : tuple of float
+        Each ball's angle from its place in the even spacing, rad (Z values, each below π/Z); empty:
+        evenly spaced. For balls that a cage's play or spacers have moved, as a dynamic run has them.
     """
 
     name: str
@@ -147,10 +147,10 @@ class BallRow(BallRowGeometry):
     radial_clearance_m: float | None = None
     axial_position_m: float = 0.0
     first_azimuth_rad: float = 0.0
-    azimuth_offsets_rad: tuple[float, ...] = ()
     stiffness_N_per_m1p5: float | None = None
     ball_material: ElasticMaterial = field(default=BEARING_STEEL)
     race_material: ElasticMaterial = field(default=BEARING_STEEL)
+    azimuth_offsets_rad: tuple[float, ...] = ()
 
     def __post_init__(self) -> None:
         who = f"ball row {self.name!r}"
