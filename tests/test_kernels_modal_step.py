@@ -55,6 +55,7 @@ from mbd_core.kernels.modal import eta_terms
 from mbd_core.kernels.raceway import interp_index
 from mbd_core.multibody import ContactLaw, Driven, Fixed, Free, ModelBuilder
 from mbd_core.multibody.model import make_record_buffers, make_work
+from mbd_core.multibody.parts import StripTraction
 from tests.reference import explicit_step as twin_step
 from tests.reference import modal as ref_modal
 from tests.reference import modal_step as twin
@@ -547,14 +548,21 @@ def _assert_balanced(w, q):
     assert np.abs(np.sum(np.cross(q[:, :3], w.body_f) + w.body_t, axis=0)).max() < 1e-13 * scale * 0.2
 
 
-@pytest.mark.parametrize("undulated", [False, True], ids=["plain", "undulated"])
-def test_flexible_groove_forces_match_twin_at_the_kernel_angle(undulated):
+STRIP_LAW = ContactLaw(1e10, 1.5, 300.0, 1e-6, "impact", Coulomb(0.1, 0.08, 1e-3, 2e-3),
+                       strips=StripTraction(7, 2e-5, 4e-3))
+
+
+@pytest.mark.parametrize("undulated,law", [(False, None), (True, None), (True, STRIP_LAW)],
+                         ids=["plain", "undulated", "strips"])
+def test_flexible_groove_forces_match_twin_at_the_kernel_angle(undulated, law):
     """Everything after the nearest-point search — penetration, normal, the raceway's modal velocity in
     the slip, damping and friction, body forces and moments, modal forces Dᵀg + Ωᵀ((p − p_s) × g) —
     against the twin; full-circle and arc samples, balls at the wrap and on a sample. Newton's third
     law for the rigid parts: the forces on balls and rings sum to zero, and so do their moments about
-    the world origin (what the ring's frame gets balances the ball; the modal forces come on top)."""
-    model, state = _flexible_model(undulated=undulated, arc=True)
+    the world origin (what the ring's frame gets balances the ball; the modal forces come on top).
+    ``strips``: traction over the contact ellipse in 7 strips, the slip and the spin taken against the
+    section's own velocity and angular velocity, its moment in the modal force Ωᵀ(b × g + t)."""
+    model, state = _flexible_model(undulated=undulated, arc=True, law=law)
     rng = np.random.default_rng(SEED + 110)
     ws = []
     for k in range(8):

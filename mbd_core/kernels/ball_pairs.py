@@ -1,14 +1,16 @@
 """Ball contact stages: ball–groove pairs (rigid or modal rings) and ball–ball pairs (spacer balls,
 full-complement neighbours).
 
-A ball–groove pair on a rigid ring with strips (``m.pair_strips[c] > 0``) takes its traction from the
+A ball–groove pair with strips (``m.pair_strips[c] > 0``) takes its traction from the
 slip distribution over the contact ellipse (:mod:`.strip_traction`): x the rolling direction (the
 groove's circumferential direction e_θ at the ball, projected on the tangent plane), y = m × x the
 major axis, z = x × y = m the normal of the force on the ball; the slip is that of the ball's surface
 relative to the ring's at the contact centre, ω_ball − ω_ring in that frame, the semi-major axis
 a = c·F_n^(1/3) and the curvature κ = 1/(2R_d) of the deformed contact surface across it
 (``m.pair_strip_curv``). The ball gets F_n m + F_x x + F_y y at the contact point and the strips'
-moment M_x x + M_y y + M_z m about it; the ring the opposite.
+moment M_x x + M_y y + M_z m about it; the ring the opposite. On a modal ring's groove the slip and the
+spin are taken against the section's own motion as well, and the ring's share goes to its modal forces
+(:func:`_flexible_strips`).
 """
 
 from __future__ import annotations
@@ -20,7 +22,8 @@ from numba import njit
 from .ball_groove import groove_point_in
 from .body_frames import point_velocity, rotate, rotate_back, _add_force, _in_frame, _to_world
 from .element_contacts import ball_ball
-from .flexible_surface import _add_section_force, _nearest_deformed_centre, _section_velocity, open_beyond_bound
+from .flexible_surface import (_add_section_force, _nearest_deformed_centre, _section_motion, _section_velocity,
+                               open_beyond_bound)
 from .friction_damping import _note_friction
 from .pair_types import BALL_BALL, BALL_GROOVE
 from .laws import normal_force_elastic
@@ -29,16 +32,20 @@ from .raceway import interp_index
 from .strip_traction import strip_traction_forces
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, _nrt=False)
 def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fric, n_strips, a_coef, curvature,
-                   delta, mx, my, mz, px, py, pz, ex, ey, ez):
+                   delta, mx, my, mz, px, py, pz, ex, ey, ez, wx, wy, wz, sx_b, sy_b, sz_b):
     """Normal force and strip traction of a ball contact (module docstring); (ex, ey, ez) the rolling
-    direction, world. Returns (F_n N, |v_t| m/s at the centre, |F_t| N, elastic energy J)."""
+    direction, world; (wx, wy, wz) and (sx_b, sy_b, sz_b) the velocity and the angular velocity of
+    ring b's surface at the contact beyond its frame's motion (a modal ring's section; zeros on a
+    rigid ring), world. Applies the force and the strips' moment to a and b's frames and returns
+    (F_n N, |v_t| m/s at the centre, |F_t| N, elastic energy J, the force (3) N and moment (3) N·m on
+    a, world)."""
     if delta <= 0.0:
-        return 0.0, 0.0, 0.0, 0.0
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
     vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
-    rx, ry, rz = vax - vbx, vay - vby, vaz - vbz
+    rx, ry, rz = vax - vbx - wx, vay - vby - wy, vaz - vbz - wz
     vn = rx * mx + ry * my + rz * mz
     elastic = k * delta**n_exp
     fn = normal_force_elastic(law, elastic, delta, -vn, damping, d_max)
@@ -51,7 +58,7 @@ def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fri
     sy = rx * yx + ry * yy + rz * yz
     oax, oay, oaz = rotate(q, a, v[a, 3], v[a, 4], v[a, 5])
     obx, oby, obz = rotate(q, b, v[b, 3], v[b, 4], v[b, 5])
-    ox, oy, oz = oax - obx, oay - oby, oaz - obz
+    ox, oy, oz = oax - obx - sx_b, oay - oby - sy_b, oaz - obz - sz_b
     tx, ty, tmx, tmy, tmz = 0.0, 0.0, 0.0, 0.0, 0.0
     if fn > 0.0:
         tx, ty, tmx, tmy, tmz = strip_traction_forces(
@@ -72,7 +79,8 @@ def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fri
     bt[b, 0] -= gx
     bt[b, 1] -= gy
     bt[b, 2] -= gz
-    return fn, math.sqrt(sx * sx + sy * sy), math.sqrt(tx * tx + ty * ty), elastic * delta / (n_exp + 1.0)
+    return (fn, math.sqrt(sx * sx + sy * sy), math.sqrt(tx * tx + ty * ty), elastic * delta / (n_exp + 1.0),
+            fx, fy, fz, gx, gy, gz)
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -88,6 +96,30 @@ def _open_beyond_bound(theta, periodic, pts, bound, th, lx, ly, lz, delta, clear
     return open_beyond_bound(bound, delta, lx - r * nx - (w0 * pts[i0, 0] + w1 * pts[i1, 0]),
                              ly - r * ny - (w0 * pts[i0, 1] + w1 * pts[i1, 1]),
                              lz - r * nz - (w0 * pts[i0, 2] + w1 * pts[i1, 2]))
+
+
+@njit(cache=True, _nrt=False)
+def _flexible_strips(m, q, v, eta_dot, w, c, a, b, o0, o1, disp, rot, i0, i1, w0, w1, bx, by, bz, th, delta,
+                     mx, my, mz, px, py, pz, imp, fpts, fcnt):
+    """Strip traction of a ball on a modal ring's groove (a loaded contact): the slip and spin taken
+    against the section's own motion (velocity Dη̇ + (Ωη̇) × b and angular velocity Ωη̇ at the lever b
+    from the raceway point), the force and the strips' moment on the ring also as its modal force
+    Dᵀg + Ωᵀ(b × g + t) (g, t the force and moment on the ring, ring frame). Returns (F_n N, |v_t| m/s,
+    |F_t| N, elastic energy J)."""
+    vx, vy, vz, sx, sy, sz = _section_motion(disp, rot, i0, i1, w0, w1, eta_dot[o0:o1], bx, by, bz)
+    vx, vy, vz = rotate(q, b, vx, vy, vz)
+    sx, sy, sz = rotate(q, b, sx, sy, sz)
+    ex, ey, ez = rotate(q, b, -math.sin(th), math.cos(th), 0.0)
+    fn, u, ft, e, fx, fy, fz, tx, ty, tz = _strip_contact(
+        q, v, w.body_f, w.body_t, m.pair_fric_p, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
+        m.pair_dmax[c], m.pair_fric[c], m.pair_strips[c], m.pair_semi_major[c], m.pair_strip_curv[c], delta,
+        mx, my, mz, px, py, pz, ex, ey, ez, vx, vy, vz, sx, sy, sz)
+    _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
+    gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
+    hx, hy, hz = rotate_back(q, b, -tx, -ty, -tz)
+    _add_section_force(disp, rot, i0, i1, w0, w1, gx, gy, gz, by * gz - bz * gy + hx, bz * gx - bx * gz + hy,
+                       bx * gy - by * gx + hz, w.modal_f[o0:o1])
+    return fn, u, ft, e
 
 
 @njit(cache=True, _nrt=False)
@@ -111,10 +143,10 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
             px, py, pz = q[a, 0] - ra * mx, q[a, 1] - ra * my, q[a, 2] - ra * mz
             if m.pair_strips[c] > 0:
                 ex, ey, ez = rotate(q, b, -math.sin(th), math.cos(th), 0.0)
-                fn, u, ft, e = _strip_contact(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
-                                              m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], m.pair_strips[c],
-                                              m.pair_semi_major[c], m.pair_strip_curv[c], delta, mx, my, mz, px, py,
-                                              pz, ex, ey, ez)
+                fn, u, ft, e, _, _, _, _, _, _ = _strip_contact(
+                    q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c],
+                    m.pair_fric[c], m.pair_strips[c], m.pair_semi_major[c], m.pair_strip_curv[c], delta, mx, my, mz,
+                    px, py, pz, ex, ey, ez, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
             else:
                 fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                              m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
@@ -148,20 +180,25 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
                 bx = plx - (w0 * pts[i0, 0] + w1 * pts[i1, 0])
                 by = ply - (w0 * pts[i0, 1] + w1 * pts[i1, 1])
                 bz = plz - (w0 * pts[i0, 2] + w1 * pts[i1, 2])
-                vx, vy, vz = _section_velocity(disp, rot, i0, i1, w0, w1, eta_dot[o0:o1], bx, by, bz)
-                vx, vy, vz = rotate(q, b, vx, vy, vz)
-                vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
-                vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
-                fn, u, ft, e, fx, fy, fz = point_force(m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
-                                                       m.pair_dmax[c], m.pair_fric[c], fp[c, 0], fp[c, 1], fp[c, 2],
-                                                       fp[c, 3], delta, mx, my, mz, vax - vbx - vx, vay - vby - vy,
-                                                       vaz - vbz - vz)
-                _add_force(q, bf, bt, a, fx, fy, fz, px, py, pz)
-                _add_force(q, bf, bt, b, -fx, -fy, -fz, px, py, pz)
-                _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
-                gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
-                _add_section_force(disp, rot, i0, i1, w0, w1, gx, gy, gz, by * gz - bz * gy, bz * gx - bx * gz,
-                                   bx * gy - by * gx, w.modal_f[o0:o1])
+                if m.pair_strips[c] > 0:
+                    fn, u, ft, e = _flexible_strips(m, q, v, eta_dot, w, c, a, b, o0, o1, disp, rot, i0, i1, w0, w1,
+                                                    bx, by, bz, th, delta, mx, my, mz, px, py, pz, imp, fpts,
+                                                    fcnt)
+                else:
+                    vx, vy, vz = _section_velocity(disp, rot, i0, i1, w0, w1, eta_dot[o0:o1], bx, by, bz)
+                    vx, vy, vz = rotate(q, b, vx, vy, vz)
+                    vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
+                    vbx, vby, vbz = point_velocity(q, v, b, px, py, pz)
+                    fn, u, ft, e, fx, fy, fz = point_force(m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
+                                                           m.pair_dmax[c], m.pair_fric[c], fp[c, 0], fp[c, 1], fp[c, 2],
+                                                           fp[c, 3], delta, mx, my, mz, vax - vbx - vx, vay - vby - vy,
+                                                           vaz - vbz - vz)
+                    _add_force(q, bf, bt, a, fx, fy, fz, px, py, pz)
+                    _add_force(q, bf, bt, b, -fx, -fy, -fz, px, py, pz)
+                    _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
+                    gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
+                    _add_section_force(disp, rot, i0, i1, w0, w1, gx, gy, gz, by * gz - bz * gy, bz * gx - bx * gz,
+                                       bx * gy - by * gx, w.modal_f[o0:o1])
         _store(w, c, fn, delta, u, ft, px, py, pz, mx, my, mz)
         w.contact_theta[c] = th
         w.contact_angle[c] = math.atan2(abs(nz), abs(nx * math.cos(th) + ny * math.sin(th)))

@@ -57,6 +57,13 @@ _SUMS = {"reassoc", "contract"}
 def _section_velocity(disp, rot, i0, i1, w0, w1, ed, bx, by, bz):
     """Velocity (Dη̇) + (Ωη̇) × b of the raceway section's point at lever b from the sampled point,
     interpolated between samples i0, i1 (ring frame)."""
+    vx, vy, vz, _, _, _ = _section_motion(disp, rot, i0, i1, w0, w1, ed, bx, by, bz)
+    return vx, vy, vz
+
+
+@njit(cache=True, fastmath=_SUMS, _nrt=False)
+def _section_motion(disp, rot, i0, i1, w0, w1, ed, bx, by, bz):
+    """:func:`_section_velocity` and the section's angular velocity Ωη̇ (ring frame): (v (3), ω (3))."""
     m = ed.shape[0]
     vx = vy = vz = sx = sy = sz = 0.0
     for k in range(m):
@@ -68,7 +75,7 @@ def _section_velocity(disp, rot, i0, i1, w0, w1, ed, bx, by, bz):
     for k in range(m):
         vz += (w0 * disp[i0, 2, k] + w1 * disp[i1, 2, k]) * ed[k]
         sz += (w0 * rot[i0, 2, k] + w1 * rot[i1, 2, k]) * ed[k]
-    return vx + sy * bz - sz * by, vy + sz * bx - sx * bz, vz + sx * by - sy * bx
+    return vx + sy * bz - sz * by, vy + sz * bx - sx * bz, vz + sx * by - sy * bx, sx, sy, sz
 
 
 @njit(cache=True, fastmath=_SUMS, _nrt=False)

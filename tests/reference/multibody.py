@@ -218,22 +218,25 @@ def contact_point_force(m, bodies, c, delta, normal, p, surface_velocity=None):
     return fn, slip, mu * fn, k * delta ** (n + 1) / (n + 1), fn * normal + f_t
 
 
-def strip_point_force(m, bodies, c, delta, normal, p, theta):
-    """A ball–groove point with strip traction (pair_strips > 0, rigid ring): the slip and relative angular
-    velocity at the contact centre in the frame x = rolling direction e_θ (projected), y = m × x, z = m,
+def strip_point_force(m, bodies, c, delta, normal, p, theta, surface=None):
+    """A ball–groove point with strip traction (pair_strips > 0): the slip and relative angular velocity at
+    the contact centre in the frame x = rolling direction e_θ (projected), y = m × x, z = m — against the
+    ring's frame and (``surface``, a modal ring's groove) its section's own velocity and angular velocity —
     then the strips' twin over the curved surface z = κ y² (κ = pair_strip_curv).
     Returns (F_n, |v_t|, |F_t|, energy, force (3,) and spin moment (3,) on body a, world)."""
     if not delta > 0:
         return 0.0, 0.0, 0.0, 0.0, np.zeros(3), np.zeros(3)
     a, b = m.pair_a[c], m.pair_b[c]
     rel = bodies.velocity(a, p) - bodies.velocity(b, p)
+    if surface is not None:
+        rel = rel - surface.velocity
     k, n = m.pair_k[c], m.pair_n[c]
     fn = float(laws.normal_force(m.pair_law[c], delta, -(rel @ normal), k, n, m.pair_c[c], m.pair_dmax[c]))
     e_theta = bodies.R[b] @ np.array([-np.sin(theta), np.cos(theta), 0.0])
     x = e_theta - (e_theta @ normal) * normal
     x /= np.linalg.norm(x)
     y = np.cross(normal, x)
-    omega = bodies.omega[a] - bodies.omega[b]
+    omega = bodies.omega[a] - bodies.omega[b] - (0.0 if surface is None else surface.omega)
     fx, fy, mx, my, mz = strips.strip_traction_curved(
         fn, m.pair_semi_major[c] * fn ** (1.0 / 3.0), rel @ x, rel @ y, (omega @ x, omega @ y, omega @ normal),
         m.pair_strip_curv[c], lambda u: float(laws.friction_coefficient(m.pair_fric[c], u, m.pair_fric_p[c])),
@@ -437,8 +440,9 @@ def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
             if not delta > 0:
                 continue
             surface = surface[0] if surface else None
-            if kind == BALL_GROOVE and surface is None and m.pair_strips[c] > 0:
-                fn, slip, ft, e, force, moment = strip_point_force(m, bodies, c, delta, normal, p, theta)
+            moment = np.zeros(3)
+            if kind == BALL_GROOVE and m.pair_strips[c] > 0:
+                fn, slip, ft, e, force, moment = strip_point_force(m, bodies, c, delta, normal, p, theta, surface)
                 bodies.add_moment(a, moment)
                 bodies.add_moment(b, -moment)
             else:
@@ -447,7 +451,7 @@ def compute_forces(m, t, q, v, eta=None, eta_dot=None, groove_angle=None):
             bodies.add(a, force, p)
             bodies.add(b, -force, p)
             if surface is not None:
-                modal_f[surface.modes] += surface.modal_force(force)
+                modal_f[surface.modes] += surface.modal_force(force, moment)
             loaded.append((fn, slip, ft, normal, p))
             e_contact += e
         out["delta"][c] = max(pt[0] for pt in points)

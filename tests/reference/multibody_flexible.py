@@ -28,9 +28,9 @@ from .roller_slices import roller_slices
 
 # -- flexible grooves on modal rings ---------------------------------------------------------------
 #: A flexible ring's surface at a contact point: its modal coordinates (slice of η), the world velocity of
-#: its material point there beyond the rigid frame motion, and the map of a force on the element (world)
-#: to the ring's modal force.
-Surface = namedtuple("Surface", "modes velocity modal_force")
+#: its material point there beyond the rigid frame motion, the map of a force (and a moment) on the element
+#: (world) to the ring's modal force, and (grooves) the section's angular velocity Ωη̇ beyond the frame's, world.
+Surface = namedtuple("Surface", "modes velocity modal_force omega", defaults=(None,))
 TWO_PI = 2.0 * np.pi
 
 
@@ -133,11 +133,12 @@ def _points_flexible_groove(m, bodies, c, eta, eta_dot, nearest=nearest_groove_a
     R = bodies.R[b]
     velocity = R @ (D @ eta_dot[modes] + np.cross(W @ eta_dot[modes], lever))
 
-    def modal_force(force_on_element):
-        on_ring = R.T @ -force_on_element
-        return D.T @ on_ring + W.T @ np.cross(lever, on_ring)
+    def modal_force(force_on_element, moment_on_element=np.zeros(3)):
+        on_ring, turning = R.T @ -force_on_element, R.T @ -moment_on_element
+        return D.T @ on_ring + W.T @ (np.cross(lever, on_ring) + turning)
 
-    point = (dist - (m.groove_r[g] - ra), -(R @ n), bodies.to_world(b, p_ring), Surface(modes, velocity, modal_force))
+    point = (dist - (m.groove_r[g] - ra), -(R @ n), bodies.to_world(b, p_ring),
+             Surface(modes, velocity, modal_force, R @ (W @ eta_dot[modes])))
     angle_out = np.arctan2(abs(n[2]), abs(n[0] * np.cos(th_ball) + n[1] * np.sin(th_ball)))
     return [point], angle_out, th_ball
 
@@ -189,9 +190,9 @@ def _deformed_surface_point(bodies, b, modes, tables, eta, eta_dot, delta, n, x)
     e, ed = eta[modes], eta_dot[modes]
     velocity = R @ (D @ ed + np.cross(W @ ed, lever))
 
-    def modal_force(force_on_element):
-        on_ring = R.T @ -force_on_element
-        return D.T @ on_ring + W.T @ np.cross(lever, on_ring)
+    def modal_force(force_on_element, moment_on_element=np.zeros(3)):
+        on_ring, turning = R.T @ -force_on_element, R.T @ -moment_on_element
+        return D.T @ on_ring + W.T @ (np.cross(lever, on_ring) + turning)
 
     return (delta + n @ (D @ e + np.cross(W @ e, lever)), R @ n, bodies.to_world(b, x),
             Surface(modes, velocity, modal_force))
