@@ -696,17 +696,20 @@ N_STEPS, H_RUN = 10, 1e-6          # s; contacts: hω ≈ 0.2; modes up to 80 kH
 RUN_RTOL = 1e-11
 
 
-@pytest.mark.parametrize("frame", ["driven_translation_tilt", "driven_implicit"])
+@pytest.mark.parametrize("frame", ["driven_translation_tilt", "driven_implicit", "strips"])
 def test_explicit_run_with_a_modal_ring_matches_twin(frame):
     """run_explicit against the twin's modal_step (rigid kick and drift, modal kick and drift, forces, rigid
     kick, corrected modal kick), 10 steps of 8 balls between the flexible groove of a modal inner ring
     (driven at 80 rad/s, translating and tilting with explicit modes, or held with implicit modes and a
     1 MHz mode) and a fixed rigid outer ring, with gravity; nearest point as the kernel's. Tolerance
-    1e-11 of each block (ten steps of the 1e-12 ones, whose round-off the contact dynamics pass on)."""
-    motion = Driven(80.0, translation_free=True, tilt_free=True) if frame == "driven_translation_tilt" else Driven(80.0)
+    1e-11 of each block (ten steps of the 1e-12 ones, whose round-off the contact dynamics pass on).
+    ``strips``: the translating and tilting frame with strip traction on every ball contact."""
+    free = frame in ("driven_translation_tilt", "strips")
+    motion = Driven(80.0, translation_free=True, tilt_free=True) if free else Driven(80.0)
     implicit = frame == "driven_implicit"
     model, state = _flexible_model(gravity=(0.0, -9.81, -3.0), motion=motion, implicit=implicit,
-                                   freqs=FLEX_FREQS + [1e6] if implicit else FLEX_FREQS)
+                                   freqs=FLEX_FREQS + [1e6] if implicit else FLEX_FREQS,
+                                   law=STRIP_LAW if frame == "strips" else None)
     m = model.arrays
     rng = np.random.default_rng(SEED + 150)
     st = _scene_state(model, state, rng, slow=False, eta_scale=1e-8)
