@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 from cases.run import resolve_case, run_case
+from tests.reference.rigid_rotation import quat_to_matrix
 
 
 @pytest.fixture(scope="module")
@@ -71,13 +72,6 @@ def test_a_run_that_would_record_too_few_samples_is_refused_naming_the_key(tmp_p
     assert not out.exists()
 
 
-def _quat_matrix(q) -> np.ndarray:
-    w, x, y, z = q
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
-
-
 def test_the_top_structures_stress_matches_the_fe_model_under_its_real_loads(thermal_run):
     """The run's stress of the top structure at its last sample against the finite-element model of
     the structure under the loads it really carries there: its own steel weight, the rest of the dead
@@ -107,7 +101,7 @@ def test_the_top_structures_stress_matches_the_fe_model_under_its_real_loads(the
         k = len(f["time"]) - 1
         b = list(f["body"].asstr()[:]).index("top structure")
         eta = f["modal_coordinate"][k][f["mode_body"].asstr()[:] == "top structure"]
-        R, r = _quat_matrix(f["orientation"][k, b]), f["position"][k, b]
+        R, r = quat_to_matrix(f["orientation"][k, b]), f["position"][k, b]
         on_top = np.flatnonzero(f["contact_surface"].asstr()[:] == "top structure")
         points = (f["contact_point"][k, on_top] - r) @ R
         forces = -(f["normal_force"][k, on_top][:, None] * f["contact_normal"][k, on_top]) @ R

@@ -38,7 +38,6 @@ def stress_run(tmp_path_factory):
 
 def test_the_ring_peak_is_the_fe_stress_of_the_recorded_displacement(stress_run):
     from fem_rings import build_model
-    from fem_rings.sections import slewing_top_structure
     from fem_rings.stress import nodal_stress_Pa, von_mises_Pa
     from foundation.materials import ElasticMaterial
 
@@ -49,8 +48,8 @@ def test_the_ring_peak_is_the_fe_stress_of_the_recorded_displacement(stress_run)
     r = s["race_stress"]["top structure"]
     body = scene.top_body(case)
     g = case.geometry
-    profile = slewing_top_structure(g.pitch_diameter_m, g.section(), "top structure")
-    model = build_model(profile, scene._mesh(case, case.top), ElasticMaterial("top", case.top.E_Pa, scene.NU, 7850.0))
+    profile, mesh, _ = scene.top_model_inputs(case)
+    model = build_model(profile, mesh, ElasticMaterial("top", case.top.E_Pa, scene.NU, 7850.0))
     assert np.array_equal(model.nodes_m, body.nodes_m)
     with h5py.File(out / "timeseries.nc", "r") as f:
         t = f["time"][:]
@@ -63,7 +62,7 @@ def test_the_ring_peak_is_the_fe_stress_of_the_recorded_displacement(stress_run)
     groove = g.section().groove("top", g.pitch_diameter_m)
     rc, zc = groove.curvature_center_m
     rho = np.hypot(np.hypot(model.nodes_m[:, 0], model.nodes_m[:, 1]) - rc, model.nodes_m[:, 2] - zc)
-    far = np.abs(rho - groove.radius_m) >= max(scene._mesh(case, case.top).size_m, g.ball_diameter_m)
+    far = np.abs(rho - groove.radius_m) >= max(mesh.size_m, g.ball_diameter_m)
     assert 0 < far.sum() < far.size
     assert r["ring_peak_von_mises_MPa"] * 1e6 == pytest.approx(vm[far].max(), rel=1e-9)
     n = int(np.flatnonzero(far)[np.argmax(vm[far])])
