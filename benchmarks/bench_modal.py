@@ -197,8 +197,9 @@ class SlewingParts:
     ball_ball_pairs: tuple[int, ...]
 
 
-def build_slewing(top_body, top_mass_kg: float, v_static_m_s: float | None):
-    """Model of the slewing ring; ``top_body`` None: a rigid top race of ``top_mass_kg``."""
+def build_slewing(top_body, top_mass_kg: float, v_static_m_s: float | None, implicit_modes: bool = False):
+    """Model of the slewing ring; ``top_body`` None: a rigid top race of ``top_mass_kg``; ``implicit_modes``:
+    the modal top race's modes integrated with its frame by the trapezoidal rule."""
     fr = _friction(SLEWING_MU, v_static_m_s)
     D, f = SLEWING.ball_diameter_m, SLEWING.conformity
     b = ModelBuilder(gravity_m_s2=(0.0, 0.0, -G))
@@ -208,7 +209,7 @@ def build_slewing(top_body, top_mass_kg: float, v_static_m_s: float | None):
     if top_body is None:
         top = b.add_body("top race", top_mass_kg, _ring_inertia(top_mass_kg, PITCH_M / 2), motion=motion)
     else:
-        top = b.add_modal_body("top race", top_body, motion=motion)
+        top = b.add_modal_body("top race", top_body, motion=motion, implicit_modes=implicit_modes)
     rows = add_ball_row(b, SLEWING_ROW, top, bottom, friction=fr, damping_N_s_m=SLEWING_DAMPING_N_S_M,
                         d_max_m=SLEWING_D_MAX_M, moving_sample=None if top_body is None else "groove")
     # spacers: in the load balls' groove of the bottom race, resting at its bottom

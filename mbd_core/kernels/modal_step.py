@@ -28,18 +28,21 @@ zero: prescribed velocities are constant); the frame drifts by its velocity, η 
 velocity is the world ṙ, kicked in its body components at the frame of the kick: their rate there is
 Rᵀr̈ = v̇ + ω × v, so h' is h without the terms in ω × v (:func:`constrained_rhs`; with them, a rotor
 driven at Ω whose centre of mass is off the frame origin whirls unstably above about 20 000 rev/min). With
-``implicit`` set the linear modal part −Kη − Dη̇ is left out of the kicks and integrated in the
-drift per mode by the trapezoidal rule (Newmark average acceleration), unconditionally stable, so
-the stiffest kept mode does not limit the step (frames without free components only: then
-M_ηη = I6 = 1 and the modes decouple from the frame). Modes the step resolves (hω ≤ 2) keep their
-own damping (second order, no numerical damping). Modes it does not resolve are damped critically
-(c = 2ω): undamped, the trapezoidal rule would let the contact kicks make them ring at the step's
-Nyquist frequency (±6 % of the contact force for a 20 kHz raceway load shape at h = 35 µs); critically
-damped, a step multiplies that ringing by (hω − 2)/(hω + 2) — the smallest factor any damping gives
-the trapezoidal rule (T. J. R. Hughes, *The Finite Element Method*, 2000, §9.3) — while their static
-response, the fixed point of the kick–drift–kick step under a constant force, stays exact. (An
-L-stable θ-method would damp them more but, split from the kicks, biases that static response by
-about (θ − ½)h²ω².) They respond quasi-statically, all they can do at that step.
+``implicit`` set (Fixed and Driven frames) the kicks solve with the augmented matrix M + (h/2) C̃ + (h/2)² K̃
+instead of M, K̃ = diag(0, K), C̃ = diag(0, C) on the integrated components: every force, the elastic
+−Kη − Cη̇ included, stays explicit and is evaluated at the state of the kick. For an undamped linear
+oscillator this central-difference step has the trapezoidal rule's characteristic polynomial
+(λ + 1/λ = 2(1 − a²)/(1 + a²), a = hω/2; both are one line of algebra), so it is stable at any hω, and
+with the frame's free components too: the largest generalized eigenvalue of (K̃, M + (h/2)² K̃) is below
+4/h² whatever M's coupling of frame and modes, and the explicit damping's kick factor
+1 − (h/2)(M + (h/2)C̃)⁻¹C̃ stays in (0, 1]. The frame's own rows are not augmented, so the elastic
+forces, internal to the body, leave its momentum alone. A state in equilibrium is a fixed point
+(static response exact), and the contacts see the body's velocities at the half step. Modes the step
+resolves (hω ≤ 2) keep their own damping. Modes it does not resolve are damped critically (c = 2ω):
+undamped, the contact kicks would make them ring at the step's Nyquist frequency; critically damped,
+a step multiplies that ringing by 0.62 at hω = 3, 0.76 at 10 and about 1 − 4/(hω) beyond 30 (the
+critically damped trapezoidal rule: (hω − 2)/(hω + 2); T. J. R. Hughes, *The Finite Element Method*,
+2000, §9.3). They respond quasi-statically, all they can do at that step.
 
 The second kick of both forms depends on the new velocities through the quadratic-velocity terms and
 the modal damping; one fixed-point correction (predict, re-evaluate those terms, kick again) keeps
@@ -207,34 +210,44 @@ def _keep_terms(I2, I3, I4, I5, I7, I8, I9, e, at, level, j, S, J, G, I4e):
 
 
 @njit(cache=True, _nrt=False)
-def _schur_factor(M, sel, nf, mj, L):
+def _schur_factor(M, sel, nf, mj, dinv, L):
     """Unit modal mass (I6 = 1): the block of M on the nf frame components ``sel[:nf]`` and the mj modes is
     [[A, B], [Bᵀ, 1]]; the Cholesky factor of the frame's Schur complement A − B Bᵀ into L[:nf, :nf]
-    (O(nf² m) instead of O((nf + m)³)). False if it is not positive definite (nor is the block, then)."""
+    (O(nf² m) instead of O((nf + m)³)). False if it is not positive definite (nor is the block, then).
+    With ``dinv`` (mj,) the modal block is diagonal, diag(1/dinv), and the complement A − B diag(dinv) Bᵀ
+    (the drift's matrix M + (h/2)C + (h²/4)K, :func:`_coupled_trapezoid`); an empty ``dinv``: 1."""
+    scaled = dinv.shape[0] > 0
     for r in range(nf):
         for c in range(r + 1):
             s = M[sel[r], sel[c]]
             for k in range(mj):
-                s -= M[sel[r], 6 + k] * M[sel[c], 6 + k]
+                t = M[sel[r], 6 + k] * M[sel[c], 6 + k]
+                s -= t * dinv[k] if scaled else t
             L[r, c] = s
             L[c, r] = s
     return cholesky_in_place(L, nf)
 
 
 @njit(cache=True, _nrt=False)
-def _schur_solve(M, L, sel, nf, mj, b):
+def _schur_solve(M, L, sel, nf, mj, dinv, b):
     """Solve [[A, B], [Bᵀ, 1]] x = b in place on b[:nf + mj] with the factor of :func:`_schur_factor`:
-    x_f = (A − B Bᵀ)⁻¹ (b_f − B b_η), x_η = b_η − Bᵀ x_f."""
+    x_f = (A − B Bᵀ)⁻¹ (b_f − B b_η), x_η = b_η − Bᵀ x_f; with ``dinv`` the modal block diag(1/dinv):
+    x_f = (A − B diag(dinv) Bᵀ)⁻¹ (b_f − B diag(dinv) b_η), x_η = diag(dinv)(b_η − Bᵀ x_f)."""
+    scaled = dinv.shape[0] > 0
     for r in range(nf):
         s = b[r]
         for k in range(mj):
-            s -= M[sel[r], 6 + k] * b[nf + k]
+            t = M[sel[r], 6 + k] * b[nf + k]
+            s -= t * dinv[k] if scaled else t
         b[r] = s
     cholesky_solve(L, nf, b)
     for r in range(nf):
         x = b[r]
         for k in range(mj):
             b[nf + k] -= M[sel[r], 6 + k] * x
+    if scaled:
+        for k in range(mj):
+            b[nf + k] *= dinv[k]
 
 
 @njit(cache=True, _nrt=False)
@@ -246,22 +259,29 @@ def _keep_mass(mass, I3, I6, m, level, j, S, J, I4e, M):
 
 
 @njit(cache=True, _nrt=False)
-def _keep_factor(mass, I3, I6, m, unit, level, nfac, j, S, J, I4e, M, L, n, sel):
+def _keep_factor(mass, I3, I6, m, unit, level, nfac, fac_h, j, S, J, I4e, M, L, n, sel, hh, dinv):
     """M(η) (:func:`_keep_mass`) and the factor of its block on ``sel[:n]`` (frame components first, then
-    the m modes) into L (``level[j]`` 4, ``nfac[j]`` = n): with unit modal mass that of the frame's Schur
-    complement (:func:`_schur_factor`), else the block's Cholesky factor; only when not formed since the
-    η-terms. False if the block is not positive definite."""
+    the m modes) into L (``level[j]`` 4, ``nfac[j]`` = n, ``fac_h[j]`` = hh): with unit modal mass that of
+    the frame's Schur complement (:func:`_schur_factor`), else the block's Cholesky factor; only when not
+    formed since the η-terms or for another hh. hh > 0: the implicit modes' matrix M + (h/2) C + (h/2)² K,
+    C = diag(0, c), K = diag(0, ω²), given as ``dinv`` (m,) = 1/(1 + (h/2) c + (h/2)² ω²); hh = 0: M.
+    False if the block is not positive definite."""
     _keep_mass(mass, I3, I6, m, level, j, S, J, I4e, M)
-    if level[j] < 4 or nfac[j] != n:
+    if level[j] < 4 or nfac[j] != n or fac_h[j] != hh:
+        nf = n - m
         if unit:
-            ok = _schur_factor(M, sel, n - m, m, L)
+            ok = _schur_factor(M, sel, nf, m, dinv if hh > 0.0 else M[0, :0], L)
         else:
             _reduced_block(M, n, sel, L)
+            if hh > 0.0:
+                for k in range(m):
+                    L[nf + k, nf + k] += 1.0 / dinv[k] - 1.0
             ok = cholesky_in_place(L, n)
         if not ok:
             return False
         level[j] = 4
         nfac[j] = n
+        fac_h[j] = hh
     return True
 
 
@@ -274,21 +294,26 @@ def _terms(m, j, e, w):
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def _factor(m, j, e, w, n, sel):
+def _factor(m, j, e, w, n, sel, hh=0.0):
     """M(η) of modal body j at η = e in w.modal_M[j] and the factor of its block on the components ``sel[:n]``
-    in w.modal_L[j] (:func:`_keep_factor`; kept while η stays, a body always integrates the same components);
-    False if not positive definite."""
+    in w.modal_L[j] (:func:`_keep_factor`; kept while η and hh stay, a body always integrates the same
+    components); hh > 0: of the implicit modes' M + (h/2) C + (h/2)² K (w.modal_dinv filled). False if not
+    positive definite."""
     _terms(m, j, e, w)
+    o0, o1 = m.modal_off[j], m.modal_off[j + 1]
     return _keep_factor(m.modal_mass[j], m.modal_I3[j], m.modal_I6[j], e.shape[0], m.modal_unit[j] == 1,
-                        w.modal_level, w.modal_nfac, j, w.modal_S[j], w.modal_J[j], w.modal_I4e[j], w.modal_M[j],
-                        w.modal_L[j], n, sel)
+                        w.modal_level, w.modal_nfac, w.modal_fac_h, j, w.modal_S[j], w.modal_J[j], w.modal_I4e[j],
+                        w.modal_M[j], w.modal_L[j], n, sel, hh, w.modal_dinv[o0:o1])
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def _solve(m, w, j, mj, n, sel, b):
-    """Solve M(η)_ff x = b in place on b[:n] with the factor :func:`_factor` left for modal body j."""
+def _solve(m, w, j, mj, n, sel, b, hh=0.0):
+    """Solve M(η)_ff x = b (hh > 0: the implicit modes' (M + (h/2) C + (h/2)² K)_ff) in place on b[:n] with
+    the factor :func:`_factor` left for modal body j."""
     if m.modal_unit[j] == 1:
-        _schur_solve(w.modal_M[j], w.modal_L[j], sel, n - mj, mj, b)
+        o0 = m.modal_off[j]
+        _schur_solve(w.modal_M[j], w.modal_L[j], sel, n - mj, mj,
+                     w.modal_dinv[o0:o0 + mj] if hh > 0.0 else w.modal_M[j][0, :0], b)
     else:
         cholesky_solve(w.modal_L[j], n, b)
 
@@ -333,12 +358,29 @@ def _body_vectors(m, q, v, w, i):
 
 
 @njit(cache=True, inline="always", _nrt=False)
+def _implicit_modes(m, j, w, hh):
+    """Implicit modes of modal body j at the step h = 2 hh: the damping w.modal_c = 2ζω, raised to the
+    critical 2ω where hω > 2, and w.modal_dinv = 1/(1 + (h/2) c + (h/2)² ω²) (module docstring)."""
+    for k in range(m.modal_off[j], m.modal_off[j + 1]):
+        w2, c = m.modal_omega2[k], m.modal_damp[k]
+        a = hh * hh * w2
+        if a > 1.0:
+            c = max(c, 2.0 * math.sqrt(w2))
+        w.modal_c[k] = c
+        w.modal_dinv[k] = 1.0 / (1.0 + hh * c + a)
+
+
+@njit(cache=True, inline="always", _nrt=False)
 def _constrained_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
     i, o0, o1 = m.modal_body[j], m.modal_off[j], m.modal_off[j + 1]
     mj = o1 - o0
     e, qf = eta[o0:o1], w.modal_f[o0:o1]
     om2, dmp = m.modal_omega2[o0:o1], m.modal_damp[o0:o1]
-    elastic = m.modal_implicit[j] == 0
+    hm = 0.0  # the kick's mass matrix: M, or M + (h/2) C + (h/2)² K with implicit modes
+    if m.modal_implicit[j] == 1:
+        hm = hh
+        _implicit_modes(m, j, w, hh)
+        dmp = w.modal_c[o0:o1]
     _body_vectors(m, q, v, w, i)
     vec, u, u0, rhs, hv, sel = w.modal_vec, w.modal_u, w.modal_u0, w.modal_rhs, w.modal_h, w.modal_sel
     for c in range(3):
@@ -350,28 +392,28 @@ def _constrained_kick(m, q, v, eta, eta_dot, w, j, hh, correct):
         u0[c] = u[c]
     n = _select(m, j, mj, sel)
     unit = n == mj and m.modal_unit[j] == 1
-    # a held frame at rest has no velocity terms; with implicit modes the kick then does not depend
-    # on the velocities at all, so the second kick needs no correction
+    # a held frame at rest has no velocity terms
     moving = n > mj or v[i, 0] != 0.0 or v[i, 1] != 0.0 or v[i, 2] != 0.0 or v[i, 3] != 0.0 or \
         v[i, 4] != 0.0 or v[i, 5] != 0.0
-    if not moving and not elastic:
-        correct = False
     S = w.modal_s
     if moving or not unit:  # the η-terms (and M's factor) at this η, formed once per η
         _terms(m, j, e, w)
         S = w.modal_S[j]
-        if not unit and not _factor(m, j, e, w, n, sel):
+        if not unit and not _factor(m, j, e, w, n, sel, hm):
             return False
     else:  # a held frame at rest with unit modal mass: the first moment alone (its weight)
         S[0], S[1], S[2] = _first_moment(m.modal_I2[j], m.modal_I3[j], e)
     for it in range(2 if correct else 1):
         constrained_rhs(m.modal_mass[j], m.modal_I3[j], m.modal_I5[j], S, w.modal_J[j], w.modal_G[j], e,
-                        u[6:6 + mj], u[0:3], u[3:6], vec[1], vec[2], vec[3], qf, om2, dmp, elastic, moving, hv, rhs)
+                        u[6:6 + mj], u[0:3], u[3:6], vec[1], vec[2], vec[3], qf, om2, dmp, True, moving, hv, rhs)
         b = w.modal_b
         for r in range(n):
             b[r] = rhs[sel[r]]
         if not unit:
-            _solve(m, w, j, mj, n, sel, b)
+            _solve(m, w, j, mj, n, sel, b, hm)
+        elif hm > 0.0:
+            for k in range(mj):
+                b[k] *= w.modal_dinv[o0 + k]
         for r in range(n):
             u[sel[r]] = u0[sel[r]] + hh * b[r]
     if m.modal_frame_free[j, 0]:
@@ -493,20 +535,8 @@ def _constrained_drift(m, q, v, eta, eta_dot, j, h):
     if wx != 0.0 or wy != 0.0 or wz != 0.0:
         q[i, 3], q[i, 4], q[i, 5], q[i, 6] = turn_quaternion(q[i, 3], q[i, 4], q[i, 5], q[i, 6],
                                                              h * wx, h * wy, h * wz)
-    if m.modal_implicit[j] == 0:
-        for k in range(o0, o1):
-            eta[k] += h * eta_dot[k]
-        return
-    hh = 0.5 * h
-    for k in range(o0, o1):  # trapezoidal rule on η̈ = −ω²η − cη̇
-        w2, c = m.modal_omega2[k], m.modal_damp[k]
-        if hh * hh * w2 > 1.0:  # hω > 2: not resolved, damped critically (module docstring)
-            c = max(c, 2.0 * math.sqrt(w2))
-        r1 = eta[k] + hh * eta_dot[k]
-        r2 = eta_dot[k] - hh * (w2 * eta[k] + c * eta_dot[k])
-        ed = (r2 - hh * w2 * r1) / (1.0 + hh * c + hh * hh * w2)
-        eta_dot[k] = ed
-        eta[k] = r1 + hh * ed
+    for k in range(o0, o1):
+        eta[k] += h * eta_dot[k]
 
 
 @njit(cache=True, _nrt=False)

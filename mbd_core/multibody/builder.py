@@ -103,7 +103,8 @@ class ModelBuilder(GeometryMixin):
         the axis, and geometry given later in its ring frame (grooves, surfaces, pockets) is shifted
         to match. ``eta``/``eta_dot`` (m,) are the initial modal coordinates (√kg) and rates;
         ``implicit_modes`` integrates the linear modal part by the trapezoidal rule so that the
-        stiffest mode does not limit the step (frames without free components only).
+        stiffest mode does not limit the step (Fixed or Driven frames; with free components of a Driven
+        frame the rule takes the frame's coupling with the modes, :mod:`mbd_core.kernels.modal_step`).
         """
         from cms_reduction.invariants import Invariants
 
@@ -136,10 +137,9 @@ class ModelBuilder(GeometryMixin):
             I3 = np.zeros_like(I3)
         elif not isinstance(motion, (Fixed, Driven)):
             raise TypeError(f"{owner}: motion must be Free(), Fixed() or Driven(...), got {motion!r}")
-        if implicit_modes and not isinstance(motion, Fixed) and not (
-                isinstance(motion, Driven) and not motion.translation_free and not motion.tilt_free):
-            raise ValueError(f"{owner}: implicit_modes needs a frame without free components (Fixed, or Driven "
-                             "with translation and tilt held)")
+        if implicit_modes and isinstance(motion, Free):
+            raise ValueError(f"{owner}: implicit_modes needs a Fixed or Driven frame (a Free frame is integrated "
+                             "in momentum form, explicitly)")
         q = _vec(owner, "orientation", orientation, 4)
         q = q / np.linalg.norm(q)
         pos = _vec(owner, "position_m", position_m, 3) + _rotate(q, shift)

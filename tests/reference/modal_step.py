@@ -13,9 +13,9 @@ turns π by the explicit-midpoint body rotation θ = h ω_mid: R ← R exp([θ]�
 η ← η + h η̇_mid, with (ω_mid, η̇_mid) = M_r(η + h η̇/2)⁻¹ (exp([hω/2]×)ᵀ π, p_η).
 
 Constrained frame (acceleration form): u_f ← u0_f + (h/2) M_ff⁻¹ (rhs(u) − h(u))_f on the integrated
-components f; the frame drifts at its velocity, R ← R exp([h ω]×); η ← η + h η̇, or with implicit
-modes the trapezoidal rule on the first-order system (η, η̇)' = A (η, η̇), A = [[0, 1], [−ω², −c]],
-(1 − hA/2) y₁ = (1 + hA/2) y₀, c = 2ζω, raised to the critical 2ω for modes with hω > 2.
+components f; the frame drifts at its velocity, R ← R exp([h ω]×); η ← η + h η̇. With implicit modes
+the kicks solve with M + (h/2) diag(0, c) + (h/2)² diag(0, ω²) instead of M_ff, with the damping
+c = 2ζω raised to the critical 2ω for modes with hω > 2.
 
 Both kicks with ``correct`` evaluate the velocity-dependent terms once more at the predicted u.
 """
@@ -101,13 +101,17 @@ def _constrained_kick(m, j, q, v, eta, eta_dot, body_f, body_t, modal_f, hh, cor
     n_mod = len(e)
     free = np.concatenate([m.modal_frame_free[j].astype(bool), np.ones(n_mod, bool)])
     f_b, n_b, g_b = R.T @ body_f[i], R.T @ body_t[i], R.T @ m.gravity
-    elastic = m.modal_implicit[j] == 0
     u0 = np.concatenate([R.T @ v[i, :3], v[i, 3:], eta_dot[s]])
-    M_ff = modal.mass_matrix(*inv, e)[np.ix_(free, free)]
+    M = modal.mass_matrix(*inv, e)
+    damp = m.modal_damp[s]
+    if m.modal_implicit[j]:       # augmented mass M + (h/2) diag(0, c) + (h/2)² diag(0, ω²); c critical if hω > 2
+        damp = np.array([implicit_damping(w2, c, 2 * hh) for w2, c in zip(m.modal_omega2[s], damp)])
+        M[6:, 6:] += np.diag(hh * damp + hh**2 * m.modal_omega2[s])
+    M_ff = M[np.ix_(free, free)]
     u = u0.copy()
     for _ in range(2 if correct else 1):
         rhs = constrained_rhs(inv, e, u[6:], u[:3], u[3:6], f_b, n_b, g_b, modal_f[s], m.modal_omega2[s],
-                              m.modal_damp[s], elastic)
+                              damp, True)
         u = u0.copy()
         u[free] += hh * np.linalg.solve(M_ff, rhs[free])
     if free[:3].any():
@@ -137,13 +141,9 @@ def expm(theta):
     return Rotation.from_rotvec(theta).as_matrix()
 
 
-def implicit_mode_step(omega2, damp, h, eta, eta_dot):
-    """One trapezoidal step of (η, η̇)' = [[0, 1], [−ω², −c]] (η, η̇), c raised to 2ω when hω > 2;
-    returns (η, η̇) and the c used."""
-    c = max(damp, 2.0 * np.sqrt(omega2)) if h * np.sqrt(omega2) > 2.0 else damp
-    A = np.array([[0.0, 1.0], [-omega2, -c]])
-    y = np.linalg.solve(np.eye(2) - 0.5 * h * A, (np.eye(2) + 0.5 * h * A) @ [eta, eta_dot])
-    return y[0], y[1], c
+def implicit_damping(omega2, damp, h):
+    """Damping 2ζω of an implicit mode at the step h: its own, raised to the critical 2ω when hω > 2."""
+    return max(damp, 2.0 * np.sqrt(omega2)) if h * np.sqrt(omega2) > 2.0 else damp
 
 
 def _free_drift(m, j, q, v, eta, eta_dot, h):
@@ -167,11 +167,7 @@ def _constrained_drift(m, j, q, v, eta, eta_dot, h):
     i, s = _body(m, j)
     if np.any(v[i, 3:] != 0.0):
         q[i, 3:] = quat_near(matrix(q[i, 3:]) @ expm(h * v[i, 3:]), q[i, 3:])
-    if m.modal_implicit[j] == 0:
-        eta[s] += h * eta_dot[s]
-        return
-    for k in range(s.start, s.stop):
-        eta[k], eta_dot[k], _ = implicit_mode_step(m.modal_omega2[k], m.modal_damp[k], h, eta[k], eta_dot[k])
+    eta[s] += h * eta_dot[s]
 
 
 def drift(m, q, v, eta, eta_dot, h):
