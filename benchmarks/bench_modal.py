@@ -34,7 +34,10 @@ slewing
     taken as rigid and part of the frame, which is driven at 6.55 rpm and free to translate and
     tilt; 68.9 t × g on the frame, gravity along −z. Measured: simulated seconds per wall second
     and the wall time of 25 simulated seconds (the source study's RecurDyn run needed 8 days).
-    The same scene with the top race rigid (same mass) is timed for comparison.
+    The same scene with the top race rigid (same mass) is timed for comparison, and with the modal top
+    race's modes implicit (``implicit_modes``: the kicks solve with the augmented mass M + (h/2)C +
+    (h/2)²K, :mod:`mbd_core.kernels.modal_step`) at the step its contacts allow, with the v_static that
+    step needs.
 
 Start: the rigid-ring variant's static equilibrium (:func:`static_equilibrium`, balls and spacers
 held at their azimuth; the balls scene's ring placed first by the quasi-static load distribution),
@@ -62,7 +65,7 @@ Run::
 
 Ends with one line of ``name=value`` figures (``us_per_step_modal_explicit=…
 us_per_step_modal_implicit=… us_per_step_rigid=… realtime_factor_slewing=… wall_s_25s_slewing=…
-peak_rss_mb=…``).
+wall_s_25s_slewing_implicit_modes=… peak_rss_mb=…``).
 """
 
 from __future__ import annotations
@@ -199,7 +202,7 @@ class SlewingParts:
 
 def build_slewing(top_body, top_mass_kg: float, v_static_m_s: float | None, implicit_modes: bool = False):
     """Model of the slewing ring; ``top_body`` None: a rigid top race of ``top_mass_kg``; ``implicit_modes``:
-    the modal top race's modes integrated with its frame by the trapezoidal rule."""
+    the modal top race's modes integrated with the augmented mass, so that they do not limit the step."""
     fr = _friction(SLEWING_MU, v_static_m_s)
     D, f = SLEWING.ball_diameter_m, SLEWING.conformity
     b = ModelBuilder(gravity_m_s2=(0.0, 0.0, -G))
@@ -448,10 +451,20 @@ def slewing_scene(quick: bool, n_steps: int | None, simulated_s: float) -> dict:
     print(f"[slewing] friction transition speed v_static = {v_s:.3g} m/s; with the source study's 1 mm/s friction "
           f"alone would limit the step to {thesis.limit_s:.2g} s")
 
+    implicit = build_slewing(top_body, top_mass, None, implicit_modes=True)[0]
+    h_imp = SAFETY * stable_timestep(implicit, modal_start).limit_s
+    v_imp = smallest_transition_speed(lambda v: [build_slewing(top_body, top_mass, v, implicit_modes=True)[0]],
+                                      [modal_start], h_imp)
+    print(f"[slewing] with implicit modes the contacts alone set the step: {h_imp:.3g} s, at which the friction "
+          f"transition speed v_static = {v_imp:.3g} m/s")
+
     results = {}
-    for label, body, start in (("rigid top race", None, rigid_start), ("modal top race", top_body, modal_start)):
+    for label, body, start, h, v_s, imp in (("rigid top race", None, rigid_start, h, v_s, False),
+                                            ("modal top race", top_body, modal_start, h, v_s, False),
+                                            ("modal top race, implicit modes", top_body, modal_start, h_imp, v_imp,
+                                             True)):
         name = f"slewing/{label}"
-        model, _, parts = build_slewing(body, top_mass, v_s)
+        model, _, parts = build_slewing(body, top_mass, v_s, implicit_modes=imp)
         state = start.copy()
         set_rolling_velocities(model, state, parts.rows.elements, parts.top, other_ring=parts.bottom)
         _roll_spacers(state, parts.spacers, _orbit_speed(state, parts.rows.elements[0]))
@@ -478,9 +491,11 @@ def slewing_scene(quick: bool, n_steps: int | None, simulated_s: float) -> dict:
         print(f"[{name}] top race moved {1e6 * dz.min():.2f} … {1e6 * dz.max():.2f} µm axially; spacer–race "
               f"{spacer_fn.min():.1f} … {spacer_fn.max():.1f} N, "
               f"ball–spacer up to {rec.fn[:k, list(parts.ball_ball_pairs)].max():.1f} N")
-        results[label] = dict(us=us, rt=rt)
-    return dict(us=results["modal top race"]["us"], us_rigid=results["rigid top race"]["us"], h=h,
-                rt=results["modal top race"]["rt"], v_static=v_s, f_top=f_top)
+        results[label] = dict(us=us, rt=rt, h=h, v_static=v_s)
+    explicit, implicit = results["modal top race"], results["modal top race, implicit modes"]
+    return dict(us=explicit["us"], us_rigid=results["rigid top race"]["us"], h=explicit["h"], rt=explicit["rt"],
+                v_static=explicit["v_static"], f_top=f_top, us_implicit=implicit["us"], h_implicit=implicit["h"],
+                rt_implicit=implicit["rt"], v_static_implicit=implicit["v_static"])
 
 
 def main() -> None:
@@ -507,6 +522,11 @@ def main() -> None:
         "realtime_factor_slewing": slewing["rt"],
         "wall_s_25s_slewing": SIMULATED_S / slewing["rt"],
         "v_static_slewing_m_s": slewing["v_static"],
+        "us_per_step_slewing_implicit_modes": slewing["us_implicit"],
+        "timestep_slewing_implicit_modes_s": slewing["h_implicit"],
+        "realtime_factor_slewing_implicit_modes": slewing["rt_implicit"],
+        "wall_s_25s_slewing_implicit_modes": SIMULATED_S / slewing["rt_implicit"],
+        "v_static_slewing_implicit_modes_m_s": slewing["v_static_implicit"],
         "peak_rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
     }
     print(" ".join(f"{k}={v:.4g}" for k, v in figures.items()))

@@ -290,7 +290,11 @@ class Analysis:
     at ``timestep_s`` (None: :data:`cases.integrate.IMPLICIT_STEP_FACTOR` × the automatic explicit step); the rotation
     study takes it when asked, else runs explicitly. A dynamic run compares its ball loads at
     ``reference_samples`` samples after the start-up with the quasi-static equilibrium at the run's
-    top rotation and ball phase there (:mod:`.dynamic_reference`; 0: no comparison)."""
+    top rotation and ball phase there (:mod:`.dynamic_reference`; 0: no comparison). ``implicit_modes``
+    (explicit runs with a modal ring): the rings' modes integrated with the augmented mass
+    (:mod:`mbd_core.kernels.modal_step`), so that neither the stiffest mode nor its coupling with the top
+    structure's free motion limits the automatic step, the contacts do; modes above 2/h then respond
+    quasi-statically."""
 
     type: Literal["quasi_static", "dynamic_explicit", "dynamic_implicit"] = "quasi_static"
     speed_rpm: float = 6.55
@@ -302,6 +306,7 @@ class Analysis:
     spacers: bool = True
     rho_inf: float = 0.9
     reference_samples: int = 5
+    implicit_modes: bool = False
 
     def __post_init__(self) -> None:
         _positive("analysis", speed_rpm=self.speed_rpm, duration_s=self.duration_s, timestep_s=self.timestep_s,

@@ -95,11 +95,12 @@ def build_scene(case: SlewingCase, bodies: scene.Bodies) -> DynamicScene:
         top = b.add_body("top structure", m, (0.5 * m * R * R, 0.5 * m * R * R, m * R * R), motion=drive,
                          omega_rad_s=(0.0, 0.0, omega))
     else:
-        top = b.add_modal_body("top structure", bodies.top, motion=drive, omega_rad_s=(0.0, 0.0, omega))
+        top = b.add_modal_body("top structure", bodies.top, motion=drive, omega_rad_s=(0.0, 0.0, omega),
+                               implicit_modes=case.analysis.implicit_modes)
     if bodies.bottom is None:
         bottom = b.add_body("bottom race", 1000.0, (1e3, 1e3, 2e3), motion=Fixed())
     else:
-        bottom = b.add_modal_body("bottom race", bodies.bottom, motion=Fixed())
+        bottom = b.add_modal_body("bottom race", bodies.bottom, motion=Fixed(), implicit_modes=case.analysis.implicit_modes)
     moving_tab, fixed_tab = _tables(case)
     k = ball_on_groove(g.ball_diameter_m, g.conformity, g.pitch_diameter_m, row.contact_angle_rad, "inner",
                        BEARING_STEEL, BEARING_STEEL).stiffness_N_per_m1p5

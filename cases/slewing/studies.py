@@ -327,7 +327,7 @@ def study_full_scale(case: SlewingCase, out, progress=None) -> None:
 _DYNAMIC_KEYS = ("analysis.speed_rpm", "analysis.duration_s", "analysis.timestep_s", "analysis.record_every",
                  "analysis.spacers", "analysis.rho_inf", "analysis.reference_samples", "contact.damping_ratio", "contact.mu_static",
                  "contact.mu_dynamic", "contact.v_static_m_s", "contact.v_dynamic_m_s", "contact.friction",
-                 "contact.implicit_friction")
+                 "contact.implicit_friction", "analysis.implicit_modes")
 RUN_KEYS = {
     "dynamic": (dict.fromkeys(_DYNAMIC_KEYS), 'read by dynamic runs only (study.kind = "rotation", or "single" '
                 'with analysis.type = "dynamic_explicit")'),
@@ -422,6 +422,11 @@ def case_unused_keys(case: SlewingCase) -> dict[str, str]:
                            '(study.kind = "rotation", or "single" with a dynamic analysis.type)')
     if "dynamic" in runs_of(case) and case.analysis.type != "dynamic_implicit":
         out.setdefault("analysis.rho_inf", 'read by implicit runs only (analysis.type = "dynamic_implicit")')
+    if "dynamic" in runs_of(case) and case.analysis.type == "dynamic_implicit":
+        out.setdefault("analysis.implicit_modes", 'the generalized-α integrator takes every mode implicitly; '
+                       'read by explicit runs (analysis.type = "dynamic_explicit")')
+    if not modal_top(case) and case.bottom.kind == "rigid":
+        out.setdefault("analysis.implicit_modes", 'both races are rigid here: no modes to integrate')
     return out
 
 
