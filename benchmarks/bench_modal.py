@@ -36,8 +36,9 @@ slewing
     and the wall time of 25 simulated seconds (the source study's RecurDyn run needed 8 days).
     The same scene with the top race rigid (same mass) is timed for comparison, and with the modal top
     race's modes implicit (``implicit_modes``: the kicks solve with the augmented mass M + (h/2)C +
-    (h/2)²K, :mod:`mbd_core.kernels.modal_step`) at the step its contacts allow, with the v_static that
-    step needs.
+    (h/2)²K, :mod:`mbd_core.kernels.modal_step`) at the step its contacts allow: with the v_static that
+    step needs, and with the explicit variant's v_static and the balls' friction implicit
+    (``implicit_friction``, as in the named cases), the same friction law as the explicit variant.
 
 Start: the rigid-ring variant's static equilibrium (:func:`static_equilibrium`, balls and spacers
 held at their azimuth; the balls scene's ring placed first by the quasi-static load distribution),
@@ -65,7 +66,7 @@ Run::
 
 Ends with one line of ``name=value`` figures (``us_per_step_modal_explicit=…
 us_per_step_modal_implicit=… us_per_step_rigid=… realtime_factor_slewing=… wall_s_25s_slewing=…
-wall_s_25s_slewing_implicit_modes=… peak_rss_mb=…``).
+wall_s_25s_slewing_implicit_modes=… wall_s_25s_slewing_implicit_modes_friction=… peak_rss_mb=…``).
 """
 
 from __future__ import annotations
@@ -200,12 +201,15 @@ class SlewingParts:
     ball_ball_pairs: tuple[int, ...]
 
 
-def build_slewing(top_body, top_mass_kg: float, v_static_m_s: float | None, implicit_modes: bool = False):
+def build_slewing(top_body, top_mass_kg: float, v_static_m_s: float | None, implicit_modes: bool = False,
+                  implicit_friction: bool = False):
     """Model of the slewing ring; ``top_body`` None: a rigid top race of ``top_mass_kg``; ``implicit_modes``:
-    the modal top race's modes integrated with the augmented mass, so that they do not limit the step."""
+    the modal top race's modes integrated with the augmented mass, so that they do not limit the step;
+    ``implicit_friction``: the balls' and spacers' friction integrated implicitly, so that v_static does
+    not either."""
     fr = _friction(SLEWING_MU, v_static_m_s)
     D, f = SLEWING.ball_diameter_m, SLEWING.conformity
-    b = ModelBuilder(gravity_m_s2=(0.0, 0.0, -G))
+    b = ModelBuilder(gravity_m_s2=(0.0, 0.0, -G), implicit_friction=implicit_friction)
     m_bottom = slewing_bottom_race(PITCH_M).revolved_properties(STEEL.density_kg_m3)["mass_kg"]
     bottom = b.add_body("bottom race", m_bottom, _ring_inertia(m_bottom, PITCH_M / 2), motion=Fixed())
     motion = Driven(_rpm(SLEWING_SPEED_RPM), translation_free=True, tilt_free=True)
@@ -459,12 +463,13 @@ def slewing_scene(quick: bool, n_steps: int | None, simulated_s: float) -> dict:
           f"transition speed v_static = {v_imp:.3g} m/s")
 
     results = {}
-    for label, body, start, h, v_s, imp in (("rigid top race", None, rigid_start, h, v_s, False),
-                                            ("modal top race", top_body, modal_start, h, v_s, False),
-                                            ("modal top race, implicit modes", top_body, modal_start, h_imp, v_imp,
-                                             True)):
+    variants = (("rigid top race", None, rigid_start, h, v_s, False, False),
+                ("modal top race", top_body, modal_start, h, v_s, False, False),
+                ("modal top race, implicit modes", top_body, modal_start, h_imp, v_imp, True, False),
+                ("modal top race, implicit modes and friction", top_body, modal_start, h_imp, v_s, True, True))
+    for label, body, start, h, v_s, imp, imp_friction in variants:
         name = f"slewing/{label}"
-        model, _, parts = build_slewing(body, top_mass, v_s, implicit_modes=imp)
+        model, _, parts = build_slewing(body, top_mass, v_s, implicit_modes=imp, implicit_friction=imp_friction)
         state = start.copy()
         set_rolling_velocities(model, state, parts.rows.elements, parts.top, other_ring=parts.bottom)
         _roll_spacers(state, parts.spacers, _orbit_speed(state, parts.rows.elements[0]))
@@ -493,9 +498,11 @@ def slewing_scene(quick: bool, n_steps: int | None, simulated_s: float) -> dict:
               f"ball–spacer up to {rec.fn[:k, list(parts.ball_ball_pairs)].max():.1f} N")
         results[label] = dict(us=us, rt=rt, h=h, v_static=v_s)
     explicit, implicit = results["modal top race"], results["modal top race, implicit modes"]
+    both = results["modal top race, implicit modes and friction"]
     return dict(us=explicit["us"], us_rigid=results["rigid top race"]["us"], h=explicit["h"], rt=explicit["rt"],
                 v_static=explicit["v_static"], f_top=f_top, us_implicit=implicit["us"], h_implicit=implicit["h"],
-                rt_implicit=implicit["rt"], v_static_implicit=implicit["v_static"])
+                rt_implicit=implicit["rt"], v_static_implicit=implicit["v_static"], us_both=both["us"],
+                rt_both=both["rt"])
 
 
 def main() -> None:
@@ -527,6 +534,8 @@ def main() -> None:
         "realtime_factor_slewing_implicit_modes": slewing["rt_implicit"],
         "wall_s_25s_slewing_implicit_modes": SIMULATED_S / slewing["rt_implicit"],
         "v_static_slewing_implicit_modes_m_s": slewing["v_static_implicit"],
+        "us_per_step_slewing_implicit_modes_friction": slewing["us_both"],
+        "wall_s_25s_slewing_implicit_modes_friction": SIMULATED_S / slewing["rt_both"],
         "peak_rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
     }
     print(" ".join(f"{k}={v:.4g}" for k, v in figures.items()))

@@ -117,21 +117,24 @@ def _friction_kick(q, v, w, body_mass, body_inertia, body_free, implicit, hh):
         for k in range(3):  # R, column by column
             rot[0, k], rot[1, k], rot[2, k] = rotate(q, i, 1.0 if k == 0 else 0.0, 1.0 if k == 1 else 0.0,
                                                      1.0 if k == 2 else 0.0)
-        # C' = Tᵀ C T in A (upper left as it is; C_vω R; Rᵀ C_ωv; Rᵀ C_ωω R)
+        # C' = Tᵀ C T in A (upper left as it is; C_vω R; Rᵀ C_ωv = (C_vω R)ᵀ, C being symmetric; Rᵀ C_ωω R,
+        # with C_ωω R formed once in the lower right of A first)
         for j in range(3):
             for k in range(3):
                 A[j, k] = C[j, k]
-                s_vw, s_wv, s_ww = 0.0, 0.0, 0.0
+                s_vw, t = 0.0, 0.0
                 for l in range(3):
                     s_vw += C[j, 3 + l] * rot[l, k]
-                    s_wv += rot[l, j] * C[3 + l, k]
-                    t = 0.0
-                    for n in range(3):
-                        t += C[3 + l, 3 + n] * rot[n, k]
-                    s_ww += rot[l, j] * t
+                    t += C[3 + j, 3 + l] * rot[l, k]
                 A[j, 3 + k] = s_vw
-                A[3 + j, k] = s_wv
-                A[3 + j, 3 + k] = s_ww
+                A[3 + k, j] = s_vw
+                A[3 + j, 3 + k] = t
+        for k in range(3):  # (g is free scratch until the right-hand side)
+            t0, t1, t2 = A[3, 3 + k], A[4, 3 + k], A[5, 3 + k]
+            for j in range(3):
+                g[j] = rot[0, j] * t0 + rot[1, j] * t1 + rot[2, j] * t2
+            for j in range(3):
+                A[3 + j, 3 + k] = g[j]
         for j in range(6):
             r[j] = v[i, j] - ve[j]  # velocity change since the evaluation
         tx, ty, tz = rotate_back(q, i, w.body_t[i, 0], w.body_t[i, 1], w.body_t[i, 2])
