@@ -215,7 +215,7 @@ def _schur_factor(M, sel, nf, mj, dinv, L):
     [[A, B], [Bᵀ, 1]]; the Cholesky factor of the frame's Schur complement A − B Bᵀ into L[:nf, :nf]
     (O(nf² m) instead of O((nf + m)³)). False if it is not positive definite (nor is the block, then).
     With ``dinv`` (mj,) the modal block is diagonal, diag(1/dinv), and the complement A − B diag(dinv) Bᵀ
-    (the drift's matrix M + (h/2)C + (h²/4)K, :func:`_coupled_trapezoid`); an empty ``dinv``: 1."""
+    (the implicit modes' kick matrix M + (h/2)C + (h/2)²K, :func:`_implicit_modes`); an empty ``dinv``: 1."""
     scaled = dinv.shape[0] > 0
     for r in range(nf):
         for c in range(r + 1):

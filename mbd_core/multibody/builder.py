@@ -102,9 +102,10 @@ class ModelBuilder(GeometryMixin):
         that do not move the centre of mass); its reference point is moved to its centre of mass on
         the axis, and geometry given later in its ring frame (grooves, surfaces, pockets) is shifted
         to match. ``eta``/``eta_dot`` (m,) are the initial modal coordinates (√kg) and rates;
-        ``implicit_modes`` integrates the linear modal part by the trapezoidal rule so that the
-        stiffest mode does not limit the step (Fixed or Driven frames; with free components of a Driven
-        frame the rule takes the frame's coupling with the modes, :mod:`mbd_core.kernels.modal_step`).
+        ``implicit_modes`` (Fixed or Driven frames) kicks the body with the augmented mass
+        M + (h/2)C + (h/2)²K, which has the trapezoidal rule's stability, so that neither the stiffest
+        mode nor its coupling with the frame's free components limits the step
+        (:mod:`mbd_core.kernels.modal_step`).
         """
         from cms_reduction.invariants import Invariants
 

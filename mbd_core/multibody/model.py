@@ -115,8 +115,9 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: modal_J (n_mb, 3, 3), modal_G (n_mb, 3, 3, M), modal_I4e (n_mb, 3, M) (:func:`mbd_core.kernels.modal.eta_terms`),
 #: modal_M (n_mb, 6 + M, 6 + M) M(η), modal_L (n_mb, 6 + M, 6 + M) the Cholesky factor of its block of
 #: integrated components, modal_nfac (n_mb,) int64 that block's size, modal_fac_h (n_mb,) s the half step of
-#: the implicit modes' matrix M + (h/2)² K it factors (0: M); modal_dinv (n_η,) 1/(1 + (h/2)² ω²) and
-#: modal_c (n_η,) 1/s the damping 2ζω of implicit modes at the step (:mod:`mbd_core.kernels.modal_step`).
+#: the implicit modes' matrix M + (h/2) C + (h/2)² K it factors (0: M); modal_c (n_η,) 1/s the damping 2ζω
+#: of implicit modes at the step and modal_dinv (n_η,) 1/(1 + (h/2) c + (h/2)² ω²)
+#: (:mod:`mbd_core.kernels.modal_step`).
 #: Sampled surfaces of modal bodies (:mod:`mbd_core.kernels.forces`): flex_row (FLEX_ROWS,) int64 the
 #: cached sample rows, flex_field (FLEX_ROWS, 18) their D η, Ω η, D η̇, Ω η̇ and gathered force and
 #: moment on the ring (ring frame); flex_corner (4, 2) int64 row and cache slot, flex_weight (4,) the
