@@ -17,25 +17,29 @@ from .body_frames import relative_velocity_across
 from .laws import friction_slope
 
 
+# The matrices are symmetric: the contact points fill their upper triangles (j ≤ k) only, and
+# :func:`_friction_damping_matrices` copies them to the lower ones once per evaluation.
+
+
 @njit(cache=True, inline="always", _nrt=False)
 def _lever_outer(q, g, i, coef, dx, dy, dz, px, py, pz, fc):
-    """Add coef · (Jᵀd)(Jᵀd)ᵀ to body i's friction damping fc[i] (world (v, ω), 6 × 6), with
-    Jᵀd = (d, r × d) for the direction d at world point p (r = p − centre, J = [I, −[r]×] the
-    velocity of the body's material point at p per (v, ω)); g is scratch (6,)."""
+    """Add coef · (Jᵀd)(Jᵀd)ᵀ to the upper triangle of body i's friction damping fc[i] (world (v, ω),
+    6 × 6), with Jᵀd = (d, r × d) for the direction d at world point p (r = p − centre, J = [I, −[r]×]
+    the velocity of the body's material point at p per (v, ω)); g is scratch (6,)."""
     rx, ry, rz = px - q[i, 0], py - q[i, 1], pz - q[i, 2]
     g[0], g[1], g[2] = dx, dy, dz
     g[3], g[4], g[5] = ry * dz - rz * dy, rz * dx - rx * dz, rx * dy - ry * dx
     for j in range(6):
         cg = coef * g[j]
-        for k in range(6):
+        for k in range(j, 6):
             fc[i, j, k] += cg * g[k]
 
 
 @njit(cache=True, inline="always", _nrt=False)
 def _friction_damping(q, fc, g, i, c, mx, my, mz, px, py, pz):
-    """Add c Jᵀ(I − m mᵀ)J to body i's friction damping fc[i] (world (v, ω), 6 × 6): the friction
-    c v_t of a contact at world point p with unit normal m (J as in :func:`_lever_outer`), as
-    JᵀJ − (Jᵀm)(Jᵀm)ᵀ; g is scratch (6,)."""
+    """Add c Jᵀ(I − m mᵀ)J to the upper triangle of body i's friction damping fc[i] (world (v, ω),
+    6 × 6): the friction c v_t of a contact at world point p with unit normal m (J as in
+    :func:`_lever_outer`), as JᵀJ − (Jᵀm)(Jᵀm)ᵀ; g is scratch (6,)."""
     _lever_outer(q, g, i, -c, mx, my, mz, px, py, pz, fc)
     rx, ry, rz = px - q[i, 0], py - q[i, 1], pz - q[i, 2]
     r2 = rx * rx + ry * ry + rz * rz
@@ -45,24 +49,15 @@ def _friction_damping(q, fc, g, i, c, mx, my, mz, px, py, pz):
     fc[i, 4, 4] += c * (r2 - ry * ry)
     fc[i, 5, 5] += c * (r2 - rz * rz)
     fc[i, 3, 4] -= c * rx * ry
-    fc[i, 4, 3] -= c * rx * ry
     fc[i, 3, 5] -= c * rx * rz
-    fc[i, 5, 3] -= c * rx * rz
     fc[i, 4, 5] -= c * ry * rz
-    fc[i, 5, 4] -= c * ry * rz
-    # upper right −[r]×, lower left [r]×
+    # upper right −[r]×
     fc[i, 0, 4] += c * rz
-    fc[i, 4, 0] += c * rz
     fc[i, 0, 5] -= c * ry
-    fc[i, 5, 0] -= c * ry
     fc[i, 1, 3] -= c * rz
-    fc[i, 3, 1] -= c * rz
     fc[i, 1, 5] += c * rx
-    fc[i, 5, 1] += c * rx
     fc[i, 2, 3] += c * ry
-    fc[i, 3, 2] += c * ry
     fc[i, 2, 4] -= c * rx
-    fc[i, 4, 2] -= c * rx
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -119,3 +114,8 @@ def _friction_damping_matrices(m, q, v, w):
         if imp[b] != 0:
             _lever_outer(q, g, b, extra, tx, ty, tz, px, py, pz, fc)
     w.fric_n[0] = 0
+    for i in range(imp.shape[0]):  # the lower triangles from the upper ones
+        if imp[i] != 0:
+            for j in range(1, 6):
+                for k in range(j):
+                    fc[i, j, k] = fc[i, k, j]
