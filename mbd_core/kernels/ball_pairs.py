@@ -34,13 +34,14 @@ from .strip_traction import strip_traction_forces
 
 @njit(cache=True, _nrt=False)
 def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fric, n_strips, a_coef, curvature,
-                   delta, mx, my, mz, px, py, pz, ex, ey, ez, wx, wy, wz, sx_b, sy_b, sz_b):
+                   delta, mx, my, mz, px, py, pz, ex, ey, ez, wx, wy, wz, sx_b, sy_b, sz_b, imp, fpts, fcnt, each):
     """Normal force and strip traction of a ball contact (module docstring); (ex, ey, ez) the rolling
     direction, world; (wx, wy, wz) and (sx_b, sy_b, sz_b) the velocity and the angular velocity of
     ring b's surface at the contact beyond its frame's motion (a modal ring's section; zeros on a
-    rigid ring), world. Applies the force and the strips' moment to a and b's frames and returns
-    (F_n N, |v_t| m/s at the centre, |F_t| N, elastic energy J, the force (3) N and moment (3) N·m on
-    a, world)."""
+    rigid ring), world. Applies the force and the strips' moment to a and b's frames, notes each
+    slipping strip at its point p + ȳ y + z(ȳ) m for implicit friction (``imp``, ``fpts``, ``fcnt`` as
+    in :func:`.friction_damping._note_friction`; ``each`` scratch (≥ n_strips, 5)) and returns (F_n N,
+    |v_t| m/s at the centre, |F_t| N, elastic energy J, the force (3) N and moment (3) N·m on a, world)."""
     if delta <= 0.0:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     vax, vay, vaz = point_velocity(q, v, a, px, py, pz)
@@ -63,7 +64,12 @@ def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fri
     if fn > 0.0:
         tx, ty, tmx, tmy, tmz = strip_traction_forces(
             fn, a_coef * fn ** (1.0 / 3.0), sx, sy, ox * xx + oy * xy + oz * xz, ox * yx + oy * yy + oz * yz,
-            ox * mx + oy * my + oz * mz, curvature, fric, fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3], n_strips)
+            ox * mx + oy * my + oz * mz, curvature, fric, fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3], n_strips, each)
+        if imp[a] != 0 or imp[b] != 0:
+            for i in range(n_strips):
+                y, z, qi, ui, f = each[i, 0], each[i, 1], each[i, 2], each[i, 3], each[i, 4]
+                _note_friction(imp, fpts, fcnt, a, b, c, qi, ui, f * ui, mx, my, mz, px + y * yx + z * mx,
+                               py + y * yy + z * my, pz + y * yz + z * mz)
     fx = fn * mx + tx * xx + ty * yx
     fy = fn * my + tx * xy + ty * yy
     fz = fn * mz + tx * xz + ty * yz
@@ -113,8 +119,7 @@ def _flexible_strips(m, q, v, eta_dot, w, c, a, b, o0, o1, disp, rot, i0, i1, w0
     fn, u, ft, e, fx, fy, fz, tx, ty, tz = _strip_contact(
         q, v, w.body_f, w.body_t, m.pair_fric_p, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
         m.pair_dmax[c], m.pair_fric[c], m.pair_strips[c], m.pair_semi_major[c], m.pair_strip_curv[c], delta,
-        mx, my, mz, px, py, pz, ex, ey, ez, vx, vy, vz, sx, sy, sz)
-    _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
+        mx, my, mz, px, py, pz, ex, ey, ez, vx, vy, vz, sx, sy, sz, imp, fpts, fcnt, w.strip_each)
     gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
     hx, hy, hz = rotate_back(q, b, -tx, -ty, -tz)
     _add_section_force(disp, rot, i0, i1, w0, w1, gx, gy, gz, by * gz - bz * gy + hx, bz * gx - bx * gz + hy,
@@ -146,12 +151,12 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
                 fn, u, ft, e, _, _, _, _, _, _ = _strip_contact(
                     q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c],
                     m.pair_fric[c], m.pair_strips[c], m.pair_semi_major[c], m.pair_strip_curv[c], delta, mx, my, mz,
-                    px, py, pz, ex, ey, ez, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+                    px, py, pz, ex, ey, ez, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, imp, fpts, fcnt, w.strip_each)
             else:
                 fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                              m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,
                                              px, py, pz)
-            _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
+                _note_friction(imp, fpts, fcnt, a, b, c, fn, u, ft, mx, my, mz, px, py, pz)
         else:
             # a groove on a modal ring (see _nearest_deformed_centre); the arrays are sliced here so
             # that no per-contact function takes the model tuple

@@ -49,9 +49,11 @@ def strip_load_share(s):
 
 @njit(cache=True, inline="always", _nrt=False)
 def strip_traction_forces(load_N, a_m, slip_x, slip_y, omega_x, omega_y, omega_z, curvature_per_m, law, p0, p1, p2,
-                          p3, n_strips):
+                          p3, n_strips, each=None):
     """(F_x, F_y N, M_x, M_y, M_z N·m) on body 1 from ``n_strips`` strips over a curved contact surface
-    (module docstring); ω the relative angular velocity of body 1 in the contact frame, rad/s."""
+    (module docstring); ω the relative angular velocity of body 1 in the contact frame, rad/s. ``each``
+    (≥ n_strips, 5), when given: per strip (ȳ, z(ȳ) m, Q_i N, |v| m/s, secant μQ_i/|v| N·s/m; 0 where it
+    does not slip), for the damping matrices of implicit friction (:mod:`.friction_damping`)."""
     fx, fy, mx, my, mz = 0.0, 0.0, 0.0, 0.0, 0.0
     if load_N <= 0.0:
         return fx, fy, mx, my, mz
@@ -69,6 +71,7 @@ def strip_traction_forces(load_N, a_m, slip_x, slip_y, omega_x, omega_y, omega_z
         vx = slip_x - omega_z * y + omega_y * z
         vy = slip_y - omega_x * z
         u = math.sqrt(vx * vx + vy * vy)
+        f = 0.0
         if u > 0.0:
             f = friction_coefficient(law, u, p0, p1, p2, p3) * q / u
             fx -= f * vx
@@ -77,6 +80,8 @@ def strip_traction_forces(load_N, a_m, slip_x, slip_y, omega_x, omega_y, omega_z
             mx += z * f * vy
             my -= z * f * vx
             mz += y * f * vx
+        if each is not None:
+            each[i, 0], each[i, 1], each[i, 2], each[i, 3], each[i, 4] = y, z, q, u, f
         s0, w0 = s1, w1
     return fx, fy, mx, my, mz
 

@@ -369,16 +369,13 @@ class ModelBuilder(GeometryMixin):
 
     # -- finalize -------------------------------------------------------------------------------
     def _check_strips(self, pairs) -> None:
-        """Strip traction: ball–groove pairs (rigid or modal grooves), explicit friction (ValueError naming the pair)."""
+        """Strip traction: ball–groove pairs (rigid or modal grooves) only (ValueError naming the pair)."""
         for p in pairs:
             if p["law"].strips is None:
                 continue
             if p["kind"] != BALL_GROOVE:
                 raise ValueError(f"model: contact {p['name']!r}: strip traction is for ball–groove contacts, not "
                                  f"{PAIR_KIND_NAMES[p['kind']]}")
-            if self.implicit_friction:
-                raise ValueError(f"model: contact {p['name']!r}: strip traction is integrated explicitly; build "
-                                 "the model without implicit_friction")
 
     def finalize(self) -> tuple[Model, State]:
         """Validate and freeze: returns the model of flat arrays and the initial state."""

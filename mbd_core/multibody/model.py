@@ -133,7 +133,8 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: rigid-geometry gap exceeds the surface's motion bound, [1] 1 while the current evaluation does
 #: (set by the explicit step loop on steps that are not recorded); flex_bound (n_mb, 4) per modal
 #: body: the bound Σ|η_k| max|D_k| m and Σ|η_k| max|Ω_k| rad of this evaluation (inf when not
-#: skipping), and the running counts of surface contacts checked and skipped.
+#: skipping), and the running counts of surface contacts checked and skipped. strip_each (max strips, 5) the
+#: strips of one ball contact (:func:`mbd_core.kernels.strip_traction.strip_traction_forces`).
 WorkArrays = namedtuple(
     "WorkArrays",
     "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta contact_point "
@@ -142,7 +143,7 @@ WorkArrays = namedtuple(
     "modal_f modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta modal_s modal_eta_at "
     "modal_level modal_S modal_J modal_G modal_I4e modal_M modal_L modal_nfac modal_fac_h modal_dinv modal_c "
     "flex_row flex_field flex_corner flex_weight groove_rows fric_c fric_v fric_pts fric_n fric_a fric_r fric_g "
-    "fric_rot fric_idx flex_skip flex_bound",
+    "fric_rot fric_idx flex_skip flex_bound strip_each",
 )
 FLEX_ROWS = 32
 
@@ -260,11 +261,13 @@ def make_work(model: Model) -> WorkArrays:
         flex_row=np.zeros(FLEX_ROWS, dtype=np.int64), flex_field=np.zeros((FLEX_ROWS, 18)),
         flex_corner=np.zeros((4, 2), dtype=np.int64), flex_weight=np.zeros(4), groove_rows=np.zeros((4, 3)),
         fric_c=np.zeros((nb, 6, 6)), fric_v=np.zeros((nb, 6)),
-        # at most: every slice, two points per other pair (roller ends, pocket walls)
-        fric_pts=np.zeros((a.slice_drop.size + 2 * nc if a.body_fric_implicit.any() else 0, 12)),
+        # at most: every slice, two points per other pair (roller ends, pocket walls), every strip
+        fric_pts=np.zeros((a.slice_drop.size + 2 * nc + int(a.pair_strips.sum()) if a.body_fric_implicit.any() else 0,
+                           12)),
         fric_n=np.zeros(1, dtype=np.int64), fric_a=np.zeros((6, 6)), fric_r=np.zeros(6), fric_g=np.zeros(6),
         fric_rot=np.zeros((3, 3)), fric_idx=np.zeros(6, dtype=np.int64),
         flex_skip=np.zeros(2, dtype=np.int64), flex_bound=np.zeros((a.modal_body.size, 4)),
+        strip_each=np.zeros((max(int(a.pair_strips.max(initial=0)), 1), 5)),
     )
 
 
