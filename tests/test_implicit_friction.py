@@ -12,6 +12,7 @@ from mbd_core.contact.friction import Coulomb, DrebLinear
 from mbd_core.multibody import (ContactLaw, Fixed, ModelBuilder, StepTooLargeError, evaluate_forces, simulate,
                                 stable_timestep)
 from mbd_core.multibody.statics import static_equilibrium
+from tests.reference.force_jacobian import force_velocity_jacobian
 
 G = 9.81
 R_M, L_M, MASS_KG = 0.03, 0.05, 1.0
@@ -47,21 +48,7 @@ def _damping_and_jacobian(friction, v0, omega):
     w = evaluate_forces(model, state)
     C = w.fric_c[i].copy()
     assert np.count_nonzero(w.contact_fn) == 1 and w.contact_fn[0] > 0
-    R = _rotation(state.q[i, 3:])
-    jac = np.zeros((6, 6))
-    eps = 1e-4 * max(np.abs(v0).max(), 1e-3)
-    for k in range(6):
-        out = []
-        for sign in (1.0, -1.0):
-            st = state.copy()
-            du = np.zeros(6)
-            du[k] = sign * eps
-            st.v[i, :3] += du[:3]
-            st.v[i, 3:] += R.T @ du[3:]  # ω is stored in the body frame
-            wk = evaluate_forces(model, st)
-            out.append(np.concatenate([wk.body_f[i], wk.body_t[i]]))
-        jac[:, k] = -(out[0] - out[1]) / (2 * eps)
-    return C, jac, w.contact_slip[0]
+    return C, force_velocity_jacobian(model, state, i, 1e-4 * max(np.abs(v0).max(), 1e-3)), w.contact_slip[0]
 
 
 def test_damping_matrix_is_the_jacobian_of_a_linear_friction_law():

@@ -28,6 +28,7 @@ from mbd_core.multibody import ContactLaw, Driven, Fixed, Free, ModelBuilder, ev
 from mbd_core.multibody.builder import quat_z_to
 from mbd_core.multibody.model import make_work
 from mbd_core.multibody.parts import StripTraction
+from tests.reference.force_jacobian import force_velocity_jacobian
 
 R_BALL, CONF, R_PITCH = 5e-3, 0.52, 0.05
 K_HERTZ = 1e10                      # N/m^1.5
@@ -102,21 +103,7 @@ def test_implicit_friction_damping_is_the_jacobian_of_linear_strip_traction():
     w = evaluate_forces(model, state)
     C = w.fric_c[i].copy()
     assert w.contact_fn[0] == pytest.approx(LOAD_N, rel=1e-9) and w.fric_n[0] == 0   # (noted, then gathered)
-    from scipy.spatial.transform import Rotation
-    R = Rotation.from_quat(state.q[i, 3:], scalar_first=True).as_matrix()
-    jac = np.zeros((6, 6))
-    eps = 1e-5
-    for k in range(6):
-        out = []
-        for sign in (1.0, -1.0):
-            st = state.copy()
-            du = np.zeros(6)
-            du[k] = sign * eps
-            st.v[i, :3] += du[:3]
-            st.v[i, 3:] += R.T @ du[3:]                       # ω is stored in the body frame
-            wk = evaluate_forces(model, st)
-            out.append(np.concatenate([wk.body_f[i], wk.body_t[i]]))
-        jac[:, k] = -(out[0] - out[1]) / (2 * eps)
+    jac = force_velocity_jacobian(model, state, i, 1e-5)
     assert np.abs(jac).max() > 1.0                            # the friction does act
     print(f"|C − J| / max|J| = {np.abs(C - jac).max() / np.abs(jac).max():.2g}")
     np.testing.assert_allclose(C, jac, rtol=0, atol=1e-9 * np.abs(jac).max())
