@@ -109,8 +109,10 @@ SCENARIOS = {
     "fixed_implicit": [(Fixed(), [100.0, 2607.6, 20000.0], True, True)],
     "driven_implicit": [(Driven(-60.0), [100.0, 2607.6, 20000.0, 1e5], True, True)],
     "fixed_implicit_I6": [(Fixed(), [100.0, 2607.6, 20000.0], False, True)],
+    # (no 1e5 Hz mode with the tilting frame: the augmented matrix's condition number would then take the
+    # kick's round-off to the tolerance, 0.87 of it measured)
     "driven_translation_tilt_implicit": [(Driven(80.0, translation_free=True, tilt_free=True),
-                                          [200.0, 2607.6, 20000.0, 1e5], True, True)],
+                                          [200.0, 2607.6, 20000.0], True, True)],
     "driven_translation_tilt_implicit_I6": [(Driven(80.0, translation_free=True, tilt_free=True),
                                              [200.0, 2607.6, 20000.0], False, True)],
     "driven_translation_implicit": [(Driven(0.0, translation_free=True), [200.0, 2607.6, 20000.0, 1e5], True, True)],
