@@ -112,8 +112,11 @@ def test_implicit_modes_give_the_explicit_modes_ball_loads(tmp_path):
 
 
 def test_implicit_modes_are_refused_where_no_run_reads_them():
-    with pytest.raises(CaseError, match=r"analysis.implicit_modes.*both races are rigid"):
+    with pytest.raises(CaseError, match=r"analysis.implicit_modes.*both races of the dynamic run are rigid"):
         resolve_case("slewing-rotation", overrides=["analysis.implicit_modes=true"])
+    with pytest.raises(CaseError, match=r"analysis.implicit_modes.*both races of the dynamic run are rigid"):
+        resolve_case("slewing-undulation", overrides=["analysis.implicit_modes=true"])  # its spacer run: rigid top
+    resolve_case("slewing-undulation", overrides=["analysis.implicit_modes=true", "study.spacer_run_top=modal"])
     with pytest.raises(CaseError, match=r"analysis.implicit_modes.*generalized-α"):
         resolve_case("slewing-rotation", overrides=["analysis.implicit_modes=true", "top.kind=modal",
                                                     "analysis.type=dynamic_implicit"])

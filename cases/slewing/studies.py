@@ -425,8 +425,10 @@ def case_unused_keys(case: SlewingCase) -> dict[str, str]:
     if "dynamic" in runs_of(case) and case.analysis.type == "dynamic_implicit":
         out.setdefault("analysis.implicit_modes", 'the generalized-α integrator takes every mode implicitly; '
                        'read by explicit runs (analysis.type = "dynamic_explicit")')
-    if not modal_top(case) and case.bottom.kind == "rigid":
-        out.setdefault("analysis.implicit_modes", 'both races are rigid here: no modes to integrate')
+    top_modal = (case.study.spacer_run_top == "modal" if case.study.kind == "undulation" else modal_top(case))
+    if not top_modal and case.bottom.kind == "rigid":
+        out.setdefault("analysis.implicit_modes", 'both races of the dynamic run are rigid here: no modes to '
+                       'integrate')
     return out
 
 
