@@ -360,7 +360,11 @@ def _body_vectors(m, q, v, w, i):
 @njit(cache=True, inline="always", _nrt=False)
 def _implicit_modes(m, j, w, hh):
     """Implicit modes of modal body j at the step h = 2 hh: the damping w.modal_c = 2ζω, raised to the
-    critical 2ω where hω > 2, and w.modal_dinv = 1/(1 + (h/2) c + (h/2)² ω²) (module docstring)."""
+    critical 2ω where hω > 2, and w.modal_dinv = 1/(1 + (h/2) c + (h/2)² ω²) (module docstring); formed
+    again only when hh differs from the one they were formed for (``w.modal_imp_h[j]``)."""
+    if w.modal_imp_h[j] == hh:
+        return
+    w.modal_imp_h[j] = hh
     for k in range(m.modal_off[j], m.modal_off[j + 1]):
         w2, c = m.modal_omega2[k], m.modal_damp[k]
         a = hh * hh * w2

@@ -116,8 +116,8 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: modal_M (n_mb, 6 + M, 6 + M) M(η), modal_L (n_mb, 6 + M, 6 + M) the Cholesky factor of its block of
 #: integrated components, modal_nfac (n_mb,) int64 that block's size, modal_fac_h (n_mb,) s the half step of
 #: the implicit modes' matrix M + (h/2) C + (h/2)² K it factors (0: M); modal_c (n_η,) 1/s the damping 2ζω
-#: of implicit modes at the step and modal_dinv (n_η,) 1/(1 + (h/2) c + (h/2)² ω²)
-#: (:mod:`mbd_core.kernels.modal_step`).
+#: of implicit modes at the step and modal_dinv (n_η,) 1/(1 + (h/2) c + (h/2)² ω²), modal_imp_h (n_mb,) s the
+#: half step they were formed for (:mod:`mbd_core.kernels.modal_step`).
 #: Sampled surfaces of modal bodies (:mod:`mbd_core.kernels.forces`): flex_row (FLEX_ROWS,) int64 the
 #: cached sample rows, flex_field (FLEX_ROWS, 18) their D η, Ω η, D η̇, Ω η̇ and gathered force and
 #: moment on the ring (ring frame); flex_corner (4, 2) int64 row and cache slot, flex_weight (4,) the
@@ -142,6 +142,7 @@ WorkArrays = namedtuple(
     "load pi center axis point slice_delta slice_point slice_normal type_count "
     "modal_f modal_u modal_u0 modal_rhs modal_h modal_b modal_sel modal_vec modal_eta modal_s modal_eta_at "
     "modal_level modal_S modal_J modal_G modal_I4e modal_M modal_L modal_nfac modal_fac_h modal_dinv modal_c "
+    "modal_imp_h "
     "flex_row flex_field flex_corner flex_weight groove_rows fric_c fric_v fric_pts fric_n fric_a fric_r fric_g "
     "fric_rot fric_idx flex_skip flex_bound strip_each",
 )
@@ -258,6 +259,7 @@ def make_work(model: Model) -> WorkArrays:
         modal_G=np.zeros((nm, 3, 3, n6 - 6)), modal_I4e=np.zeros((nm, 3, n6 - 6)), modal_M=np.zeros((nm, n6, n6)),
         modal_L=np.zeros((nm, n6, n6)), modal_nfac=np.zeros(nm, dtype=np.int64),
         modal_fac_h=np.zeros(nm), modal_dinv=np.zeros(model.n_modal), modal_c=np.zeros(model.n_modal),
+        modal_imp_h=np.zeros(nm),
         flex_row=np.zeros(FLEX_ROWS, dtype=np.int64), flex_field=np.zeros((FLEX_ROWS, 18)),
         flex_corner=np.zeros((4, 2), dtype=np.int64), flex_weight=np.zeros(4), groove_rows=np.zeros((4, 3)),
         fric_c=np.zeros((nb, 6, 6)), fric_v=np.zeros((nb, 6)),
