@@ -1,17 +1,25 @@
 """The friction torque of a dynamic run on its two rings, written into a run folder: mean, ripple and
 spectrum peaks over the settled part (summary ``ring_torque``), ``ring_torque.csv`` and
-``ring_torque.png`` (:func:`mbd_core.multibody.ring_torque.axial_torques`)."""
+``ring_torque.png`` (:func:`mbd_core.multibody.ring_torque.axial_torques`); and where the power goes:
+each loss's mean power and share over the settled part (summary ``ring_torque.power_losses``),
+``power_losses.csv`` and ``power_losses.png`` (:func:`mbd_core.multibody.power_losses.power_losses`)."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from mbd_core.multibody.power_losses import PowerLosses, power_losses
 from mbd_core.multibody.ring_torque import axial_angular_momentum, axial_torques, spectrum_peaks_Hz
 
-__all__ = ["TORQUE_SAMPLES", "write_ring_torque"]
+__all__ = ["TORQUE_SAMPLES", "LOSS_SAMPLES", "write_power_losses", "write_ring_torque"]
 
 #: samples at which the forces are re-evaluated for the torque (evenly picked from the record)
 TORQUE_SAMPLES = 4000
+#: samples of the settled part at which the losses are evaluated (each takes three force evaluations
+#: per contact group)
+LOSS_SAMPLES = 400
+#: an energy balance off by more than this share of the drives' power is reported as a warning
+BALANCE_WARNING = 0.05
 
 
 def write_ring_torque(model, run: dict, rings: dict, settled_from_s: float, out, title: str,
@@ -26,7 +34,9 @@ def write_ring_torque(model, run: dict, rings: dict, settled_from_s: float, out,
     torque is that of the regularisation, and the run says so in its warnings.
 
     ``label``: one of several runs in the folder: its files are ``ring_torque_<label>.csv`` and
-    ``.png`` and its figures ``ring_torque[label]`` in the summary."""
+    ``.png`` and its figures ``ring_torque[label]`` in the summary.
+
+    The losses over the settled part go into ``figures["power_losses"]`` (:func:`write_power_losses`)."""
     from .torque_plots import plot_ring_torque
 
     keys, bodies = list(rings), list(rings.values())
@@ -47,6 +57,9 @@ def write_ring_torque(model, run: dict, rings: dict, settled_from_s: float, out,
         momentum = axial_angular_momentum(model, {"q": run["q"][keep], "v": run["v"][keep]}, between)
         rate = (momentum[-1] - momentum[0]) / (ts[keep][-1] - ts[keep][0])
         figures["balance_residual_Nm"] = float(torque[settled].sum(axis=1).mean() + rate)
+    losses = power_losses(model, run, t[settled][0], LOSS_SAMPLES)
+    write_power_losses(losses, out, title, f"power_losses_{label}" if label else "power_losses", label)
+    figures["power_losses"] = losses.summary()
     if label:
         out.summary.setdefault("ring_torque", {})[label] = figures
     else:
@@ -60,6 +73,28 @@ def write_ring_torque(model, run: dict, rings: dict, settled_from_s: float, out,
     out.note(f"{label + ' ' if label else ''}friction torque about the axis: " + ", ".join(
         f"{k} ring {figures[f'{k}_ring_Nm']:.4g} N·m (ripple {figures[f'{k}_ring_ripple_Nm']:.2g})" for k in keys))
     return figures
+
+
+def write_power_losses(losses: PowerLosses, out, title: str, stem: str = "power_losses", label: str = "") -> None:
+    """Each loss's mean power and share beside the drives' power (:func:`mbd_core.multibody.power_losses.power_losses`):
+    ``<stem>.csv`` and ``.png``, a note (prefixed with ``label``), and a warning when the energy balance
+    is off by more than :data:`BALANCE_WARNING` of the drives' power (the samples too sparse for the
+    losses' fluctuation, or a run that has not settled)."""
+    from .torque_plots import plot_power_losses
+
+    shares = losses.shares()
+    out.write_csv(f"{stem}.csv", ["loss", "mean_power_W", "share"],
+                  ([name, value, shares.get(name, 0.0)] for name, value in losses.losses.items()))
+    out.save_figure(plot_power_losses(losses, title), f"{stem}.png")
+    ranked = sorted(shares.items(), key=lambda kv: -kv[1])[:3]
+    out.note(f"{label + ' ' if label else ''}power: drives {losses.input_W:.4g} W, losses {losses.total_W:.4g} W"
+             + (": " + ", ".join(f"{name} {100 * share:.1f} %" for name, share in ranked) if ranked else ""))
+    residual = losses.balance_residual_W
+    scale = max(abs(losses.input_W), losses.total_W)
+    if residual is not None and scale > 0.0 and abs(residual) > BALANCE_WARNING * scale:
+        out.warn([f"power losses{' (' + label + ')' if label else ''}: the energy balance is off by "
+                  f"{100 * residual / scale:.1f} % of the drives' power ({losses.samples} samples): the losses' "
+                  "means are uncertain by about as much"])
 
 
 def _validity(run: dict, settled_from_s: float, friction, out) -> None:

@@ -8,7 +8,7 @@ from mbd_core.multibody.ring_torque import hann_spectrum
 
 from .results import plt
 
-__all__ = ["amplitude_spectrum", "plot_ring_torque"]
+__all__ = ["amplitude_spectrum", "plot_power_losses", "plot_ring_torque"]
 
 
 def amplitude_spectrum(ax, signal, dt_s: float, label: str) -> None:
@@ -36,4 +36,24 @@ def plot_ring_torque(t_s, torques: dict, settled, title: str):
     for a in (ax, bx):
         a.grid(True, alpha=0.3)
         a.legend(loc="best", fontsize=8)
+    return fig
+
+
+def plot_power_losses(losses, title: str):
+    """Each loss's mean power (bars, W, largest on top, its share written beside it), with the drives'
+    power for comparison (:class:`mbd_core.multibody.power_losses.PowerLosses`)."""
+    items = sorted(((k, v) for k, v in losses.losses.items() if v != 0.0), key=lambda kv: kv[1])
+    fig, ax = plt().subplots(figsize=(9, 1.6 + 0.35 * max(len(items), 1)), constrained_layout=True)
+    total = losses.total_W
+    if items:
+        names, values = zip(*items)
+        ax.barh(range(len(items)), values, color="tab:red", alpha=0.8)
+        ax.set_yticks(range(len(items)), names, fontsize=8)
+        for j, v in enumerate(values):
+            ax.text(v, j, f" {100 * v / total:.1f} %" if total > 0 else "", va="center", fontsize=8)
+    ax.axvline(losses.input_W, color="k", lw=1.0, ls="--", label=f"drives' power {losses.input_W:.4g} W")
+    ax.set_xlabel("mean power (W)")
+    ax.set_title(f"{title}\nwhere the power goes: losses {total:.4g} W over {losses.samples} samples", fontsize=9)
+    ax.grid(True, axis="x", alpha=0.3)
+    ax.legend(loc="lower right", fontsize=8)
     return fig

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 
 from ..overrides import StudyEntry, unused_keys
+from ..ring_torque_report import write_power_losses
 from .case import DmaCase
 from .plots import plot_models, plot_speed, plot_spectrum, plot_torque
 from .torque import run_torque
@@ -33,6 +34,7 @@ def _torque_outputs(case: DmaCase, out, run, prefix: str = "") -> dict:
     out.save_figure(plot_spectrum(run, title), f"{prefix}spectrum.png")
     out.write_csv(f"{prefix}torque.csv", ("t_s", "inner_race_torque_Nm", "outer_race_torque_Nm", "settled"),
                   zip(run.t_s, run.inner_Nm, run.outer_Nm, run.settled.astype(int)))
+    write_power_losses(run.losses, out, title, f"{prefix}power_losses", case.traction.label if prefix else "")
     return run.summary()
 
 

@@ -32,6 +32,7 @@ from foundation.materials import ElasticMaterial
 from mbd_core.contact.hertz import ball_on_groove, sphere_on_sphere
 from mbd_core.multibody import ContactLaw, Driven, Fixed, ModelBuilder, simulate, stable_timestep
 from mbd_core.multibody.bearings import add_ball_row, ball_mass_kg, set_rolling_velocities
+from mbd_core.multibody.power_losses import PowerLosses, power_losses
 from mbd_core.multibody.ring_torque import axial_torques, spectrum_peaks_Hz
 from mbd_core.multibody.statics import static_equilibrium
 from mbd_core.multibody.step_error import WINDOW_STEPS, step_error
@@ -101,6 +102,7 @@ class TorqueRun:
     drag_moment_Nm: float
     steps: int
     step_error: dict
+    losses: PowerLosses
 
     def mean_per_ball(self, which: str) -> float:
         return float(np.mean(getattr(self, f"{which}_Nm")[self.settled]) / self.n_balls)
@@ -118,6 +120,7 @@ class TorqueRun:
             out[f"{which}_race_torque_per_ball_Nm"] = self.mean_per_ball(which)
             out[f"{which}_race_torque_Nm"] = self.mean_per_ball(which) * self.n_balls
             out[f"{which}_race_ripple_per_ball_Nm"] = self.ripple_per_ball(which)
+        out["power_losses"] = self.losses.summary()
         dt = self.t_s[1] - self.t_s[0]
         out["ball_motion_peaks_Hz"] = spectrum_peaks_Hz(self.ball_axial_m[self.settled], dt)
         out["inner_torque_peaks_Hz"] = spectrum_peaks_Hz(self.inner_Nm[self.settled], dt)
@@ -156,7 +159,8 @@ def run_torque(case: DmaCase) -> TorqueRun:
     moment = -c * float(np.mean(np.sum(balls_q[..., 0] * balls_v[..., 1] - balls_q[..., 1] * balls_v[..., 0], axis=1)))
     return TorqueRun(t, torque[:, 0], torque[:, 1], np.hypot(x[:, 0], x[:, 1]), x[:, 2], settled,
                      loads.mean(axis=0), len(rows.elements), load, _contact_frequency_Hz(case, row, load), drag, moment,
-                     int(round((t[-1] - t[0]) / step)), _torque_step_error(model, start, step, (inner, outer)))
+                     int(round((t[-1] - t[0]) / step)), _torque_step_error(model, start, step, (inner, outer)),
+                     power_losses(model, run, float(t[settled][0])))
 
 
 def _torque_step_error(model, state, step: float, races) -> dict:

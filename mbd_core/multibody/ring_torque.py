@@ -27,10 +27,10 @@ import numpy as np
 from .explicit import evaluate_forces
 from .model import Model, State
 
-__all__ = ["axial_torques", "axial_angular_momentum", "hann_spectrum", "spectrum_peaks_Hz"]
+__all__ = ["axial_torques", "axial_angular_momentum", "hann_spectrum", "internal_model", "spectrum_peaks_Hz"]
 
 
-def _internal(model: Model) -> Model:
+def internal_model(model: Model) -> Model:
     """The model without the bodies' external loads (constant, gravity of rigid bodies, histories,
     unbalances)."""
     a = model.arrays
@@ -45,7 +45,7 @@ def axial_torques(model: Model, run: dict, bodies, max_samples: int | None = Non
     t = np.asarray(run["t"])
     stride = 1 if not max_samples or t.size <= max_samples else int(np.ceil(t.size / max_samples))
     picks = np.arange(0, t.size, stride)
-    internal = _internal(model)
+    internal = internal_model(model)
     n_eta = int(model.arrays.modal_off[-1]) if model.arrays.modal_off.size else 0
     out = np.empty((picks.size, len(bodies)))
     work = None
