@@ -87,7 +87,9 @@ def write_power_losses(losses: PowerLosses, out, title: str, stem: str = "power_
                   ([name, value, shares.get(name, 0.0)] for name, value in losses.losses.items()))
     out.save_figure(plot_power_losses(losses, title), f"{stem}.png")
     ranked = sorted(shares.items(), key=lambda kv: -kv[1])[:3]
-    out.note(f"{label + ' ' if label else ''}power: drives {losses.input_W:.4g} W, losses {losses.total_W:.4g} W"
+    stored = "" if losses.stored_W is None else f", into stored energy {losses.stored_W:.4g} W"
+    out.note(f"{label + ' ' if label else ''}power: drives {losses.input_W:.4g} W (± {losses.input_error_W:.2g}), "
+             f"external loads {losses.external_W:.4g} W{stored}, losses {losses.total_W:.4g} W"
              + (": " + ", ".join(f"{name} {100 * share:.1f} %" for name, share in ranked) if ranked else ""))
     residual = losses.balance_residual_W
     scale = max(abs(losses.input_W), losses.total_W)

@@ -1,6 +1,8 @@
 """What a turbocharger run gives (:mod:`.studies`): orbits of the rotor's axis at the bearings and
-wheels (rigid frame plus modes), damper eccentricity and forces, ball loads and contact losses, cage
-whirl, the transmitted force's spectrum with the bearing's defect frequencies."""
+wheels (rigid frame plus modes), damper eccentricity and forces, ball loads, where the drive's power
+goes (each race's and the pockets' friction, the dampers, the rotor's modal damping:
+:func:`mbd_core.multibody.power_losses.power_losses`), cage whirl, the transmitted force's spectrum
+with the bearing's defect frequencies."""
 
 from __future__ import annotations
 
@@ -12,6 +14,7 @@ from scipy.spatial.transform import Rotation
 
 from cms_reduction.sampling import sample_points
 from mbd_core.bearing.kinematics import rolling_kinematics
+from mbd_core.multibody.power_losses import PowerLosses, power_losses
 from mbd_core.multibody.ring_torque import hann_spectrum
 
 from .case import TurbochargerCase
@@ -64,11 +67,13 @@ class RunFigures:
     spectrum: tuple           # (f Hz, amplitude N, Hann window) of the turbine-side housing force's x component
     frequencies_Hz: dict
     summary: dict
+    losses: PowerLosses
 
 
 def analyse(case: TurbochargerCase, scene: TurboScene, rec: dict) -> RunFigures:
     t = np.asarray(rec["t"])
     keep = t >= t[0] + case.run.settle_s
+    losses = power_losses(scene.model, rec, t[0] + case.run.settle_s)
     q, v, eta = rec["q"][keep], rec["v"][keep], rec["eta"][keep]
     t = t[keep]
     R = Rotation.from_quat(q[:, scene.rotor, 3:], scalar_first=True).as_matrix()
@@ -110,5 +115,6 @@ def analyse(case: TurbochargerCase, scene: TurboScene, rec: dict) -> RunFigures:
         "spectrum_resolution_Hz": float(f[1]) if f.size > 1 else math.nan,
         "spectrum_peaks_Hz": [float(x) for x in peaks],
         "timestep_s": float(rec.get("timestep_s", math.nan)),
+        "power_losses": losses.summary(),
     }
-    return RunFigures(t, orbits, ecc, film, housing, inner, outer, cage, spectrum, freqs, summary)
+    return RunFigures(t, orbits, ecc, film, housing, inner, outer, cage, spectrum, freqs, summary, losses)

@@ -11,6 +11,7 @@ from mbd_core.multibody import DivergenceError, StepTooLargeError, stable_timest
 from ..config import CaseError
 from ..integrate import integrate
 from ..overrides import StudyEntry, unused_keys
+from ..ring_torque_report import write_power_losses
 from .analysis import RunFigures, analyse
 from .case import TurbochargerCase
 from .plots import (plot_ball_loads, plot_cage, plot_damper, plot_damper_sweep, plot_orbits, plot_over_speed,
@@ -76,6 +77,7 @@ def _run(case: TurbochargerCase, out, progress=None) -> None:
     out.save_figure(plot_damper(run, title), "dampers.png")
     out.save_figure(plot_spectrum(run, title), "spectrum.png")
     out.save_figure(plot_cage(run, case.bearings.pocket_clearance_m, title), "cage.png")
+    write_power_losses(run.losses, out, title)
     stations = list(run.orbits_m)
     header = ["t_s"] + [f"{n.replace(' ', '_')}_{c}_m" for n in stations for c in "xy"] + \
         ["turbine_damper_eps", "compressor_damper_eps", "turbine_housing_force_x_N", "turbine_housing_force_y_N",

@@ -58,15 +58,20 @@ class PowerLosses:
     """Mean powers over the samples a breakdown was taken at, W.
 
     ``losses``: name → mean dissipated power (≥ 0 up to the re-evaluation's sampling); ``input_W``
-    the drives' mean power; ``external_W`` the external loads' mean power on free components;
-    ``elastic_exchange_W`` name → mean power the contact springs took in (→ 0 on a long steady
-    window); ``balance_residual_W`` mean(P_in + P_ext) − Σ losses − ΔE/T when every body is rigid
-    (else None); ``samples`` how many states the means are over."""
+    the drives' mean power and ``input_error_W`` its standard error (the samples' standard deviation
+    over √n: a torque whose ripple dwarfs its mean gives a drive power known only to this);
+    ``external_W`` the external loads' mean power on free components; ``elastic_exchange_W`` name →
+    mean power the contact springs took in (→ 0 on a long steady window); ``stored_W`` ΔE/T, the
+    rate at which the model's kinetic and elastic energy grew over the window, and
+    ``balance_residual_W`` mean(P_in + P_ext) − Σ losses − ΔE/T, both when every body is rigid (else
+    None); ``samples`` how many states the means are over."""
 
     losses: dict
     input_W: float
+    input_error_W: float
     external_W: float
     elastic_exchange_W: dict
+    stored_W: float | None
     balance_residual_W: float | None
     samples: int
 
@@ -81,9 +86,10 @@ class PowerLosses:
 
     def summary(self) -> dict:
         out = {"losses_W": dict(self.losses), "shares": self.shares(), "total_loss_W": self.total_W,
-               "input_W": self.input_W, "external_W": self.external_W,
+               "input_W": self.input_W, "input_error_W": self.input_error_W, "external_W": self.external_W,
                "elastic_exchange_W": dict(self.elastic_exchange_W), "samples": self.samples}
         if self.balance_residual_W is not None:
+            out["stored_W"] = self.stored_W
             out["balance_residual_W"] = self.balance_residual_W
         return out
 
@@ -192,9 +198,10 @@ def power_losses(model: Model, run: dict, t_from_s: float = -np.inf, max_samples
     if n_eta:
         loss_sum["modal damping"] = 0.0
     elastic_sum = {g: 0.0 for g in groups}
-    p_in = p_ext = 0.0
+    p_in = np.zeros(picks.size)
+    p_ext = 0.0
     work_full = work_int = None
-    for k in picks:
+    for row, k in enumerate(picks):
         state = State(float(t[k]), run["q"][k].copy(), run["v"][k].copy(),
                       run["eta"][k].copy() if n_eta else np.zeros(0), run["eta_dot"][k].copy() if n_eta else np.zeros(0))
         omega = Rotation.from_quat(state.q[:, [4, 5, 6, 3]]).apply(state.v[:, 3:])
@@ -217,19 +224,21 @@ def power_losses(model: Model, run: dict, t_from_s: float = -np.inf, max_samples
         q_full = _generalized_of(work_full, state)
         work_int = evaluate_forces(internal, state, work_int)
         q_int = _generalized_of(work_int, state)
-        p_in -= float(np.sum((q_int * state.v)[held]))
+        p_in[row] = -float(np.sum((q_int * state.v)[held]))
         p_ext += float(np.sum(((q_full - q_int) * state.v)[free]))
     n = picks.size
     losses = {k: v / n for k, v in loss_sum.items()}
-    residual = None
+    stored = residual = None
     if not np.any(a.body_modal >= 0):
         ends = []
         for k in (picks[0], picks[-1]):
             state = State(float(t[k]), run["q"][k].copy(), run["v"][k].copy())
             ends.append(_energy(internal, state, None))
-        span = float(t[picks[-1]] - t[picks[0]])
-        residual = (p_in + p_ext) / n - sum(losses.values()) - (ends[1] - ends[0]) / span
-    return PowerLosses(losses, p_in / n, p_ext / n, {g: v / n for g, v in elastic_sum.items()}, residual, int(n))
+        stored = (ends[1] - ends[0]) / float(t[picks[-1]] - t[picks[0]])
+        residual = float(p_in.mean()) + p_ext / n - sum(losses.values()) - stored
+    error = float(p_in.std(ddof=1) / np.sqrt(n)) if n > 1 else float("inf")
+    return PowerLosses(losses, float(p_in.mean()), error, p_ext / n, {g: v / n for g, v in elastic_sum.items()}, stored,
+                       residual, int(n))
 
 
 def _power_of(work, state: State, omega_world: np.ndarray) -> float:
