@@ -8,7 +8,9 @@ contact (120 N, a = 1.2 mm, rolling with sliding and spin, Kragelskii law):
   strips (20 strips bring the spin moment within 1e-3 of the converged strip model,
   tests/test_strip_traction.py).
 
-That traction alone is an upper bound of what strips add. The whole force stage of a bearing is then
+That traction alone computes each strip's load share and centroid per call; the force stage reads them
+from a table built once per model (:func:`mbd_core.kernels.strip_traction.strip_table`), so the traction
+alone is an upper bound of what strips add there. The whole force stage of a bearing is then
 timed too (:func:`mbd_core.kernels.forces.compute_forces` in a compiled loop): a 24-ball angular-contact
 row without cage (48 ball–groove contacts, 46 closed, rigid rings, balls rolling with spin, Kragelskii law) with the
 centre-point law and with 5, 10 and 20 strips per contact (``add_ball_row(traction_strips=…)``); the

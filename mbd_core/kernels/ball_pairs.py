@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from .ball_groove import groove_point_in
@@ -34,13 +35,14 @@ from .strip_traction import strip_traction_forces
 
 @njit(cache=True, _nrt=False)
 def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fric, n_strips, a_coef, curvature,
-                   delta, mx, my, mz, px, py, pz, ex, ey, ez, wx, wy, wz, sx_b, sy_b, sz_b, imp, fpts, fcnt, each):
+                   delta, mx, my, mz, px, py, pz, ex, ey, ez, wx, wy, wz, sx_b, sy_b, sz_b, imp, fpts, fcnt, each, table):
     """Normal force and strip traction of a ball contact (module docstring); (ex, ey, ez) the rolling
     direction, world; (wx, wy, wz) and (sx_b, sy_b, sz_b) the velocity and the angular velocity of
     ring b's surface at the contact beyond its frame's motion (a modal ring's section; zeros on a
     rigid ring), world. Applies the force and the strips' moment to a and b's frames, notes each
     slipping strip at its point p + ȳ y + z(ȳ) m for implicit friction (``imp``, ``fpts``, ``fcnt`` as
-    in :func:`.friction_damping._note_friction`; ``each`` scratch (≥ n_strips, 5)) and returns (F_n N,
+    in :func:`.friction_damping._note_friction`; ``each`` scratch (≥ n_strips, 5); ``table`` the strips'
+    geometry, :func:`.strip_traction.strip_table`) and returns (F_n N,
     |v_t| m/s at the centre, |F_t| N, elastic energy J, the force (3) N and moment (3) N·m on a, world)."""
     if delta <= 0.0:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -62,10 +64,16 @@ def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fri
     ox, oy, oz = oax - obx - sx_b, oay - oby - sy_b, oaz - obz - sz_b
     tx, ty, tmx, tmy, tmz = 0.0, 0.0, 0.0, 0.0, 0.0
     if fn > 0.0:
-        tx, ty, tmx, tmy, tmz = strip_traction_forces(
-            fn, a_coef * fn ** (1.0 / 3.0), sx, sy, ox * xx + oy * xy + oz * xz, ox * yx + oy * yy + oz * yz,
-            ox * mx + oy * my + oz * mz, curvature, fric, fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3], n_strips, each)
-        if imp[a] != 0 or imp[b] != 0:
+        semi_major = a_coef * np.cbrt(fn)
+        wx_, wy_, wz_ = ox * xx + oy * xy + oz * xz, ox * yx + oy * yy + oz * yz, ox * mx + oy * my + oz * mz
+        if imp[a] == 0 and imp[b] == 0:   # no strip to note: the loop does not store them
+            tx, ty, tmx, tmy, tmz = strip_traction_forces(fn, semi_major, sx, sy, wx_, wy_, wz_, curvature, fric,
+                                                          fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3], n_strips, None,
+                                                          table)
+        else:
+            tx, ty, tmx, tmy, tmz = strip_traction_forces(fn, semi_major, sx, sy, wx_, wy_, wz_, curvature, fric,
+                                                          fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3], n_strips, each,
+                                                          table)
             for i in range(n_strips):
                 y, z, qi, ui, f = each[i, 0], each[i, 1], each[i, 2], each[i, 3], each[i, 4]
                 _note_friction(imp, fpts, fcnt, a, b, c, qi, ui, f * ui, mx, my, mz, px + y * yx + z * mx,
@@ -119,7 +127,7 @@ def _flexible_strips(m, q, v, eta_dot, w, c, a, b, o0, o1, disp, rot, i0, i1, w0
     fn, u, ft, e, fx, fy, fz, tx, ty, tz = _strip_contact(
         q, v, w.body_f, w.body_t, m.pair_fric_p, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c],
         m.pair_dmax[c], m.pair_fric[c], m.pair_strips[c], m.pair_semi_major[c], m.pair_strip_curv[c], delta,
-        mx, my, mz, px, py, pz, ex, ey, ez, vx, vy, vz, sx, sy, sz, imp, fpts, fcnt, w.strip_each)
+        mx, my, mz, px, py, pz, ex, ey, ez, vx, vy, vz, sx, sy, sz, imp, fpts, fcnt, w.strip_each, w.strip_table)
     gx, gy, gz = rotate_back(q, b, -fx, -fy, -fz)
     hx, hy, hz = rotate_back(q, b, -tx, -ty, -tz)
     _add_section_force(disp, rot, i0, i1, w0, w1, gx, gy, gz, by * gz - bz * gy + hx, bz * gx - bx * gz + hy,
@@ -151,7 +159,7 @@ def _ball_groove_pairs(m, q, v, eta, eta_dot, w):
                 fn, u, ft, e, _, _, _, _, _, _ = _strip_contact(
                     q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c], m.pair_c[c], m.pair_dmax[c],
                     m.pair_fric[c], m.pair_strips[c], m.pair_semi_major[c], m.pair_strip_curv[c], delta, mx, my, mz,
-                    px, py, pz, ex, ey, ez, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, imp, fpts, fcnt, w.strip_each)
+                    px, py, pz, ex, ey, ez, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, imp, fpts, fcnt, w.strip_each, w.strip_table)
             else:
                 fn, u, ft, e = contact_force(q, v, bf, bt, fp, c, a, b, m.pair_law[c], m.pair_k[c], m.pair_n[c],
                                              m.pair_c[c], m.pair_dmax[c], m.pair_fric[c], delta, mx, my, mz,

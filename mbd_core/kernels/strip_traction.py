@@ -38,35 +38,51 @@ from numba import njit
 
 from .laws import friction_coefficient
 
-__all__ = ["strip_traction", "strip_traction_forces", "strip_load_share"]
+__all__ = ["strip_geometry", "strip_table", "strip_traction", "strip_traction_forces"]
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def strip_geometry(i, n_strips):
+    """(ȳ/a, Q_i/Q) of strip i of ``n_strips`` across the major axis: its load centroid in units of a,
+    ∫ s(1 − s²) ds / ∫ (1 − s²) ds over the strip, and its share of the load, ¾ ∫ (1 − s²) ds =
+    S(s1) − S(s0) (module docstring)."""
+    width = 2.0 / n_strips
+    s0 = -1.0 + width * i
+    s1 = -1.0 + width * (i + 1)
+    s0_2, s1_2 = s0 * s0, s1 * s1
+    m0 = (s1 - s0) - (s1_2 * s1 - s0_2 * s0) / 3.0
+    m1 = 0.5 * (s1_2 - s0_2) - 0.25 * (s1_2 * s1_2 - s0_2 * s0_2)
+    return m1 / m0, 0.75 * m0
 
 
 @njit(cache=True, _nrt=False)
-def strip_load_share(s):
-    """Share of the contact load on the part y < s·a of the ellipse (−1 ≤ s ≤ 1)."""
-    return 0.75 * (s - s * s * s / 3.0) + 0.5
+def strip_table(n_strips, out):
+    """:func:`strip_geometry` of every strip of ``n_strips`` into ``out`` (n_strips, 2): the table
+    :func:`strip_traction_forces` reads instead of computing it per contact."""
+    for i in range(n_strips):
+        out[i, 0], out[i, 1] = strip_geometry(i, n_strips)
 
 
 @njit(cache=True, inline="always", _nrt=False)
 def strip_traction_forces(load_N, a_m, slip_x, slip_y, omega_x, omega_y, omega_z, curvature_per_m, law, p0, p1, p2,
-                          p3, n_strips, each=None):
+                          p3, n_strips, each=None, table=None):
     """(F_x, F_y N, M_x, M_y, M_z N·m) on body 1 from ``n_strips`` strips over a curved contact surface
     (module docstring); ω the relative angular velocity of body 1 in the contact frame, rad/s. ``each``
     (≥ n_strips, 5), when given: per strip (ȳ, z(ȳ) m, Q_i N, |v| m/s, secant μQ_i/|v| N·s/m; 0 where it
-    does not slip), for the damping matrices of implicit friction (:mod:`.friction_damping`)."""
+    does not slip), for the damping matrices of implicit friction (:mod:`.friction_damping`). ``table``:
+    :func:`strip_table` of some strip count, read when it is ``n_strips``' (the same numbers, without
+    the division per strip)."""
     fx, fy, mx, my, mz = 0.0, 0.0, 0.0, 0.0, 0.0
     if load_N <= 0.0:
         return fx, fy, mx, my, mz
-    s0 = -1.0
-    w0 = strip_load_share(-1.0)
+    tabled = table is not None and table.shape[0] == n_strips
     for i in range(n_strips):
-        s1 = -1.0 + 2.0 * (i + 1) / n_strips
-        w1 = strip_load_share(s1)
-        q = load_N * (w1 - w0)
-        # load centroid: ∫ s(1 − s²) ds / ∫ (1 − s²) ds over the strip, times a
-        m1 = 0.5 * (s1 * s1 - s0 * s0) - 0.25 * (s1 ** 4 - s0 ** 4)
-        m0 = (s1 - s0) - (s1 ** 3 - s0 ** 3) / 3.0
-        y = a_m * m1 / m0
+        if tabled:
+            centroid, share = table[i, 0], table[i, 1]
+        else:
+            centroid, share = strip_geometry(i, n_strips)
+        q = load_N * share
+        y = a_m * centroid
         z = curvature_per_m * y * y
         vx = slip_x - omega_z * y + omega_y * z
         vy = slip_y - omega_x * z
@@ -82,7 +98,6 @@ def strip_traction_forces(load_N, a_m, slip_x, slip_y, omega_x, omega_y, omega_z
             mz += y * f * vx
         if each is not None:
             each[i, 0], each[i, 1], each[i, 2], each[i, 3], each[i, 4] = y, z, q, u, f
-        s0, w0 = s1, w1
     return fx, fy, mx, my, mz
 
 

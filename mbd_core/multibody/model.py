@@ -81,6 +81,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..kernels.strip_traction import strip_table
+
 MODEL_FIELDS = (
     "body_mass body_inertia body_free body_force body_fric_implicit "
     "load_body load_off knot_t knot_coef "
@@ -134,7 +136,9 @@ ModelArrays = namedtuple("ModelArrays", MODEL_FIELDS)
 #: (set by the explicit step loop on steps that are not recorded); flex_bound (n_mb, 4) per modal
 #: body: the bound Σ|η_k| max|D_k| m and Σ|η_k| max|Ω_k| rad of this evaluation (inf when not
 #: skipping), and the running counts of surface contacts checked and skipped. strip_each (max strips, 5) the
-#: strips of one ball contact (:func:`mbd_core.kernels.strip_traction.strip_traction_forces`).
+#: strips of one ball contact (:func:`mbd_core.kernels.strip_traction.strip_traction_forces`); strip_table
+#: (max strips, 2) the load centroid (units of a) and load share of each strip of the largest strip count
+#: (:func:`mbd_core.kernels.strip_traction.strip_table`).
 WorkArrays = namedtuple(
     "WorkArrays",
     "body_f body_t contact_fn contact_delta contact_slip contact_ft contact_angle contact_theta contact_point "
@@ -144,7 +148,7 @@ WorkArrays = namedtuple(
     "modal_level modal_S modal_J modal_G modal_I4e modal_M modal_L modal_nfac modal_fac_h modal_dinv modal_c "
     "modal_imp_h "
     "flex_row flex_field flex_corner flex_weight groove_rows fric_c fric_v fric_pts fric_n fric_a fric_r fric_g "
-    "fric_rot fric_idx flex_skip flex_bound strip_each",
+    "fric_rot fric_idx flex_skip flex_bound strip_each strip_table",
 )
 FLEX_ROWS = 32
 
@@ -270,7 +274,14 @@ def make_work(model: Model) -> WorkArrays:
         fric_rot=np.zeros((3, 3)), fric_idx=np.zeros(6, dtype=np.int64),
         flex_skip=np.zeros(2, dtype=np.int64), flex_bound=np.zeros((a.modal_body.size, 4)),
         strip_each=np.zeros((max(int(a.pair_strips.max(initial=0)), 1), 5)),
+        strip_table=_strip_table(max(int(a.pair_strips.max(initial=0)), 1)),
     )
+
+
+def _strip_table(n_strips: int) -> np.ndarray:
+    out = np.zeros((n_strips, 2))
+    strip_table(n_strips, out)
+    return out
 
 
 def make_record_buffers(model: Model, n_samples: int) -> RecordBuffers:
