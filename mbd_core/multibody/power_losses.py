@@ -24,7 +24,8 @@ each cage's pockets, and the elements among themselves.
 
 The drives' power is what holds the prescribed velocity components: P_in = −Σ Q_j v_j over the held
 components j (a ring driven about its axis: −T·Ω, T the elements' torque on it). The external loads
-on free components (thrust, gravity, load histories) add P_ext = Σ Q_ext,j v_j. Energy balance: over
+on free components (thrust, gravity of rigid bodies, load histories, unbalances, on a modal body's
+modes too) add P_ext = Σ Q_ext,j v_j. Energy balance: over
 a window, mean(P_in + P_ext) = Σ mean(losses) + ΔE/T, E the kinetic and elastic energy of the model
 (for rigid bodies, whose held components turn at a constant speed about a principal axis of an
 axisymmetric body; checked when every body is rigid, ``balance_residual_W``).
@@ -226,6 +227,8 @@ def power_losses(model: Model, run: dict, t_from_s: float = -np.inf, max_samples
         q_int = _generalized_of(work_int, state)
         p_in[row] = -float(np.sum((q_int * state.v)[held]))
         p_ext += float(np.sum(((q_full - q_int) * state.v)[free]))
+        if n_eta:   # loads that reach the modes too (an unbalance on a modal rotor)
+            p_ext += float((work_full.modal_f - work_int.modal_f) @ state.eta_dot)
     n = picks.size
     losses = {k: v / n for k, v in loss_sum.items()}
     stored = residual = None
