@@ -160,7 +160,7 @@ def stable_timestep(model: Model, state: State, load_factor: float = 3.0, safety
     for j in range(a.sfd_a.shape[0]):
         # a film is a damper: explicit damping is stable for h < 2/(c·(1/m_a + 1/m_b)), c its largest
         # coefficient |F|/|V| (at the table's end, where it is stiffest)
-        o0, o1 = a.sfd_table_off[j], a.sfd_table_off[j + 1]
+        o1 = a.sfd_table_off[j + 1]
         n_psi = a.sfd_table_size[j, 1]
         c_film = float(np.linalg.norm(a.sfd_table[o1 - n_psi:o1], axis=1).max()) / (1.0 - a.sfd_eps_max[j] ** 2) ** 2
         w_inv = inv_m[a.sfd_a[j]] + inv_m[a.sfd_b[j]]
