@@ -15,7 +15,8 @@ its angular velocity (world), f_k the generalized force on modal coordinate k. A
   Hertz spring alone, which stores energy and gives it back: its mean power over a long window is
   −ΔU/T, listed as ``elastic exchange``, not as a loss);
 - **drag** of the fluid around the elements (all of it dissipative);
-- **bushing damping** (bushings less their springs) and **squeeze-film dampers**;
+- **bushing damping** of each pair of bodies a set of bushings joins (bushings less their springs) and
+  **squeeze-film dampers**;
 - **modal damping** of the modal bodies, Σ 2ζω η̇² (the implicit modes' added damping of unresolved
   modes, a numerical device, is not counted).
 
@@ -121,6 +122,22 @@ def contact_groups(model: Model) -> dict:
     return {k: np.array(v, dtype=np.int64) for k, v in groups.items()}
 
 
+def _bushing_groups(model: Model) -> dict:
+    """name → bushing indices: one group per pair of bodies a bushing joins ("<a>–<b> bushing damping")."""
+    a = model.arrays
+    groups: dict = {}
+    for j, (i, k) in enumerate(zip(a.bush_a, a.bush_b)):
+        groups.setdefault(f"{model.body_names[int(i)]}–{model.body_names[int(k)]} bushing damping", []).append(j)
+    return {k: np.array(v, dtype=np.int64) for k, v in groups.items()}
+
+
+def _bushing_subset(model: Model, keep) -> Model:
+    """The model with only the bushings ``keep``."""
+    a = model.arrays
+    fields = {name: np.ascontiguousarray(getattr(a, name)[keep]) for name in a._fields if name.startswith("bush_")}
+    return dataclasses.replace(model, arrays=a._replace(**fields))
+
+
 def _only_contacts(model: Model, keep, friction: bool, damping: bool) -> Model:
     """The internal model with the pairs ``keep`` only, no drag, bushings or dampers; without friction
     or normal damping when asked."""
@@ -185,10 +202,10 @@ def power_losses(model: Model, run: dict, t_from_s: float = -np.inf, max_samples
     extra = {}
     if a.drag_body.size:
         extra["drag"] = (pair_subset(_none_else(model, drag=True), none),)
-    if a.bush_a.size:
-        bush = pair_subset(_none_else(model, bushings=True), none)
+    for name, keep in _bushing_groups(model).items():
+        bush = _bushing_subset(pair_subset(_none_else(model, bushings=True), none), keep)
         elastic = dataclasses.replace(bush, arrays=bush.arrays._replace(bush_c=np.zeros_like(bush.arrays.bush_c)))
-        extra["bushing damping"] = (bush, elastic)
+        extra[name] = (bush, elastic)
     if a.sfd_a.size:
         extra["squeeze-film dampers"] = (pair_subset(_none_else(model, dampers=True), none),)
     internal = internal_model(model)
