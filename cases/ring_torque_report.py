@@ -40,6 +40,10 @@ def write_ring_torque(model, run: dict, rings: dict, settled_from_s: float, out,
     from .torque_plots import plot_ring_torque
 
     keys, bodies = list(rings), list(rings.values())
+    if np.size(run["t"]) < 2:
+        out.warn([f"friction torque{' (' + label + ')' if label else ''}: the run recorded {np.size(run['t'])} "
+                  "sample; record more often (or run longer) to have the torque and the power losses"])
+        return {}
     t, torque = axial_torques(model, run, bodies, TORQUE_SAMPLES)
     settled = t >= settled_from_s
     if settled.sum() < 2:

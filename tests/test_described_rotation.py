@@ -156,6 +156,18 @@ def test_friction_torque_on_both_rings_balances_the_rolling_sets_momentum(tmp_pa
     assert (tmp_path / "torque" / "power_losses.png").stat().st_size > 10_000
 
 
+def test_a_run_with_one_recorded_sample_has_no_torque_and_says_so(tmp_path, capsys):
+    """record_every beyond the run's steps: one sample, so no torque or losses — a warning naming
+    what to change, not an internal error."""
+    case = _caged_case(tmp_path, "one", "speed_rpm = 1000.0\nmoving_ring_mass_kg = 1.0\nduration_s = 0.0001\n"
+                                        "record_every = 100000\n")
+    assert main(["run", str(case), "--out", str(tmp_path / "one")]) in (0, None)
+    capsys.readouterr()
+    summary = json.loads((tmp_path / "one" / "summary.json").read_text())
+    assert any("recorded 1 sample" in w for w in summary["warnings"]), summary["warnings"]
+    assert not (tmp_path / "one" / "ring_torque.csv").exists()
+
+
 def _rotation_case(tmp_path, name, rotation_keys):
     return _caged_case(tmp_path, name, "speed_rpm = 1000.0\nmoving_ring_mass_kg = 1.0\nduration_s = 0.01\n"
                                        f"record_every = 10\nimplicit_friction = true\n{rotation_keys}")
