@@ -184,6 +184,24 @@ def _energy(model: Model, state: State, work) -> float:
     return float(kinetic + w.energy[0] + w.energy[1])
 
 
+def _family_models(model: Model, groups: dict) -> tuple[dict, dict]:
+    """The models that keep one family each: per contact group (as built, without friction, without
+    friction and damping); per other family (as built[, its springs alone])."""
+    variants = {name: tuple(_only_contacts(model, keep, f, d) for f, d in ((True, True), (False, True), (False, False)))
+                for name, keep in groups.items()}
+    none = np.zeros(0, dtype=np.int64)
+    extra = {}
+    if model.arrays.drag_body.size:
+        extra["drag"] = (pair_subset(_none_else(model, drag=True), none),)
+    for name, keep in _bushing_groups(model).items():
+        bush = _bushing_subset(pair_subset(_none_else(model, bushings=True), none), keep)
+        springs = dataclasses.replace(bush, arrays=bush.arrays._replace(bush_c=np.zeros_like(bush.arrays.bush_c)))
+        extra[name] = (bush, springs)
+    if model.arrays.sfd_a.size:
+        extra["squeeze-film dampers"] = (pair_subset(_none_else(model, dampers=True), none),)
+    return variants, extra
+
+
 def power_losses(model: Model, run: dict, t_from_s: float = -np.inf, max_samples: int = 400) -> PowerLosses:
     """The loss breakdown (module docstring) over the recorded samples with t ≥ ``t_from_s`` (about
     ``max_samples`` of them, evenly picked)."""
@@ -195,19 +213,7 @@ def power_losses(model: Model, run: dict, t_from_s: float = -np.inf, max_samples
     a = model.arrays
     n_eta = model.n_modal
     groups = contact_groups(model)
-    variants = {}
-    for name, keep in groups.items():
-        variants[name] = tuple(_only_contacts(model, keep, f, d) for f, d in ((True, True), (False, True), (False, False)))
-    none = np.zeros(0, dtype=np.int64)
-    extra = {}
-    if a.drag_body.size:
-        extra["drag"] = (pair_subset(_none_else(model, drag=True), none),)
-    for name, keep in _bushing_groups(model).items():
-        bush = _bushing_subset(pair_subset(_none_else(model, bushings=True), none), keep)
-        elastic = dataclasses.replace(bush, arrays=bush.arrays._replace(bush_c=np.zeros_like(bush.arrays.bush_c)))
-        extra[name] = (bush, elastic)
-    if a.sfd_a.size:
-        extra["squeeze-film dampers"] = (pair_subset(_none_else(model, dampers=True), none),)
+    variants, extra = _family_models(model, groups)
     internal = internal_model(model)
     works = {id(m): None for v in (*variants.values(), *extra.values()) for m in v}
     held = _held(model)
