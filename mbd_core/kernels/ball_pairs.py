@@ -65,13 +65,14 @@ def _strip_contact(q, v, bf, bt, fp, c, a, b, law, k, n_exp, damping, d_max, fri
     tx, ty, tmx, tmy, tmz = 0.0, 0.0, 0.0, 0.0, 0.0
     if fn > 0.0:
         semi_major = a_coef * np.cbrt(fn)
-        wx_, wy_, wz_ = ox * xx + oy * xy + oz * xz, ox * yx + oy * yy + oz * yz, ox * mx + oy * my + oz * mz
+        # the relative angular velocity in the contact frame (x rolling direction, y major axis, z normal)
+        omx, omy, omz = ox * xx + oy * xy + oz * xz, ox * yx + oy * yy + oz * yz, ox * mx + oy * my + oz * mz
         if imp[a] == 0 and imp[b] == 0:   # no strip to note: the loop does not store them
-            tx, ty, tmx, tmy, tmz = strip_traction_forces(fn, semi_major, sx, sy, wx_, wy_, wz_, curvature, fric,
+            tx, ty, tmx, tmy, tmz = strip_traction_forces(fn, semi_major, sx, sy, omx, omy, omz, curvature, fric,
                                                           fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3], n_strips, None,
                                                           table)
         else:
-            tx, ty, tmx, tmy, tmz = strip_traction_forces(fn, semi_major, sx, sy, wx_, wy_, wz_, curvature, fric,
+            tx, ty, tmx, tmy, tmz = strip_traction_forces(fn, semi_major, sx, sy, omx, omy, omz, curvature, fric,
                                                           fp[c, 0], fp[c, 1], fp[c, 2], fp[c, 3], n_strips, each,
                                                           table)
             for i in range(n_strips):

@@ -70,8 +70,8 @@ def strip_traction_forces(load_N, a_m, slip_x, slip_y, omega_x, omega_y, omega_z
     (module docstring); ω the relative angular velocity of body 1 in the contact frame, rad/s. ``each``
     (≥ n_strips, 5), when given: per strip (ȳ, z(ȳ) m, Q_i N, |v| m/s, secant μQ_i/|v| N·s/m; 0 where it
     does not slip), for the damping matrices of implicit friction (:mod:`.friction_damping`). ``table``:
-    :func:`strip_table` of some strip count, read when it is ``n_strips``' (the same numbers, without
-    the division per strip)."""
+    a :func:`strip_table`, read when it was built for ``n_strips`` strips (the same numbers, without a
+    division per strip)."""
     fx, fy, mx, my, mz = 0.0, 0.0, 0.0, 0.0, 0.0
     if load_N <= 0.0:
         return fx, fy, mx, my, mz
