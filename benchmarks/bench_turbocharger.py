@@ -37,18 +37,22 @@ def main() -> None:
     scene = build_scene(case)
     build_cpu = time.process_time() - cpu0
     simulate_case(case.with_(run={"duration_s": 0.002, "settle_s": 0.001}))   # compiles the kernels: not timed
+    cpu_b, wall_b = time.process_time(), time.perf_counter()
+    build_scene(case)                                # the build as the run does it, warm
+    warm_build_cpu = time.process_time() - cpu_b
     cpu1, wall1 = time.process_time(), time.perf_counter()
     _, run = simulate_case(case)
     run_cpu, run_wall = time.process_time() - cpu1, time.perf_counter() - wall1
     steps = duration / run.summary["timestep_s"]
-    step_cpu = max(run_cpu - build_cpu, 0.0)      # the run rebuilds its scene (cached reduction) first
+    step_cpu = max(run_cpu - warm_build_cpu, 0.0)  # the run rebuilds its scene (cached reduction) first
     print(f"turbocharger{' (quick)' if args.quick else ''}: {scene.model.n_bodies} bodies, {scene.model.n_pairs} "
           f"contacts, {scene.body.n_modes} rotor modes; build {build_cpu:.2f} s CPU")
     print(f"{duration:g} s simulated at step {run.summary['timestep_s']:.3g} s ({steps:.0f} steps): "
           f"{run_cpu:.1f} s CPU and {run_wall:.1f} s wall with the build and the analysis, "
-          f"{1e6 * step_cpu / steps:.1f} µs/step without the build; "
+          f"{1e6 * step_cpu / steps:.1f} µs/step without the build (warm: {warm_build_cpu:.2f} s CPU; the analysis "
+          "included); "
           f"target 120 s wall for 0.1 s: {'met' if args.quick or run_wall < 120.0 else 'NOT met'} "
-          f"(building and a 2 ms warm-up run with any compiling: {wall1 - wall0:.1f} s wall)")
+          f"(building and a 2 ms warm-up run with any compiling: {wall_b - wall0:.1f} s wall)")
 
 
 if __name__ == "__main__":
