@@ -92,10 +92,7 @@ def gen_alpha_coefficients(rho_inf: float) -> GenAlphaCoefficients:
 
 def _free_mask(model: Model) -> np.ndarray:
     """(n_u,) bool: the integrated components of the generalized velocity (rigid, modal frames, η̇)."""
-    a = model.arrays
-    free = a.body_free.copy()
-    free[a.modal_body] = a.modal_frame_free
-    return np.concatenate([free.reshape(-1), np.ones(model.n_modal, dtype=free.dtype)]).astype(bool)
+    return np.concatenate([model.free_mask().reshape(-1), np.ones(model.n_modal, dtype=bool)])
 
 
 def _make_step_arrays(model: Model, state: State) -> StepArrays:

@@ -219,8 +219,11 @@ class Model:
         return np.array([i for i, k in enumerate(self.pair_kinds) if k == kind], dtype=np.int64)
 
     def free_mask(self) -> np.ndarray:
-        """(n_b, 6) bool: integrated velocity components."""
-        return self.arrays.body_free.astype(bool)
+        """(n_b, 6) bool: integrated velocity components (a modal body's: its frame's, ``modal_frame_free``)."""
+        a = self.arrays
+        free = a.body_free.astype(bool)
+        free[a.modal_body] = a.modal_frame_free.astype(bool)
+        return free
 
 
 @dataclass

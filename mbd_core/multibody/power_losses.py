@@ -44,6 +44,7 @@ import dataclasses
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..kernels.explicit import kinetic_energy
 from .explicit import evaluate_forces
 from .model import Model, State
 from .ring_torque import internal_model
@@ -166,22 +167,10 @@ def _none_else(model: Model, drag=False, bushings=False, dampers=False) -> Model
     return dataclasses.replace(inner, arrays=a._replace(**fields))
 
 
-def _held(model: Model) -> np.ndarray:
-    """(n_b, 6) bool: the prescribed velocity components (a modal body's frame: its own freedoms)."""
-    a = model.arrays
-    held = a.body_free == 0
-    for j, i in enumerate(a.modal_body):
-        held[i] = a.modal_frame_free[j] == 0
-    return held
-
-
 def _energy(model: Model, state: State, work) -> float:
     """Kinetic energy of the rigid bodies and the contacts' and bushings' elastic energy, J."""
-    a = model.arrays
     w = evaluate_forces(model, state, work)
-    v = state.v
-    kinetic = 0.5 * np.sum(a.body_mass * np.sum(v[:, :3] ** 2, axis=1)) + 0.5 * np.sum(a.body_inertia * v[:, 3:] ** 2)
-    return float(kinetic + w.energy[0] + w.energy[1])
+    return float(kinetic_energy(model.arrays.body_mass, model.arrays.body_inertia, state.v) + w.energy[0] + w.energy[1])
 
 
 def _family_models(model: Model, groups: dict) -> tuple[dict, dict]:
@@ -216,8 +205,8 @@ def power_losses(model: Model, run: dict, t_from_s: float = -np.inf, max_samples
     variants, extra = _family_models(model, groups)
     internal = internal_model(model)
     works = {id(m): None for v in (*variants.values(), *extra.values()) for m in v}
-    held = _held(model)
-    free = ~held
+    free = model.free_mask()
+    held = ~free
     loss_sum = {name: 0.0 for name in [*(f"{g} friction" for g in groups), *(f"{g} damping" for g in groups), *extra]}
     if n_eta:
         loss_sum["modal damping"] = 0.0
@@ -228,7 +217,8 @@ def power_losses(model: Model, run: dict, t_from_s: float = -np.inf, max_samples
     for row, k in enumerate(picks):
         state = State(float(t[k]), run["q"][k].copy(), run["v"][k].copy(),
                       run["eta"][k].copy() if n_eta else np.zeros(0), run["eta_dot"][k].copy() if n_eta else np.zeros(0))
-        omega = Rotation.from_quat(state.q[:, [4, 5, 6, 3]]).apply(state.v[:, 3:])
+        rot = Rotation.from_quat(state.q[:, 3:], scalar_first=True)
+        omega = rot.apply(state.v[:, 3:])       # world angular velocities
 
         def power(m):
             works[id(m)] = work = evaluate_forces(m, state, works[id(m)])
@@ -245,9 +235,9 @@ def power_losses(model: Model, run: dict, t_from_s: float = -np.inf, max_samples
         if n_eta:
             loss_sum["modal damping"] += float(np.sum(a.modal_damp * state.eta_dot ** 2))
         work_full = evaluate_forces(model, state, work_full)
-        q_full = _generalized_of(work_full, state)
+        q_full = _generalized_of(work_full, rot)
         work_int = evaluate_forces(internal, state, work_int)
-        q_int = _generalized_of(work_int, state)
+        q_int = _generalized_of(work_int, rot)
         p_in[row] = -float(np.sum((q_int * state.v)[held]))
         p_ext += float(np.sum(((q_full - q_int) * state.v)[free]))
         if n_eta:   # loads that reach the modes too (an unbalance on a modal rotor)
@@ -275,8 +265,7 @@ def _power_of(work, state: State, omega_world: np.ndarray) -> float:
     return p
 
 
-def _generalized_of(work, state: State) -> np.ndarray:
+def _generalized_of(work, rot: Rotation) -> np.ndarray:
     """(n_b, 6) the forces in ``work`` on each body's components: world force, moment in the body frame
-    (the frame of ω)."""
-    rot = Rotation.from_quat(state.q[:, [4, 5, 6, 3]])
+    (the frame of ω; ``rot`` the bodies' orientations)."""
     return np.hstack([work.body_f, rot.inv().apply(work.body_t)])
